@@ -1,0 +1,20 @@
+#include "app/command.h"
+
+#include <cstdio>
+#include <exception>
+
+namespace app {
+
+int RunGuarded(const std::string& name, const std::function<int()>& run) {
+  try {
+    return run();
+  } catch (const EnvironmentError& e) {
+    std::fprintf(stderr, "topoplan %s: environment error: %s\n", name.c_str(), e.what());
+    return kExitEnvironment;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "topoplan %s: error: %s\n", name.c_str(), e.what());
+    return kExitBadInput;
+  }
+}
+
+}  // namespace app

@@ -1,0 +1,38 @@
+// Subcommand plumbing shared by every `topoplan` command: exit codes, error kinds, registration.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <functional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace app {
+
+// Exit codes (DESIGN.md): 0 success; 1 ran but the task failed (no path, not converged, unstable
+// grasp, images differ); 2 bad input or usage; 3 environment error (no GL context, missing asset).
+enum ExitCode : int { kExitOk = 0, kExitFailed = 1, kExitBadInput = 2, kExitEnvironment = 3 };
+
+// Thrown for environment problems (no GL context, a missing installed asset): exit code 3.
+// Every other exception that reaches main (std::invalid_argument from loaders, ...) is bad input:
+// exit code 2.
+class EnvironmentError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// A registered subcommand: `run` is called when `sub` was parsed and returns the exit code.
+struct Command {
+  CLI::App* sub = nullptr;
+  std::function<int()> run;
+};
+using CommandList = std::vector<Command>;
+
+// Registration functions, one per command family (app/cmd_*.cc).
+void AddTopologyCommands(CLI::App* root, CommandList* commands);  // writhe, winding
+void AddDemoCommand(CLI::App* root, CommandList* commands);       // demo
+
+// Runs `run`, mapping exceptions to exit codes and printing "topoplan <name>: error: ..." to stderr.
+int RunGuarded(const std::string& name, const std::function<int()>& run);
+
+}  // namespace app

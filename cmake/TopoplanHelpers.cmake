@@ -1,0 +1,23 @@
+# topoplan_add_test(NAME name SOURCES a.cc [b.cc] LIBS lib... LABELS unit|property|snapshot [ENV K=V...])
+# Builds one GoogleTest executable and registers its cases with CTest under the given labels.
+function(topoplan_add_test)
+  cmake_parse_arguments(T "" "NAME" "SOURCES;LIBS;LABELS;ENV" ${ARGN})
+  add_executable(${T_NAME} ${T_SOURCES})
+  target_link_libraries(${T_NAME} PRIVATE ${T_LIBS} GTest::gtest GTest::gtest_main)
+  target_include_directories(${T_NAME} PRIVATE ${PROJECT_SOURCE_DIR})
+  target_compile_definitions(${T_NAME} PRIVATE
+    TOPOPLAN_SOURCE_DIR="${PROJECT_SOURCE_DIR}" TOPOPLAN_BINARY_DIR="${PROJECT_BINARY_DIR}")
+  gtest_discover_tests(${T_NAME}
+    PROPERTIES LABELS "${T_LABELS}" ENVIRONMENT "${T_ENV}"
+    DISCOVERY_TIMEOUT 60)
+endfunction()
+
+# topoplan_add_library(name SOURCES ... PUBLIC_LIBS ... PRIVATE_LIBS ...)
+# One static library per module, include paths rooted at the repository, alias topoplan::name.
+function(topoplan_add_library name)
+  cmake_parse_arguments(L "" "" "SOURCES;PUBLIC_LIBS;PRIVATE_LIBS" ${ARGN})
+  add_library(${name} STATIC ${L_SOURCES})
+  add_library(topoplan::${name} ALIAS ${name})
+  target_include_directories(${name} PUBLIC ${PROJECT_SOURCE_DIR})
+  target_link_libraries(${name} PUBLIC ${L_PUBLIC_LIBS} PRIVATE ${L_PRIVATE_LIBS})
+endfunction()

@@ -1,0 +1,36 @@
+#!/usr/bin/env bash
+# One entry point for a fresh Debian 12 machine: installs packages, builds (Release), then
+#   scripts/run.sh demo [demo args...]   runs the main job (writes demo-out/index.html)
+#   scripts/run.sh test [ctest args...]  runs every test (ctest)
+#   scripts/run.sh build                 only builds
+#   scripts/run.sh bench                 runs the Google Benchmark programs
+# Environment: BUILD_DIR (default build), JOBS (default nproc), CI=true turns warnings into errors.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+ROOT=$PWD
+BUILD_DIR=${BUILD_DIR:-$ROOT/build}
+JOBS=${JOBS:-$(nproc)}
+cmd=${1:-demo}
+shift || true
+
+case "$cmd" in
+  demo|test|build|bench) ;;
+  -h|--help) sed -n '2,8p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+  *) echo "run.sh: unknown command '$cmd' (demo, test, build, bench)" >&2; exit 2 ;;
+esac
+
+bash scripts/setup.sh
+werror=OFF
+[[ "${CI:-}" == "true" ]] && werror=ON
+cmake -S "$ROOT" -B "$BUILD_DIR" -DCMAKE_BUILD_TYPE=Release -DTOPOPLAN_WERROR=$werror >/dev/null
+cmake --build "$BUILD_DIR" -j "$JOBS"
+
+case "$cmd" in
+  demo) "$BUILD_DIR/app/topoplan" demo -o "$ROOT/demo-out" "$@" ;;
+  test) cd "$BUILD_DIR" && ctest --output-on-failure -j "$JOBS" "$@" ;;
+  bench)
+    for b in "$BUILD_DIR"/tests/bench/bench_*; do
+      [[ -x "$b" ]] && "$b" "$@"
+    done ;;
+  build) ;;
+esac

@@ -1,0 +1,50 @@
+#!/usr/bin/env bash
+# Installs every Debian package topoplan needs to build, test and run its demo.
+# Idempotent: packages already present are skipped. Uses sudo when not run as root.
+# Usage: scripts/setup.sh [--minimal]   (--minimal skips optional tools: ffmpeg, OMPL)
+set -euo pipefail
+
+REQUIRED=(
+  build-essential cmake pkg-config git            # toolchain
+  libeigen3-dev                                   # linear algebra (all modules)
+  libcli11-dev nlohmann-json3-dev                 # command line, JSON
+  libosmesa6-dev libegl-dev libgl-dev             # offscreen GL (OSMesa, EGL surfaceless), window GL
+  libglfw3-dev libimgui-dev libstb-dev            # interactive window, UI, image I/O
+  libpng-dev zlib1g-dev                           # fast PNG encoder for frame sequences
+  libplplot-dev plplot-driver-cairo               # plots
+  fonts-dejavu-core                               # font for labels
+  libassimp-dev liburdfdom-dev                    # meshes, URDF
+  libfcl-dev libccd-dev                           # collision
+  libode-dev                                      # physics
+  libgtest-dev libgmock-dev libbenchmark-dev      # tests, benchmarks
+  xvfb xauth xdotool imagemagick                  # headless window tests
+)
+OPTIONAL=(ffmpeg libompl-dev)
+
+minimal=0
+[[ "${1:-}" == "--minimal" ]] && minimal=1
+
+SUDO=""
+if [[ $(id -u) -ne 0 ]]; then
+  command -v sudo >/dev/null || { echo "setup: not root and no sudo; install as root: ${REQUIRED[*]}" >&2; exit 3; }
+  SUDO="sudo"
+fi
+
+missing=()
+want=("${REQUIRED[@]}")
+[[ $minimal -eq 0 ]] && want+=("${OPTIONAL[@]}")
+for p in "${want[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+
+if [[ ${#missing[@]} -eq 0 ]]; then
+  echo "setup: all ${#want[@]} Debian packages present"
+  exit 0
+fi
+echo "setup: installing ${#missing[@]} Debian packages: ${missing[*]}"
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq
+$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+echo "setup: done"

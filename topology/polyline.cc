@@ -1,0 +1,76 @@
+#include "topology/polyline.h"
+
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <iomanip>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+#include <vector>
+
+namespace topology {
+namespace {
+
+std::string Trim(const std::string& s) {
+  const auto b = s.find_first_not_of(" \t\r");
+  if (b == std::string::npos) return "";
+  const auto e = s.find_last_not_of(" \t\r");
+  return s.substr(b, e - b + 1);
+}
+
+[[noreturn]] void Fail(const std::string& source, int line, const std::string& what) {
+  throw std::invalid_argument(source + ":" + std::to_string(line) + ": " + what);
+}
+
+}  // namespace
+
+Chain ParseChainCsv(std::istream& in, const std::string& source_name) {
+  std::vector<double> xyz;
+  std::string raw;
+  int line_no = 0;
+  while (std::getline(in, raw)) {
+    ++line_no;
+    const std::string line = Trim(raw);
+    if (line.empty() || line[0] == '#') continue;
+    std::stringstream fields(line);
+    std::string field;
+    int count = 0;
+    while (std::getline(fields, field, ',')) {
+      field = Trim(field);
+      if (++count > 3) Fail(source_name, line_no, "expected 3 comma-separated numbers x,y,z");
+      char* end = nullptr;
+      errno = 0;
+      const double v = std::strtod(field.c_str(), &end);
+      if (field.empty() || end != field.c_str() + field.size() || errno == ERANGE) {
+        Fail(source_name, line_no, "'" + field + "' is not a number");
+      }
+      if (!std::isfinite(v)) Fail(source_name, line_no, "non-finite value '" + field + "'");
+      xyz.push_back(v);
+    }
+    if (line.back() == ',') Fail(source_name, line_no, "trailing comma");
+    if (count != 3) Fail(source_name, line_no, "expected 3 comma-separated numbers x,y,z");
+  }
+  const int n = static_cast<int>(xyz.size() / 3);
+  if (n < 2) {
+    throw std::invalid_argument(source_name + ": a chain needs at least 2 points, found " +
+                                std::to_string(n));
+  }
+  return Eigen::Map<const Chain>(xyz.data(), 3, n);
+}
+
+Chain ReadChainCsv(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw std::invalid_argument(path + ": cannot open chain file (missing or unreadable)");
+  return ParseChainCsv(in, path);
+}
+
+void WriteChainCsv(const Chain& chain, std::ostream& out) {
+  out << std::setprecision(std::numeric_limits<double>::max_digits10);
+  for (Eigen::Index i = 0; i < chain.cols(); ++i) {
+    out << chain(0, i) << ',' << chain(1, i) << ',' << chain(2, i) << '\n';
+  }
+}
+
+}  // namespace topology
