@@ -1,0 +1,246 @@
+#include "planning/rrt.h"
+
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+namespace planning {
+namespace {
+
+enum class EdgeResult { kValid, kInvalid, kBudget };
+
+// Counts validity calls and enforces the budget.
+struct Checker {
+  const ValidityFn& valid;
+  std::int64_t max_checks;
+  std::int64_t count = 0;
+
+  bool exhausted() const { return count >= max_checks; }
+  bool operator()(const Eigen::VectorXd& q) {
+    ++count;
+    return valid(q);
+  }
+};
+
+void CheckProblem(const RrtProblem& p) {
+  const Eigen::Index n = p.start.size();
+  if (n == 0 || p.goal.size() != n || p.lower.size() != n || p.upper.size() != n) {
+    throw std::invalid_argument(
+        "RRT: start, goal, lower, upper must have the same non-zero size (" +
+        std::to_string(p.start.size()) + ", " + std::to_string(p.goal.size()) + ", " +
+        std::to_string(p.lower.size()) + ", " + std::to_string(p.upper.size()) + ")");
+  }
+  if (!p.start.allFinite() || !p.goal.allFinite() || !p.lower.allFinite() || !p.upper.allFinite()) {
+    throw std::invalid_argument("RRT: non-finite start, goal or bounds");
+  }
+  if ((p.upper - p.lower).minCoeff() < 0.0) {
+    throw std::invalid_argument("RRT: a lower bound exceeds its upper bound");
+  }
+}
+
+double Diagonal(const RrtProblem& p) { return (p.upper - p.lower).norm(); }
+
+// Edge from -> to: end state first, then the interior states in order.
+EdgeResult CheckEdge(const Eigen::VectorXd& from, const Eigen::VectorXd& to, double resolution,
+                     Checker* check, Eigen::VectorXd* tmp) {
+  if (check->exhausted()) return EdgeResult::kBudget;
+  if (!(*check)(to)) return EdgeResult::kInvalid;
+  const double d = (to - from).norm();
+  const int steps = std::max(1, static_cast<int>(std::ceil(d / resolution)));
+  for (int i = 1; i < steps; ++i) {
+    if (check->exhausted()) return EdgeResult::kBudget;
+    const double s = static_cast<double>(i) / steps;
+    tmp->noalias() = (1.0 - s) * from + s * to;
+    if (!(*check)(*tmp)) return EdgeResult::kInvalid;
+  }
+  return EdgeResult::kValid;
+}
+
+int Nearest(const std::vector<RrtNode>& tree, const Eigen::VectorXd& q) {
+  int best = 0;
+  double best_d = std::numeric_limits<double>::infinity();
+  for (int i = 0; i < static_cast<int>(tree.size()); ++i) {
+    const double d = (tree[i].q - q).squaredNorm();
+    if (d < best_d) {
+      best_d = d;
+      best = i;
+    }
+  }
+  return best;
+}
+
+void SampleUniform(const RrtProblem& p, std::mt19937* rng, Eigen::VectorXd* q) {
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  for (Eigen::Index i = 0; i < q->size(); ++i) {
+    (*q)[i] = p.lower[i] + u(*rng) * (p.upper[i] - p.lower[i]);
+  }
+}
+
+// q_new = q_near moved toward q_target by at most `range`.
+void Steer(const Eigen::VectorXd& q_near, const Eigen::VectorXd& q_target, double range,
+           Eigen::VectorXd* q_new) {
+  const double d = (q_target - q_near).norm();
+  if (d <= range) {
+    *q_new = q_target;
+  } else {
+    q_new->noalias() = q_near + (range / d) * (q_target - q_near);
+  }
+}
+
+// Root-to-node configurations of `tree` ending at `index` (root first).
+void AppendBranch(const std::vector<RrtNode>& tree, int index, bool reverse,
+                  std::vector<int>* out) {
+  std::vector<int> branch;
+  for (int i = index; i >= 0; i = tree[i].parent) branch.push_back(i);
+  if (!reverse) {
+    out->insert(out->end(), branch.rbegin(), branch.rend());
+  } else {
+    out->insert(out->end(), branch.begin(), branch.end());
+  }
+}
+
+Trajectory ToTrajectory(const std::vector<const RrtNode*>& nodes, int n) {
+  Trajectory path;
+  path.q.resize(n, static_cast<Eigen::Index>(nodes.size()));
+  for (size_t i = 0; i < nodes.size(); ++i) path.q.col(static_cast<Eigen::Index>(i)) = nodes[i]->q;
+  return path;
+}
+
+}  // namespace
+
+RrtResult PlanRrt(const RrtProblem& problem, const RrtOptions& options, const ValidityFn& valid,
+                  std::mt19937* rng) {
+  CheckProblem(problem);
+  const int n = static_cast<int>(problem.start.size());
+  const double diag = Diagonal(problem);
+  const double range = options.range > 0 ? options.range : 0.2 * diag;
+  const double resolution = options.resolution > 0 ? options.resolution : 0.01 * diag;
+  Checker check{valid, options.max_checks};
+  RrtResult result;
+
+  // Start and goal must be valid.
+  if (!check(problem.start) || !check(problem.goal)) {
+    result.status = SolveStatus::kInvalidInput;
+    result.checks = check.count;
+    return result;
+  }
+
+  std::vector<RrtNode> tree;
+  tree.push_back({problem.start, -1});
+  Eigen::VectorXd q_rand(n), q_new(n), tmp(n);
+  std::uniform_real_distribution<double> coin(0.0, 1.0);
+  result.status = SolveStatus::kBudgetExhausted;
+  while (!check.exhausted() && result.iterations < options.max_iterations) {
+    ++result.iterations;
+    const bool to_goal = coin(*rng) < options.goal_bias;
+    if (to_goal) {
+      q_rand = problem.goal;
+    } else {
+      SampleUniform(problem, rng, &q_rand);
+    }
+    const int near = Nearest(tree, q_rand);
+    Steer(tree[near].q, q_rand, range, &q_new);
+    const EdgeResult edge = CheckEdge(tree[near].q, q_new, resolution, &check, &tmp);
+    if (edge == EdgeResult::kBudget) break;
+    if (edge == EdgeResult::kInvalid) continue;
+    tree.push_back({q_new, near});
+    if ((q_new - problem.goal).norm() <= 1e-12) {
+      std::vector<int> idx;
+      AppendBranch(tree, static_cast<int>(tree.size()) - 1, false, &idx);
+      std::vector<const RrtNode*> nodes;
+      for (int i : idx) nodes.push_back(&tree[i]);
+      result.path = ToTrajectory(nodes, n);
+      result.status = SolveStatus::kConverged;
+      break;
+    }
+  }
+  result.checks = check.count;
+  result.tree_size = static_cast<int>(tree.size());
+  return result;
+}
+
+RrtResult PlanBiRrt(const RrtProblem& problem, const RrtOptions& options, const ValidityFn& valid,
+                    std::mt19937* rng) {
+  CheckProblem(problem);
+  const int n = static_cast<int>(problem.start.size());
+  const double diag = Diagonal(problem);
+  const double range = options.range > 0 ? options.range : 0.2 * diag;
+  const double resolution = options.resolution > 0 ? options.resolution : 0.01 * diag;
+  Checker check{valid, options.max_checks};
+  RrtResult result;
+
+  if (!check(problem.start) || !check(problem.goal)) {
+    result.status = SolveStatus::kInvalidInput;
+    result.checks = check.count;
+    return result;
+  }
+
+  std::vector<RrtNode> trees[2];
+  trees[0].push_back({problem.start, -1});
+  trees[1].push_back({problem.goal, -1});
+  Eigen::VectorXd q_rand(n), q_new(n), tmp(n);
+  std::uniform_real_distribution<double> coin(0.0, 1.0);
+  int grow = 0;  // index of the tree that grows this iteration
+  result.status = SolveStatus::kBudgetExhausted;
+  while (!check.exhausted() && result.iterations < options.max_iterations) {
+    ++result.iterations;
+    std::vector<RrtNode>& a = trees[grow];
+    std::vector<RrtNode>& b = trees[1 - grow];
+    // Target: a random node of the other tree (goal_bias) or a uniform sample.
+    if (coin(*rng) < options.goal_bias) {
+      std::uniform_int_distribution<int> pick(0, static_cast<int>(b.size()) - 1);
+      q_rand = b[pick(*rng)].q;
+    } else {
+      SampleUniform(problem, rng, &q_rand);
+    }
+    const int near = Nearest(a, q_rand);
+    Steer(a[near].q, q_rand, range, &q_new);
+    const EdgeResult edge = CheckEdge(a[near].q, q_new, resolution, &check, &tmp);
+    if (edge == EdgeResult::kBudget) break;
+    if (edge == EdgeResult::kValid) {
+      a.push_back({q_new, near});
+      const int added = static_cast<int>(a.size()) - 1;
+      // Try to join the trees through the other tree's nearest node.
+      const int other = Nearest(b, q_new);
+      if ((b[other].q - q_new).norm() <= range) {
+        const EdgeResult join = CheckEdge(q_new, b[other].q, resolution, &check, &tmp);
+        if (join == EdgeResult::kBudget) break;
+        if (join == EdgeResult::kValid) {
+          // Path: start tree root .. joint, then goal tree joint .. root.
+          const int start_end = grow == 0 ? added : other;
+          const int goal_end = grow == 0 ? other : added;
+          std::vector<int> from_start, from_goal;
+          AppendBranch(trees[0], start_end, false, &from_start);
+          AppendBranch(trees[1], goal_end, true, &from_goal);
+          std::vector<const RrtNode*> nodes;
+          for (int i : from_start) nodes.push_back(&trees[0][i]);
+          for (int i : from_goal) nodes.push_back(&trees[1][i]);
+          result.path = ToTrajectory(nodes, n);
+          result.status = SolveStatus::kConverged;
+          break;
+        }
+      }
+    }
+    grow = 1 - grow;
+  }
+  result.checks = check.count;
+  result.tree_size = static_cast<int>(trees[0].size() + trees[1].size());
+  return result;
+}
+
+bool PathIsValid(const Trajectory& path, double resolution, const ValidityFn& valid,
+                 std::int64_t* checks) {
+  if (!(resolution > 0.0)) throw std::invalid_argument("PathIsValid: resolution must be > 0");
+  Checker check{valid, std::numeric_limits<std::int64_t>::max()};
+  bool ok = path.num_points() == 0 || check(path.q.col(0));
+  Eigen::VectorXd tmp(path.num_dofs());
+  for (int t = 0; ok && t + 1 < path.num_points(); ++t) {
+    ok =
+        CheckEdge(path.q.col(t), path.q.col(t + 1), resolution, &check, &tmp) == EdgeResult::kValid;
+  }
+  if (checks != nullptr) *checks += check.count;
+  return ok;
+}
+
+}  // namespace planning

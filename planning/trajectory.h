@@ -1,0 +1,40 @@
+// Trajectories and the status vocabulary shared by every planner (AICO, RRT, BiRRT).
+#pragma once
+
+#include <Eigen/Core>
+#include <string>
+
+namespace planning {
+
+// Outcome of a solver or planner run. "No path" and "did not converge" are statuses, never
+// exceptions; exceptions are reserved for invalid input at a public boundary.
+enum class SolveStatus {
+  kConverged,        // AICO: belief step below tolerance; RRT: a path to the goal was found.
+  kMaxIterations,    // AICO: iteration limit reached before convergence (the result is usable).
+  kBudgetExhausted,  // RRT: the validity-check budget ran out without a path (counts as failure).
+  kDiverged,         // AICO: no accepted sweep within the backtracking limit / non-finite cost.
+  kInvalidInput,     // invalid start or goal (e.g. in collision) detected by the planner.
+};
+
+// Human-readable name ("converged", "max_iterations", "budget_exhausted", ...).
+const char* StatusName(SolveStatus status);
+
+// A joint-space trajectory: column t of `q` is the configuration q_t (num_dofs × num_points),
+// sampled every `dt` seconds (dt = 0 for geometric paths without timing, e.g. RRT output).
+struct Trajectory {
+  Eigen::MatrixXd q;
+  double dt = 0.0;
+
+  int num_points() const { return static_cast<int>(q.cols()); }
+  int num_dofs() const { return static_cast<int>(q.rows()); }
+};
+
+// Euclidean joint-space length Σ_t |q_{t+1} − q_t|.
+double PathLength(const Trajectory& trajectory);
+
+// Linear interpolation of a path to equally spaced waypoints at most `resolution` apart
+// (Euclidean joint-space distance). Every original waypoint is kept. Throws
+// std::invalid_argument for resolution <= 0.
+Trajectory Densify(const Trajectory& trajectory, double resolution);
+
+}  // namespace planning
