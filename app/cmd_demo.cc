@@ -31,7 +31,8 @@ struct ChainPair {
 constexpr ChainPair kPairs[] = {
     {"hopf", "hopf_a.csv", "hopf_b.csv", "-1 (Hopf link, linking number)"},
     {"unlinked", "unlinked_a.csv", "unlinked_b.csv", "0 (separate rings)"},
-    {"torus_2_6", "torus_2_6_a.csv", "torus_2_6_b.csv", "|3| ((2,6) torus link; sign = orientation)"},
+    {"torus_2_6", "torus_2_6_a.csv", "torus_2_6_b.csv",
+     "|3| ((2,6) torus link; sign = orientation)"},
     {"helix_pole", "helix_3turns.csv", "pole.csv", "about 3 (3-turn helix around a pole)"},
     {"ring_arm", "ring.csv", "arm_through_ring.csv", "about -0.9 (open arm through a ring)"},
 };
@@ -65,8 +66,8 @@ int RunDemo(const DemoArgs& args) {
     std::printf("[%d/%zu] writhe %-11s %3ldx%-3ld total %+.6f   (expected %s)\n", index,
                 std::size(kPairs), p.name, static_cast<long>(w.rows()), static_cast<long>(w.cols()),
                 w.sum(), p.expected);
-    summary.push_back({{"name", p.name}, {"a", p.a}, {"b", p.b}, {"total", w.sum()},
-                       {"file", file}});
+    summary.push_back(
+        {{"name", p.name}, {"a", p.a}, {"b", p.b}, {"total", w.sum()}, {"file", file}});
     char line[512];
     std::snprintf(line, sizeof line,
                   "<tr><td>%s</td><td>%s &times; %s</td><td>%ldx%ld</td><td>%+.6f</td><td>%s</td>"

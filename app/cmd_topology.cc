@@ -71,69 +71,73 @@ void AddTopologyCommands(CLI::App* root, CommandList* commands) {
       "Entry (i,j) = 1/(4pi) * double integral over segment i of A and segment j of B of\n"
       "(a-b).(da x db)/|a-b|^3. For two closed polygons the total is their linking number.");
   commands->push_back({writhe, [wa]() {
-    const topology::Chain a = topology::ReadChainCsv(wa->a_path);
-    const topology::Chain b = topology::ReadChainCsv(wa->b_path);
-    topology::WritheOptions options;
-    if (wa->unsigned_variant) options.variant = topology::WritheVariant::kUnsignedSolidAngle;
-    const Eigen::MatrixXd w = topology::WritheMatrix(a, b, options);
-    const double total = w.sum();
-    if (wa->json) {
-      nlohmann::json j;
-      j["rows"] = w.rows();
-      j["cols"] = w.cols();
-      j["total"] = total;
-      if (!wa->total_only) j["matrix"] = MatrixToJson(w);
-      std::cout << j.dump() << "\n";
-    } else if (wa->total_only) {
-      std::printf("rows %ld cols %ld total %.17g\n", static_cast<long>(w.rows()),
-                  static_cast<long>(w.cols()), total);
-    } else {
-      PrintTable(w, total, wa->unsigned_variant);
-    }
-    return kExitOk;
-  }});
+                         const topology::Chain a = topology::ReadChainCsv(wa->a_path);
+                         const topology::Chain b = topology::ReadChainCsv(wa->b_path);
+                         topology::WritheOptions options;
+                         if (wa->unsigned_variant)
+                           options.variant = topology::WritheVariant::kUnsignedSolidAngle;
+                         const Eigen::MatrixXd w = topology::WritheMatrix(a, b, options);
+                         const double total = w.sum();
+                         if (wa->json) {
+                           nlohmann::ordered_json j;
+                           j["rows"] = w.rows();
+                           j["cols"] = w.cols();
+                           j["total"] = total;
+                           if (!wa->total_only) j["matrix"] = MatrixToJson(w);
+                           std::cout << j.dump() << "\n";
+                         } else if (wa->total_only) {
+                           std::printf("rows %ld cols %ld total %.17g\n",
+                                       static_cast<long>(w.rows()), static_cast<long>(w.cols()),
+                                       total);
+                         } else {
+                           PrintTable(w, total, wa->unsigned_variant);
+                         }
+                         return kExitOk;
+                       }});
 
   // winding --------------------------------------------------------------------------------------
   auto na = std::make_shared<WindingArgs>();
   CLI::App* winding =
       root->add_subcommand("winding", "Winding number of a chain about an oriented axis");
   winding->add_option("CHAIN", na->chain_path, "chain CSV (x,y,z per line)")->required();
-  winding->add_option("--axis", na->axis_text,
-                      "axis point and direction px,py,pz,dx,dy,dz (angles counter-clockwise about d)")
+  winding
+      ->add_option("--axis", na->axis_text,
+                   "axis point and direction px,py,pz,dx,dy,dz (angles counter-clockwise about d)")
       ->required();
   winding->add_flag("--json", na->json, "print {\"winding\": w}");
   winding->add_flag("--unsigned", na->unsigned_variant,
                     "sum of unsigned arccos angles (Eq. 4 of Ivan et al. 2013)");
   winding->add_flag("--segments", na->per_segment, "also print the per-segment contributions");
-  commands->push_back({winding, [na]() {
-    const std::vector<double> ax = ParseNumberList(na->axis_text, "--axis", 6);
-    topology::Axis axis{{ax[0], ax[1], ax[2]}, {ax[3], ax[4], ax[5]}};
-    if (axis.direction.norm() == 0.0) {
-      throw std::invalid_argument("--axis: direction dx,dy,dz must be non-zero");
-    }
-    const topology::Chain chain = topology::ReadChainCsv(na->chain_path);
-    topology::WindingOptions options;
-    if (na->unsigned_variant) options.variant = topology::WindingVariant::kUnsignedArccos;
-    const double w = topology::WindingNumber(chain, axis, options);
-    if (na->json) {
-      nlohmann::json j;
-      j["winding"] = w;
-      if (na->per_segment) {
-        const Eigen::VectorXd s = topology::SegmentWindings(chain, axis, options);
-        j["segments"] = std::vector<double>(s.data(), s.data() + s.size());
-      }
-      std::cout << j.dump() << "\n";
-    } else {
-      std::printf("winding %.12g turns (%.6g deg)\n", w, 360.0 * w);
-      if (na->per_segment) {
-        const Eigen::VectorXd s = topology::SegmentWindings(chain, axis, options);
-        for (Eigen::Index i = 0; i < s.size(); ++i) {
-          std::printf("segment %ld %+.9f\n", static_cast<long>(i), s(i));
-        }
-      }
-    }
-    return kExitOk;
-  }});
+  commands->push_back(
+      {winding, [na]() {
+         const std::vector<double> ax = ParseNumberList(na->axis_text, "--axis", 6);
+         topology::Axis axis{{ax[0], ax[1], ax[2]}, {ax[3], ax[4], ax[5]}};
+         if (axis.direction.norm() == 0.0) {
+           throw std::invalid_argument("--axis: direction dx,dy,dz must be non-zero");
+         }
+         const topology::Chain chain = topology::ReadChainCsv(na->chain_path);
+         topology::WindingOptions options;
+         if (na->unsigned_variant) options.variant = topology::WindingVariant::kUnsignedArccos;
+         const double w = topology::WindingNumber(chain, axis, options);
+         if (na->json) {
+           nlohmann::ordered_json j;
+           j["winding"] = w;
+           if (na->per_segment) {
+             const Eigen::VectorXd s = topology::SegmentWindings(chain, axis, options);
+             j["segments"] = std::vector<double>(s.data(), s.data() + s.size());
+           }
+           std::cout << j.dump() << "\n";
+         } else {
+           std::printf("winding %.12g turns (%.6g deg)\n", w, 360.0 * w);
+           if (na->per_segment) {
+             const Eigen::VectorXd s = topology::SegmentWindings(chain, axis, options);
+             for (Eigen::Index i = 0; i < s.size(); ++i) {
+               std::printf("segment %ld %+.9f\n", static_cast<long>(i), s(i));
+             }
+           }
+         }
+         return kExitOk;
+       }});
 }
 
 }  // namespace app

@@ -32,7 +32,8 @@ using CommandList = std::vector<Command>;
 void AddTopologyCommands(CLI::App* root, CommandList* commands);  // writhe, winding
 void AddDemoCommand(CLI::App* root, CommandList* commands);       // demo
 
-// Runs `run`, mapping exceptions to exit codes and printing "topoplan <name>: error: ..." to stderr.
+// Runs `run`, mapping exceptions to exit codes and printing "topoplan <name>: error: ..." to
+// stderr.
 int RunGuarded(const std::string& name, const std::function<int()>& run);
 
 }  // namespace app

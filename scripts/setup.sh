@@ -6,7 +6,7 @@ set -euo pipefail
 
 REQUIRED=(
   build-essential cmake pkg-config git            # toolchain
-  libeigen3-dev                                   # linear algebra (all modules)
+  libeigen3-dev libsleef-dev                      # linear algebra, vectorised atan2 (topology)
   libcli11-dev nlohmann-json3-dev                 # command line, JSON
   libosmesa6-dev libegl-dev libgl-dev             # offscreen GL (OSMesa, EGL surfaceless), window GL
   libglfw3-dev libimgui-dev libstb-dev            # interactive window, UI, image I/O

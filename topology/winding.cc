@@ -1,7 +1,6 @@
 #include "topology/winding.h"
 
 #include <Eigen/Geometry>
-
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -55,8 +54,8 @@ double SegmentAngle(const Vector3d& u0, const Vector3d& u1, const Vector3d& d,
 
 }  // namespace
 
-Eigen::VectorXd SegmentWindings(const Chain& chain, const Axis& axis,
-                                const WindingOptions& options, Eigen::MatrixXd* jac) {
+Eigen::VectorXd SegmentWindings(const Chain& chain, const Axis& axis, const WindingOptions& options,
+                                Eigen::MatrixXd* jac) {
   Check(chain, axis);
   const Vector3d d = axis.direction.normalized();
   const Eigen::Matrix3d proj = Eigen::Matrix3d::Identity() - d * d.transpose();

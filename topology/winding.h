@@ -8,8 +8,8 @@
 namespace topology {
 
 enum class WindingVariant {
-  kSigned,          // (1/2π) Σ_i atan2(n̂·(u_i × u_{i+1}), u_i·u_{i+1}) (default): continuous in
-                    // the points while the chain does not cross the axis; integer for closed loops.
+  kSigned,  // (1/2π) Σ_i atan2(n̂·(u_i × u_{i+1}), u_i·u_{i+1}) (default): continuous in
+            // the points while the chain does not cross the axis; integer for closed loops.
   kUnsignedArccos,  // (1/2π) Σ_i arccos(û_i·û_{i+1}): Eq. 4 of Ivan et al., IJRR 2013. Counts
                     // back-and-forth motion twice; kept for faithfulness to the paper.
 };
@@ -39,10 +39,10 @@ double WindingNumber(const Chain& chain, const Axis& axis, const WindingOptions&
                      Eigen::Matrix3Xd* grad = nullptr);
 
 // Per-segment contributions Δθ_i/(2π) (size N−1); their sum is WindingNumber. If `jac` is not
-// null it is resized to (N−1)×3N with row i = ∂(Δθ_i/2π)/∂(p_0..p_{N−1}) (point k at columns 3k..3k+2).
+// null it is resized to (N−1)×3N with row i = ∂(Δθ_i/2π)/∂(p_0..p_{N−1}) (point k at columns
+// 3k..3k+2).
 Eigen::VectorXd SegmentWindings(const Chain& chain, const Axis& axis,
-                                const WindingOptions& options = {},
-                                Eigen::MatrixXd* jac = nullptr);
+                                const WindingOptions& options = {}, Eigen::MatrixXd* jac = nullptr);
 
 // A planar chain about a point: the same as WindingNumber about the axis through `center` along
 // the plane normal `normal` (points are projected onto the plane).

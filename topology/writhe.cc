@@ -1,7 +1,9 @@
 #include "topology/writhe.h"
 
-#include <Eigen/Geometry>
+#include <emmintrin.h>
+#include <sleef.h>
 
+#include <Eigen/Geometry>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -23,14 +25,15 @@ using Eigen::Vector3d;
 // half solid angle is θ = atan2(y, x) with y = det, x = 1 + sum of pairwise dots. The pair's GLI
 // is −(θ1 + θ2)/(2π) for the orientation convention of the header (checked against quadrature).
 struct PairResult {
-  double w = 0.0;
   Vector3d g1, g2, g3, g4;  // ∂w/∂r_k for r1..r4 (only when requested)
 };
 
+// Fills (X, Y) with X + iY = (x1 + i y1)(x2 + i y2), so that w = −atan2(Y, X)/(2π); the atan2 is
+// evaluated later for a whole row at once (vectorised). Degenerate pairs get (1, 0), i.e. w = 0.
 template <bool kGrad>
-inline double PairKernel(const Vector3d& v1, const Vector3d& v2, const Vector3d& v3,
-                         const Vector3d& v4, double n1, double n2, double n3, double n4,
-                         PairResult* out) {
+inline void PairKernel(const Vector3d& v1, const Vector3d& v2, const Vector3d& v3,
+                       const Vector3d& v4, double n1, double n2, double n3, double n4,
+                       double* out_x, double* out_y, PairResult* out) {
   const Vector3d c23 = v2.cross(v3);
   const Vector3d c34 = v3.cross(v4);
   const double d12 = v1.dot(v2), d23 = v2.dot(v3), d31 = v3.dot(v1);
@@ -44,9 +47,12 @@ inline double PairKernel(const Vector3d& v1, const Vector3d& v2, const Vector3d&
   const double mag2 = big_x * big_x + big_y * big_y;
   if (mag2 < 1e-24 || (big_x < 0.0 && std::abs(big_y) <= 1e-14 * std::abs(big_x))) {
     if constexpr (kGrad) out->g1 = out->g2 = out->g3 = out->g4 = Vector3d::Zero();
-    return 0.0;
+    *out_x = 1.0;
+    *out_y = 0.0;
+    return;
   }
-  const double w = -std::atan2(big_y, big_x) / kTwoPi;
+  *out_x = big_x;
+  *out_y = big_y;
   if constexpr (kGrad) {
     // dθ_t/dv = (x ∂y/∂v − y ∂x/∂v)/(x² + y²), for both triangles; then through v = r/|r|.
     const double den1 = x1 * x1 + y1 * y1, den2 = x2 * x2 + y2 * y2;
@@ -54,25 +60,36 @@ inline double PairKernel(const Vector3d& v1, const Vector3d& v2, const Vector3d&
     const double s2 = den2 > kTriangleFloor ? -1.0 / (kTwoPi * den2) : 0.0;
     const double ax1 = s1 * x1, ay1 = s1 * y1, ax2 = s2 * x2, ay2 = s2 * y2;
     const Vector3d c31 = v3.cross(v1), c12 = v1.cross(v2), c41 = v4.cross(v1), c13 = -c31;
-    Vector3d gv1 = ax1 * c23 - ay1 * (v2 + v3) + ax2 * c34 - ay2 * (v3 + v4);
-    Vector3d gv2 = ax1 * c31 - ay1 * (v1 + v3);
-    Vector3d gv3 = ax1 * c12 - ay1 * (v1 + v2) + ax2 * c41 - ay2 * (v1 + v4);
-    Vector3d gv4 = ax2 * c13 - ay2 * (v1 + v3);
+    const Vector3d gv1 = ax1 * c23 - ay1 * (v2 + v3) + ax2 * c34 - ay2 * (v3 + v4);
+    const Vector3d gv2 = ax1 * c31 - ay1 * (v1 + v3);
+    const Vector3d gv3 = ax1 * c12 - ay1 * (v1 + v2) + ax2 * c41 - ay2 * (v1 + v4);
+    const Vector3d gv4 = ax2 * c13 - ay2 * (v1 + v3);
     out->g1 = (gv1 - v1 * v1.dot(gv1)) / n1;
     out->g2 = (gv2 - v2 * v2.dot(gv2)) / n2;
     out->g3 = (gv3 - v3 * v3.dot(gv3)) / n3;
     out->g4 = (gv4 - v4 * v4.dot(gv4)) / n4;
   }
-  return w;
+}
+
+// out[k] = −atan2(y[k], x[k])/(2π) for k < n, two lanes at a time (SLEEF, 3.5 ULP).
+void RowAngles(const double* y, const double* x, int n, double* out) {
+  const __m128d scale = _mm_set1_pd(-1.0 / kTwoPi);
+  int k = 0;
+  for (; k + 1 < n; k += 2) {
+    const __m128d a = Sleef_atan2d2_u35(_mm_loadu_pd(y + k), _mm_loadu_pd(x + k));
+    _mm_storeu_pd(out + k, _mm_mul_pd(a, scale));
+  }
+  for (; k < n; ++k) out[k] = -std::atan2(y[k], x[k]) / kTwoPi;
 }
 
 void CheckChain(const Chain& c, const char* name) {
   if (c.cols() < 2) {
-    throw std::invalid_argument(std::string("writhe: chain ") + name + " needs at least 2 points, got " +
-                                std::to_string(c.cols()));
+    throw std::invalid_argument(std::string("writhe: chain ") + name +
+                                " needs at least 2 points, got " + std::to_string(c.cols()));
   }
   if (!c.allFinite()) {
-    throw std::invalid_argument(std::string("writhe: chain ") + name + " has a non-finite coordinate");
+    throw std::invalid_argument(std::string("writhe: chain ") + name +
+                                " has a non-finite coordinate");
   }
 }
 
@@ -111,6 +128,9 @@ void Compute(const Chain& a, const Chain& b, const WritheOptions& opt, Eigen::Ma
   std::vector<bool> b_degenerate(cols);
   for (int j = 0; j < cols; ++j) b_degenerate[j] = (b.col(j + 1) - b.col(j)).norm() < tol;
 
+  ws->x_row.resize(cols);
+  ws->y_row.resize(cols);
+  ws->w_row.resize(cols);
   FillDirections(a.col(0), b, &ws->dir_row0, &ws->len_row0);
   PairResult pr;
   for (int i = 0; i < rows; ++i) {
@@ -120,30 +140,38 @@ void Compute(const Chain& a, const Chain& b, const WritheOptions& opt, Eigen::Ma
     const auto& l0 = ws->len_row0;
     const auto& l1 = ws->len_row1;
     const bool a_degenerate = (a.col(i + 1) - a.col(i)).norm() < tol;
+    // Pass 1: (X, Y) per pair, and the gradient (which needs no angle).
     for (int j = 0; j < cols; ++j) {
       const double n1 = l0[j], n2 = l0[j + 1], n3 = l1[j + 1], n4 = l1[j];
-      double value = 0.0;
       const bool degenerate =
           a_degenerate || b_degenerate[j] || n1 < tol || n2 < tol || n3 < tol || n4 < tol;
       if (!degenerate) {
-        value = PairKernel<kGrad>(d0[j], d0[j + 1], d1[j + 1], d1[j], n1, n2, n3, n4, &pr);
-      } else if constexpr (kGrad) {
-        pr.g1 = pr.g2 = pr.g3 = pr.g4 = Vector3d::Zero();
+        PairKernel<kGrad>(d0[j], d0[j + 1], d1[j + 1], d1[j], n1, n2, n3, n4, &ws->x_row[j],
+                          &ws->y_row[j], &pr);
+      } else {
+        ws->x_row[j] = 1.0;
+        ws->y_row[j] = 0.0;
+        if constexpr (kGrad) pr.g1 = pr.g2 = pr.g3 = pr.g4 = Vector3d::Zero();
       }
-      double scale = 1.0;
-      if (unsigned_variant) {
-        scale = value < 0.0 ? -2.0 * kTwoPi : 2.0 * kTwoPi;  // |Ω| = 4π|w|
-        value *= scale;
-      }
-      (*w)(i, j) = value;
       if constexpr (kGrad) {
         // r1 = b_j − a_i, r2 = b_{j+1} − a_i, r3 = b_{j+1} − a_{i+1}, r4 = b_j − a_{i+1}.
         auto col = jac->pair.col(static_cast<Eigen::Index>(i) * cols + j);
-        col.segment<3>(0) = -scale * (pr.g1 + pr.g2);
-        col.segment<3>(3) = -scale * (pr.g3 + pr.g4);
-        col.segment<3>(6) = scale * (pr.g1 + pr.g4);
-        col.segment<3>(9) = scale * (pr.g2 + pr.g3);
+        col.template segment<3>(0) = -(pr.g1 + pr.g2);
+        col.template segment<3>(3) = -(pr.g3 + pr.g4);
+        col.template segment<3>(6) = pr.g1 + pr.g4;
+        col.template segment<3>(9) = pr.g2 + pr.g3;
       }
+    }
+    // Pass 2: the angles of the whole row, vectorised.
+    RowAngles(ws->y_row.data(), ws->x_row.data(), cols, ws->w_row.data());
+    for (int j = 0; j < cols; ++j) {
+      double value = ws->w_row[j];
+      if (unsigned_variant) {
+        const double scale = value < 0.0 ? -2.0 * kTwoPi : 2.0 * kTwoPi;  // |Ω| = 4π|w|
+        value *= scale;
+        if constexpr (kGrad) jac->pair.col(static_cast<Eigen::Index>(i) * cols + j) *= scale;
+      }
+      (*w)(i, j) = value;
     }
     std::swap(ws->dir_row0, ws->dir_row1);
     std::swap(ws->len_row0, ws->len_row1);

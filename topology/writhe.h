@@ -59,6 +59,7 @@ struct WritheJacobian {
 struct WritheWorkspace {
   std::vector<Eigen::Vector3d> dir_row0, dir_row1;  // unit vectors b_q − a_p for two rows of p
   std::vector<double> len_row0, len_row1;           // and their lengths
+  std::vector<double> x_row, y_row, w_row;          // per-pair atan2 arguments and results
 };
 
 // W = writhe matrix of A (3×N_A) against B (3×N_B); W is resized to (N_A−1)×(N_B−1).

@@ -1,9 +1,8 @@
 #include "topology/winding.h"
 
-#include <Eigen/Geometry>
-
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
 #include <cmath>
 #include <random>
 

@@ -165,7 +165,8 @@ TEST(WritheTest, ClosedFormMatchesQuadrature) {
     double min_dist = 1e9;
     for (int i = 0; i <= 50; ++i) {
       for (int j = 0; j <= 50; ++j) {
-        min_dist = std::min(min_dist, ((a0 + (a1 - a0) * i / 50.0) - (b0 + (b1 - b0) * j / 50.0)).norm());
+        min_dist =
+            std::min(min_dist, ((a0 + (a1 - a0) * i / 50.0) - (b0 + (b1 - b0) * j / 50.0)).norm());
       }
     }
     if (min_dist < 0.25) continue;
@@ -196,9 +197,10 @@ TEST_F(WritheRandomTest, JacobianMatchesFiniteDifferences) {
           Chain plus = base, minus = base;
           plus(c, p) += h;
           minus(c, p) -= h;
-          const Eigen::MatrixXd fd = (which == 0 ? WritheMatrix(plus, b_, opt) - WritheMatrix(minus, b_, opt)
-                                                 : WritheMatrix(a_, plus, opt) - WritheMatrix(a_, minus, opt)) /
-                                     (2 * h);
+          const Eigen::MatrixXd fd =
+              (which == 0 ? WritheMatrix(plus, b_, opt) - WritheMatrix(minus, b_, opt)
+                          : WritheMatrix(a_, plus, opt) - WritheMatrix(a_, minus, opt)) /
+              (2 * h);
           for (int i = 0; i < jac.rows; ++i) {
             for (int j = 0; j < jac.cols; ++j) {
               const auto g = jac.pair.col(i * jac.cols + j);

@@ -1,0 +1,89 @@
+// Writhe matrix and winding throughput. Reports ns per segment pair (the DESIGN.md targets:
+// ≤ 20 ns per pair for values, ≤ 100 ns with the gradient, per core).
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+#include <random>
+
+#include "topology/winding.h"
+#include "topology/writhe.h"
+
+namespace {
+
+topology::Chain Random(int points, unsigned seed, double offset) {
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> g(0.0, 1.0);
+  topology::Chain c(3, points);
+  c.col(0) << offset, 0, 0;
+  for (int i = 1; i < points; ++i) {
+    Eigen::Vector3d d(g(rng), g(rng), g(rng));
+    c.col(i) = c.col(i - 1) + 0.1 * d.normalized();
+  }
+  return c;
+}
+
+void BM_WritheMatrix(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  const topology::Chain a = Random(n + 1, 1, 0.0), b = Random(n + 1, 2, 0.05);
+  Eigen::MatrixXd w;
+  topology::WritheWorkspace ws;
+  for (auto _ : state) {
+    topology::WritheMatrix(a, b, {}, &w, &ws);
+    benchmark::DoNotOptimize(w.data());
+  }
+  const double pairs = static_cast<double>(n) * n;
+  // Seconds per segment pair (printed with an SI prefix, e.g. "5.1n" = 5.1 ns).
+  state.counters["s_per_pair"] = benchmark::Counter(
+      pairs, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+}
+BENCHMARK(BM_WritheMatrix)->Arg(20)->Arg(100)->Arg(1000)->Unit(benchmark::kMicrosecond);
+
+void BM_WritheMatrixWithJacobian(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  const topology::Chain a = Random(n + 1, 1, 0.0), b = Random(n + 1, 2, 0.05);
+  Eigen::MatrixXd w;
+  topology::WritheJacobian jac;
+  topology::WritheWorkspace ws;
+  for (auto _ : state) {
+    topology::WritheMatrixWithJacobian(a, b, {}, &w, &jac, &ws);
+    benchmark::DoNotOptimize(jac.pair.data());
+  }
+  const double pairs = static_cast<double>(n) * n;
+  // Seconds per segment pair (printed with an SI prefix, e.g. "5.1n" = 5.1 ns).
+  state.counters["s_per_pair"] = benchmark::Counter(
+      pairs, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+}
+BENCHMARK(BM_WritheMatrixWithJacobian)->Arg(20)->Arg(100)->Arg(1000)->Unit(benchmark::kMicrosecond);
+
+// The unwrap task's shape: 20 arm links against one pole segment, with the chain rule to 20 dofs.
+void BM_WritheArmPoleChainRule(benchmark::State& state) {
+  const topology::Chain arm = Random(21, 3, 0.0);
+  topology::Chain pole(3, 2);
+  pole << -0.1, -0.1, -3, 0, 1.85, 1.85;
+  std::mt19937 rng(4);
+  std::normal_distribution<double> g(0, 1);
+  Eigen::MatrixXd dp_dq(63, 20);
+  for (int i = 0; i < dp_dq.size(); ++i) dp_dq.data()[i] = g(rng);
+  Eigen::MatrixXd w, jq;
+  topology::WritheJacobian jac;
+  topology::WritheWorkspace ws;
+  for (auto _ : state) {
+    topology::WritheMatrixWithJacobian(arm, pole, {}, &w, &jac, &ws);
+    topology::ChainWritheJacobian(jac, dp_dq, Eigen::MatrixXd(), &jq);
+    benchmark::DoNotOptimize(jq.data());
+  }
+}
+BENCHMARK(BM_WritheArmPoleChainRule)->Unit(benchmark::kMicrosecond);
+
+void BM_WindingWithGradient(benchmark::State& state) {
+  const topology::Chain c = Random(static_cast<int>(state.range(0)), 5, 0.5);
+  const topology::Axis axis{{0, 0, 0}, {0, 0, 1}};
+  Eigen::Matrix3Xd grad;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(topology::WindingNumber(c, axis, {}, &grad));
+  }
+  state.SetItemsProcessed(state.iterations() * (state.range(0) - 1));
+}
+BENCHMARK(BM_WindingWithGradient)->Arg(21)->Arg(1001);
+
+}  // namespace
