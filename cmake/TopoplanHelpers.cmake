@@ -1,4 +1,4 @@
-# topoplan_add_test(NAME name SOURCES a.cc [b.cc] LIBS lib... LABELS unit|property|snapshot [ENV K=V...])
+# topoplan_add_test(NAME name SOURCES a.cc [b.cc] LIBS lib... LABEL unit|property|snapshot [ENV K=V])
 # Builds one GoogleTest executable and registers its cases with CTest under the given labels.
 function(topoplan_add_test)
   cmake_parse_arguments(T "" "NAME" "SOURCES;LIBS;LABELS;ENV" ${ARGN})
@@ -7,6 +7,8 @@ function(topoplan_add_test)
   target_include_directories(${T_NAME} PRIVATE ${PROJECT_SOURCE_DIR})
   target_compile_definitions(${T_NAME} PRIVATE
     TOPOPLAN_SOURCE_DIR="${PROJECT_SOURCE_DIR}" TOPOPLAN_BINARY_DIR="${PROJECT_BINARY_DIR}")
+  # One label per executable (gtest_discover_tests cannot carry a list of labels); ENV entries
+  # are joined the same way, so pass at most one.
   gtest_discover_tests(${T_NAME}
     PROPERTIES LABELS "${T_LABELS}" ENVIRONMENT "${T_ENV}"
     DISCOVERY_TIMEOUT 60)
