@@ -1,0 +1,175 @@
+// ODE grasp-stability simulation: envelope passes, open hand fails, determinism, blow-up detection.
+#include "planning/physics/grasp_simulation.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "planning/physics/stability.h"
+#include "tests/physics/test_hands.h"
+
+namespace planning::physics {
+namespace {
+
+// One ODE runtime for the whole test program (the RAII guard allows a single instance).
+class PhysicsTest : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() { runtime_ = new OdeRuntime(); }
+  static void TearDownTestSuite() {
+    delete runtime_;
+    runtime_ = nullptr;
+  }
+  static OdeRuntime* runtime_;
+};
+OdeRuntime* PhysicsTest::runtime_ = nullptr;
+
+TEST_F(PhysicsTest, SecondRuntimeIsRejected) {
+  EXPECT_THROW(OdeRuntime second, std::logic_error);
+  EXPECT_NE(std::string(runtime_->configuration()).find("ODE_double_precision"), std::string::npos);
+}
+
+TEST_F(PhysicsTest, EnvelopingClawHoldsTheBottleInAllSixDirections) {
+  StabilityOptions opt;
+  const StabilityResult r =
+      TestGraspStability(*runtime_, testing_hands::ClawHand(1.3), testing_hands::Bottle(), opt);
+  EXPECT_EQ(r.status, StabilityStatus::kTested) << r.message;
+  EXPECT_GE(r.closure_contact_links, 5);
+  for (const DirectionResult& d : r.directions) {
+    EXPECT_TRUE(d.passed) << d.label << " slip " << d.slip_m << " rot " << d.rotation_deg
+                          << " links " << d.contact_links;
+  }
+  EXPECT_EQ(r.directions_passed, 6);
+  EXPECT_TRUE(r.stable);
+  EXPECT_LT(r.max_slip_m, 0.02);
+}
+
+TEST_F(PhysicsTest, EnvelopeAlsoHoldsAtLowerFriction) {
+  StabilityOptions opt;
+  opt.sim.mu = 0.5;
+  const StabilityResult r =
+      TestGraspStability(*runtime_, testing_hands::ClawHand(1.3), testing_hands::Bottle(), opt);
+  EXPECT_EQ(r.directions_passed, 6);
+}
+
+TEST_F(PhysicsTest, OpenHandDropsTheBottle) {
+  StabilityOptions opt;
+  const StabilityResult r =
+      TestGraspStability(*runtime_, testing_hands::ClawHand(-0.3), testing_hands::Bottle(), opt);
+  EXPECT_FALSE(r.stable);
+  EXPECT_LE(r.directions_passed, 1);
+  // Pulled away from the palm (+z), the bottle leaves the hand.
+  EXPECT_FALSE(r.directions[4].passed);
+  EXPECT_GT(r.directions[4].slip_m, 0.05);
+}
+
+TEST_F(PhysicsTest, WithoutFrictionPyramidMuIsANewtonBoundAndTheBottleSlips) {
+  // mu = 0.5 as a force bound (0.5 N per contact) cannot carry the 5.1 N bottle along its axis.
+  StabilityOptions opt;
+  opt.sim.mu = 0.5;
+  opt.sim.friction_pyramid = false;
+  const StabilityResult r =
+      TestGraspStability(*runtime_, testing_hands::ClawHand(1.3), testing_hands::Bottle(), opt);
+  EXPECT_FALSE(r.directions[0].passed);  // gravity along the bottle axis
+}
+
+TEST_F(PhysicsTest, IdenticalInputsGiveIdenticalNumbers) {
+  StabilityOptions opt;
+  opt.trial_time = 0.3;
+  const StabilityResult a =
+      TestGraspStability(*runtime_, testing_hands::ClawHand(1.3), testing_hands::Bottle(), opt);
+  const StabilityResult b =
+      TestGraspStability(*runtime_, testing_hands::ClawHand(1.3), testing_hands::Bottle(), opt);
+  ASSERT_EQ(a.directions.size(), b.directions.size());
+  for (size_t i = 0; i < a.directions.size(); ++i) {
+    EXPECT_EQ(a.directions[i].slip_m, b.directions[i].slip_m);  // bitwise, not approximately
+    EXPECT_EQ(a.directions[i].rotation_deg, b.directions[i].rotation_deg);
+    EXPECT_EQ(a.directions[i].steps, b.directions[i].steps);
+  }
+  EXPECT_EQ(a.total_steps, b.total_steps);
+}
+
+TEST_F(PhysicsTest, StepByStepMatchesAndRestoreReplays) {
+  GraspSimulation sim(*runtime_, testing_hands::ClawHand(1.3), testing_hands::Bottle(), {});
+  EXPECT_EQ(sim.num_links(), 16);
+  for (int k = 0; k < 200; ++k) sim.Step();
+  EXPECT_EQ(sim.state().step, 200);
+  EXPECT_NEAR(sim.state().time, 0.2, 1e-12);
+  EXPECT_GT(sim.state().num_contact_links, 0);
+  EXPECT_FALSE(sim.state().contacts.empty());
+  const SimSnapshot snap = sim.SaveState();
+  sim.SetGravity(Eigen::Vector3d(0, 0, -9.81));
+  for (int k = 0; k < 50; ++k) sim.Step();
+  const Eigen::Isometry3d first = sim.state().world_from_object;
+  sim.RestoreState(snap);
+  EXPECT_EQ(sim.state().step, 200);
+  for (int k = 0; k < 50; ++k) sim.Step();
+  // dBodySetQuaternion re-normalises, so the replay agrees to rounding, not bit for bit.
+  EXPECT_LT((sim.state().world_from_object.matrix() - first.matrix()).norm(), 1e-9);
+}
+
+TEST_F(PhysicsTest, HingeAnglesFollowTheTargetsInFreeSpace) {
+  // Without an object in reach the motors bring every joint to its target.
+  SimObject far = testing_hands::Bottle();
+  far.world_from_object.translation() = Eigen::Vector3d(0, 0, 5.0);
+  GraspSimulation sim(*runtime_, testing_hands::ClawHand(0.8), far, {});
+  for (int k = 0; k < 1500; ++k) sim.Step();
+  for (int i = 1; i < sim.num_links(); ++i) {
+    EXPECT_NEAR(sim.state().joint_angles[i], 0.8, 0.02) << i;
+  }
+  // The first finger's tip link rotated about +x: its z axis tilts towards −y.
+  EXPECT_LT(sim.state().world_from_link[3].linear()(1, 2), -0.5);
+}
+
+TEST_F(PhysicsTest, KinematicHandAlsoHolds) {
+  StabilityOptions opt;
+  opt.sim.hand_mode = HandMode::kKinematic;
+  SimHand hand = testing_hands::ClawHand(0.0);
+  // Kinematic targets must touch the bottle: wrap to a fixed posture found with the motors.
+  for (size_t i = 1; i < hand.links.size(); ++i) hand.links[i].q_target = 0.45;
+  const StabilityResult r = TestGraspStability(*runtime_, hand, testing_hands::Bottle(), opt);
+  EXPECT_NE(r.status, StabilityStatus::kBlownUp) << r.message;
+}
+
+TEST_F(PhysicsTest, BlowUpIsDetectedAndReportedInsteadOfScored) {
+  // A tiny, extremely light object deep inside a stiff kinematic fist, with the correction
+  // velocity uncapped and a huge soft ERP: ODE ejects it at an absurd speed.
+  StabilityOptions opt;
+  opt.sim.max_correcting_velocity = 1e9;
+  opt.sim.contact_erp = 1.0;
+  opt.sim.contact_cfm = 0.0;
+  opt.sim.hand_mode = HandMode::kKinematic;
+  opt.sim.kinematic_close_time = 0.01;
+  SimObject pebble;
+  SimShape s;
+  s.kind = SimShape::Kind::kSphere;
+  s.size = Eigen::Vector3d(0.03, 0, 0);
+  pebble.shapes.push_back(s);
+  pebble.mass = 1e-4;
+  pebble.world_from_object.translation() = Eigen::Vector3d(0.0, 0.0, 0.01);
+  const StabilityResult r =
+      TestGraspStability(*runtime_, testing_hands::ClawHand(1.3), pebble, opt);
+  EXPECT_EQ(r.status, StabilityStatus::kBlownUp);
+  EXPECT_FALSE(r.stable);
+  EXPECT_FALSE(r.message.empty());
+}
+
+TEST_F(PhysicsTest, BadDescriptionsThrowWithTheirName) {
+  SimHand hand = testing_hands::ClawHand(1.0);
+  hand.links[4].parent = 7;
+  try {
+    GraspSimulation sim(*runtime_, hand, testing_hands::Bottle(), {});
+    FAIL() << "expected an exception";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("f1_0"), std::string::npos) << e.what();
+  }
+  SimObject empty;
+  EXPECT_THROW(GraspSimulation(*runtime_, testing_hands::ClawHand(1.0), empty, {}),
+               std::invalid_argument);
+  SimObject nan = testing_hands::Bottle();
+  nan.mass = std::nan("");
+  EXPECT_THROW(GraspSimulation(*runtime_, testing_hands::ClawHand(1.0), nan, {}),
+               std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace planning::physics
