@@ -1,0 +1,742 @@
+// The GL 3.3 core scene renderer (see renderer.h).
+//
+// Per frame: 1. turn every shape, tube segment and bead into instances of four shared unit meshes
+// (or of a cached user mesh); 2. compute the scene's bounding sphere for clip planes and the
+// shadow frustum; 3. depth pass from light 0 into a 2048^2 shadow map; 4. lit pass: grid, opaque
+// instance batches, translucent instances back to front, lines; 5. (Render only) resolve MSAA and
+// read back, flipping rows to top-down.
+#include "render/renderer.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <map>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "render/internal/gl_api.h"
+#include "render/internal/shaders.h"
+#include "render/internal/tessellate.h"
+
+namespace render {
+namespace {
+
+using internal::GlApi;
+
+constexpr int kShadowMapSize = 2048;
+constexpr int kMaxSize = 8192;
+
+// One drawn copy of a unit mesh: model matrix, colour, material (specular, shininess, 0, 0).
+struct Instance {
+  std::array<float, 16> model;
+  std::array<float, 4> color;
+  std::array<float, 4> material;
+};
+static_assert(sizeof(Instance) == 24 * sizeof(float));
+
+struct GpuMesh {
+  GLuint vao = 0, vertex_buffer = 0, index_buffer = 0, instance_buffer = 0;
+  GLsizei index_count = 0;
+  float bound_radius = 1.0f;  // radius about the mesh origin enclosing every vertex
+};
+
+Eigen::Matrix4f Scale(const Eigen::Vector3f& s) {
+  Eigen::Matrix4f m = Eigen::Matrix4f::Identity();
+  m(0, 0) = s.x();
+  m(1, 1) = s.y();
+  m(2, 2) = s.z();
+  return m;
+}
+
+Eigen::Matrix4f Translate(const Eigen::Vector3f& t) {
+  Eigen::Matrix4f m = Eigen::Matrix4f::Identity();
+  m.block<3, 1>(0, 3) = t;
+  return m;
+}
+
+// A rigid frame whose z axis runs from a to b, origin at their midpoint.
+Eigen::Matrix4f SegmentFrame(const Eigen::Vector3f& a, const Eigen::Vector3f& b) {
+  const Eigen::Vector3f z = (b - a).normalized();
+  const Eigen::Vector3f helper =
+      std::abs(z.z()) < 0.9f ? Eigen::Vector3f::UnitZ() : Eigen::Vector3f::UnitX();
+  const Eigen::Vector3f x = helper.cross(z).normalized();
+  const Eigen::Vector3f y = z.cross(x);
+  Eigen::Matrix4f m = Eigen::Matrix4f::Identity();
+  m.block<3, 1>(0, 0) = x;
+  m.block<3, 1>(0, 1) = y;
+  m.block<3, 1>(0, 2) = z;
+  m.block<3, 1>(0, 3) = 0.5f * (a + b);
+  return m;
+}
+
+Instance MakeInstance(const Eigen::Matrix4f& model, const std::array<float, 4>& rgba,
+                      const Material& material) {
+  Instance inst;
+  std::copy(model.data(), model.data() + 16, inst.model.begin());
+  inst.color = rgba;
+  inst.material = {material.specular, material.shininess, 0.0f, 0.0f};
+  return inst;
+}
+
+void CheckCamera(const Camera& camera) {
+  const Eigen::Vector3f forward = camera.target - camera.eye;
+  if (!forward.allFinite() || forward.norm() <= 0.0f) {
+    throw std::invalid_argument("camera: eye and target must differ");
+  }
+  if (!camera.up.allFinite() || forward.normalized().cross(camera.up).norm() < 1e-6f) {
+    throw std::invalid_argument("camera: up must not be parallel to the view direction");
+  }
+  if (!(camera.fovy_deg > 0.0f && camera.fovy_deg < 180.0f)) {
+    throw std::invalid_argument("camera: fovy_deg must be in (0, 180), got " +
+                                std::to_string(camera.fovy_deg));
+  }
+}
+
+// Axis-aligned bounds accumulated from spheres.
+struct Bounds {
+  Eigen::Vector3f lo = Eigen::Vector3f::Constant(1e30f), hi = Eigen::Vector3f::Constant(-1e30f);
+  void Add(const Eigen::Vector3f& c, float r) {
+    lo = lo.cwiseMin(c - Eigen::Vector3f::Constant(r));
+    hi = hi.cwiseMax(c + Eigen::Vector3f::Constant(r));
+  }
+  bool empty() const { return lo.x() > hi.x(); }
+};
+
+GLuint Compile(const GlApi& gl, GLenum type, const char* source, const char* what) {
+  const GLuint shader = gl.CreateShader(type);
+  gl.ShaderSource(shader, 1, &source, nullptr);
+  gl.CompileShader(shader);
+  GLint ok = 0;
+  gl.GetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+  if (!ok) {
+    char log[2048] = {};
+    gl.GetShaderInfoLog(shader, sizeof(log), nullptr, log);
+    gl.DeleteShader(shader);
+    throw ContextError(std::string("GL: compiling the ") + what + " shader failed: " + log);
+  }
+  return shader;
+}
+
+GLuint Link(const GlApi& gl, const char* vs, const char* fs, const char* what) {
+  const GLuint v = Compile(gl, GL_VERTEX_SHADER, vs, what);
+  const GLuint f = Compile(gl, GL_FRAGMENT_SHADER, fs, what);
+  const GLuint program = gl.CreateProgram();
+  gl.AttachShader(program, v);
+  gl.AttachShader(program, f);
+  gl.LinkProgram(program);
+  gl.DeleteShader(v);
+  gl.DeleteShader(f);
+  GLint ok = 0;
+  gl.GetProgramiv(program, GL_LINK_STATUS, &ok);
+  if (!ok) {
+    char log[2048] = {};
+    gl.GetProgramInfoLog(program, sizeof(log), nullptr, log);
+    gl.DeleteProgram(program);
+    throw ContextError(std::string("GL: linking the ") + what + " program failed: " + log);
+  }
+  return program;
+}
+
+}  // namespace
+
+Eigen::Matrix4f ViewMatrix(const Camera& camera) {
+  const Eigen::Vector3f f = (camera.target - camera.eye).normalized();
+  const Eigen::Vector3f s = f.cross(camera.up).normalized();
+  const Eigen::Vector3f u = s.cross(f);
+  Eigen::Matrix4f m = Eigen::Matrix4f::Identity();
+  m.block<1, 3>(0, 0) = s.transpose();
+  m.block<1, 3>(1, 0) = u.transpose();
+  m.block<1, 3>(2, 0) = -f.transpose();
+  m(0, 3) = -s.dot(camera.eye);
+  m(1, 3) = -u.dot(camera.eye);
+  m(2, 3) = f.dot(camera.eye);
+  return m;
+}
+
+Eigen::Matrix4f ProjectionMatrix(const Camera& camera, float aspect, float near_clip,
+                                 float far_clip) {
+  const float t = 1.0f / std::tan(0.5f * camera.fovy_deg * 3.14159265358979f / 180.0f);
+  Eigen::Matrix4f m = Eigen::Matrix4f::Zero();
+  m(0, 0) = t / aspect;
+  m(1, 1) = t;
+  m(2, 2) = -(far_clip + near_clip) / (far_clip - near_clip);
+  m(2, 3) = -2.0f * far_clip * near_clip / (far_clip - near_clip);
+  m(3, 2) = -1.0f;
+  return m;
+}
+
+bool ProjectToPixel(const Camera& camera, int width, int height, const Eigen::Vector3f& p,
+                    Eigen::Vector2f* pixel) {
+  const Eigen::Vector4f c = ViewMatrix(camera) * p.homogeneous();
+  if (c.z() >= 0.0f) return false;
+  const float f = 0.5f * static_cast<float>(height) /
+                  std::tan(0.5f * camera.fovy_deg * 3.14159265358979f / 180.0f);
+  *pixel = Eigen::Vector2f(0.5f * static_cast<float>(width) + f * c.x() / -c.z(),
+                           0.5f * static_cast<float>(height) - f * c.y() / -c.z());
+  return true;
+}
+
+class Renderer::Impl {
+ public:
+  explicit Impl(const GlProcLoader& load) {
+    internal::LoadGlApi(load, &gl_);
+    const char* version = reinterpret_cast<const char*>(gl_.GetString(GL_VERSION));
+    GLint major = 0, minor = 0;
+    gl_.GetIntegerv(GL_MAJOR_VERSION, &major);
+    gl_.GetIntegerv(GL_MINOR_VERSION, &minor);
+    if (version == nullptr || major * 10 + minor < 33) {
+      throw ContextError(std::string("GL: need OpenGL >= 3.3 core, context reports '") +
+                         (version ? version : "(none)") + "'");
+    }
+    mesh_program_ = Link(gl_, internal::kMeshVertexShader, internal::kMeshFragmentShader, "mesh");
+    depth_program_ =
+        Link(gl_, internal::kDepthVertexShader, internal::kDepthFragmentShader, "depth");
+    line_program_ = Link(gl_, internal::kLineVertexShader, internal::kLineFragmentShader, "line");
+    sphere_ = Upload(internal::UnitSphere());
+    cylinder_ = Upload(internal::UnitCylinder());
+    box_ = Upload(internal::UnitBox());
+    quad_ = Upload(internal::UnitQuad());
+    gl_.GenVertexArrays(1, &line_vao_);
+    gl_.GenBuffers(1, &line_buffer_);
+    gl_.BindVertexArray(line_vao_);
+    gl_.BindBuffer(GL_ARRAY_BUFFER, line_buffer_);
+    gl_.EnableVertexAttribArray(0);
+    gl_.VertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 3 * sizeof(float), nullptr);
+    gl_.BindVertexArray(0);
+    CreateShadowMap();
+  }
+
+  ~Impl() {
+    for (GpuMesh* m : {&sphere_, &cylinder_, &box_, &quad_}) Release(m);
+    for (auto& [key, entry] : mesh_cache_) Release(&entry.gpu);
+    gl_.DeleteVertexArrays(1, &line_vao_);
+    gl_.DeleteBuffers(1, &line_buffer_);
+    gl_.DeleteProgram(mesh_program_);
+    gl_.DeleteProgram(depth_program_);
+    gl_.DeleteProgram(line_program_);
+    gl_.DeleteFramebuffers(1, &shadow_fbo_);
+    gl_.DeleteTextures(1, &shadow_texture_);
+    ReleaseTargets();
+  }
+
+  GlInfo info() const {
+    GlInfo i;
+    const auto* v = reinterpret_cast<const char*>(gl_.GetString(GL_VERSION));
+    const auto* r = reinterpret_cast<const char*>(gl_.GetString(GL_RENDERER));
+    i.version = v ? v : "";
+    i.renderer = r ? r : "";
+    return i;
+  }
+
+  Image Render(const Scene& scene, const Camera& camera, int width, int height,
+               const RenderOptions& options) {
+    CheckSize(width, height);
+    const int samples = options.msaa_samples > 1 ? options.msaa_samples : 0;
+    EnsureTargets(width, height, samples);
+    Draw(scene, camera, width, height, samples ? msaa_fbo_ : fbo_, options);
+    if (samples) {
+      gl_.BindFramebuffer(GL_READ_FRAMEBUFFER, msaa_fbo_);
+      gl_.BindFramebuffer(GL_DRAW_FRAMEBUFFER, fbo_);
+      gl_.BlitFramebuffer(0, 0, width, height, 0, 0, width, height, GL_COLOR_BUFFER_BIT,
+                          GL_NEAREST);
+    }
+    gl_.BindFramebuffer(GL_FRAMEBUFFER, fbo_);
+    gl_.ReadBuffer(GL_COLOR_ATTACHMENT0);
+    gl_.PixelStorei(GL_PACK_ALIGNMENT, 1);
+    Image bottom_up(width, height);
+    gl_.ReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, bottom_up.rgba.data());
+    gl_.BindFramebuffer(GL_FRAMEBUFFER, 0);
+    // Flip to top-down rows; alpha is forced opaque (blending leaves partial alpha behind).
+    Image out(width, height);
+    const size_t row = 4 * static_cast<size_t>(width);
+    for (int y = 0; y < height; ++y) {
+      std::copy_n(&bottom_up.rgba[row * (height - 1 - y)], row, &out.rgba[row * y]);
+    }
+    for (size_t i = 3; i < out.rgba.size(); i += 4) out.rgba[i] = 255;
+    return out;
+  }
+
+  void Draw(const Scene& scene, const Camera& camera, int width, int height, GLuint fbo,
+            const RenderOptions& options) {
+    CheckSize(width, height);
+    CheckCamera(camera);
+    Collect(scene);
+
+    // Bounds -> clip planes and the shadow frustum.
+    Bounds bounds;
+    for (const auto& batch : opaque_) {
+      for (const Instance& inst : batch.second) AddBounds(&bounds, inst, batch.first->bound_radius);
+    }
+    for (const auto& [mesh, inst] : translucent_) AddBounds(&bounds, inst, mesh->bound_radius);
+    for (const Lines& l : scene.lines) {
+      for (const auto& p : l.points) bounds.Add(p, 0.0f);
+    }
+    Eigen::Vector3f centre = Eigen::Vector3f::Zero();
+    float radius = 1.0f;
+    if (!bounds.empty()) {
+      centre = 0.5f * (bounds.lo + bounds.hi);
+      radius = std::max(0.5f * (bounds.hi - bounds.lo).norm(), 1e-3f);
+    }
+    // The grid only affects clipping (it is large and flat); shadows fit the objects.
+    Bounds clip_bounds = bounds;
+    if (scene.grid.enabled) {
+      const float h = 0.5f * scene.grid.extent;
+      for (float sx : {-h, h}) {
+        for (float sy : {-h, h}) {
+          clip_bounds.Add(Eigen::Vector3f(scene.grid.center.x() + sx, scene.grid.center.y() + sy,
+                                          scene.grid.height),
+                          0.0f);
+        }
+      }
+    }
+    float near_clip = camera.near_clip, far_clip = camera.far_clip;
+    if (near_clip <= 0.0f || far_clip <= near_clip) {
+      const Eigen::Vector3f forward = (camera.target - camera.eye).normalized();
+      float far_d = 1.0f, near_d = 1.0f;
+      if (!clip_bounds.empty()) {
+        const Eigen::Vector3f c = 0.5f * (clip_bounds.lo + clip_bounds.hi);
+        const float r = 0.5f * (clip_bounds.hi - clip_bounds.lo).norm();
+        const float d = (c - camera.eye).dot(forward);
+        far_d = std::max(d + r, 1e-2f) * 1.05f;
+        near_d = std::max(0.95f * (d - r), far_d * 1e-3f);
+      }
+      near_clip = near_clip > 0.0f ? near_clip : near_d;
+      far_clip = far_clip > near_clip ? far_clip : far_d;
+    }
+    const Eigen::Matrix4f view_proj =
+        ProjectionMatrix(camera, static_cast<float>(width) / static_cast<float>(height), near_clip,
+                         far_clip) *
+        ViewMatrix(camera);
+
+    // Lights: the scene's, or a default rig attached to the camera.
+    std::vector<Light> lights = scene.lights;
+    if (lights.empty()) {
+      const Eigen::Vector3f f = (camera.target - camera.eye).normalized();
+      const Eigen::Vector3f right = f.cross(camera.up).normalized();
+      const Eigen::Vector3f up = camera.up.normalized();
+      lights.push_back({(1.0f * up + 0.45f * right - 0.5f * f), {0.72f, 0.72f, 0.72f}});
+      lights.push_back({(0.3f * up - 0.8f * right - 0.4f * f), {0.30f, 0.30f, 0.32f}});
+    }
+    if (lights.size() > 4) lights.resize(4);
+    for (Light& l : lights) {
+      if (l.direction.norm() > 0.0f) l.direction.normalize();
+    }
+
+    // Shadow pass.
+    const bool shadows = options.shadows && !bounds.empty() && lights[0].direction.norm() > 0.0f;
+    Eigen::Matrix4f light_view_proj = Eigen::Matrix4f::Identity();
+    if (shadows) {
+      Camera light_cam;
+      light_cam.eye = centre + 2.0f * radius * lights[0].direction;
+      light_cam.target = centre;
+      light_cam.up = std::abs(lights[0].direction.z()) < 0.95f ? Eigen::Vector3f::UnitZ()
+                                                               : Eigen::Vector3f::UnitX();
+      Eigen::Matrix4f ortho = Eigen::Matrix4f::Identity();
+      const float n = 0.5f * radius, f = 3.5f * radius;
+      ortho(0, 0) = 1.0f / radius;
+      ortho(1, 1) = 1.0f / radius;
+      ortho(2, 2) = -2.0f / (f - n);
+      ortho(2, 3) = -(f + n) / (f - n);
+      light_view_proj = ortho * ViewMatrix(light_cam);
+      gl_.BindFramebuffer(GL_FRAMEBUFFER, shadow_fbo_);
+      gl_.Viewport(0, 0, kShadowMapSize, kShadowMapSize);
+      gl_.Enable(GL_DEPTH_TEST);
+      gl_.DepthMask(GL_TRUE);
+      gl_.Clear(GL_DEPTH_BUFFER_BIT);
+      gl_.Enable(GL_POLYGON_OFFSET_FILL);
+      gl_.PolygonOffset(1.5f, 4.0f);
+      gl_.UseProgram(depth_program_);
+      gl_.UniformMatrix4fv(gl_.GetUniformLocation(depth_program_, "u_light_view_proj"), 1, GL_FALSE,
+                           light_view_proj.data());
+      for (const auto& [mesh, items] : opaque_) DrawInstances(*mesh, items);
+      gl_.Disable(GL_POLYGON_OFFSET_FILL);
+    }
+
+    // Lit pass.
+    gl_.BindFramebuffer(GL_FRAMEBUFFER, fbo);
+    gl_.Viewport(0, 0, width, height);
+    gl_.ClearColor(scene.background[0], scene.background[1], scene.background[2], 1.0f);
+    gl_.ClearDepth(1.0);
+    gl_.Enable(GL_DEPTH_TEST);
+    gl_.DepthFunc(GL_LESS);
+    gl_.DepthMask(GL_TRUE);
+    gl_.Disable(GL_BLEND);
+    gl_.Disable(GL_CULL_FACE);
+    gl_.Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+
+    const GLuint p = mesh_program_;
+    gl_.UseProgram(p);
+    gl_.UniformMatrix4fv(Uniform(p, "u_view_proj"), 1, GL_FALSE, view_proj.data());
+    gl_.UniformMatrix4fv(Uniform(p, "u_light_view_proj"), 1, GL_FALSE, light_view_proj.data());
+    gl_.Uniform3f(Uniform(p, "u_eye"), camera.eye.x(), camera.eye.y(), camera.eye.z());
+    const Eigen::Vector3f up = camera.up.normalized();
+    gl_.Uniform3f(Uniform(p, "u_up"), up.x(), up.y(), up.z());
+    gl_.Uniform1i(Uniform(p, "u_num_lights"), static_cast<GLint>(lights.size()));
+    std::array<float, 12> dirs{}, rgbs{};
+    for (size_t k = 0; k < lights.size(); ++k) {
+      for (int c = 0; c < 3; ++c) {
+        dirs[3 * k + c] = lights[k].direction[c];
+        rgbs[3 * k + c] = lights[k].rgb[c];
+      }
+    }
+    gl_.Uniform3fv(Uniform(p, "u_light_dir"), 4, dirs.data());
+    gl_.Uniform3fv(Uniform(p, "u_light_rgb"), 4, rgbs.data());
+    gl_.Uniform3f(Uniform(p, "u_ambient"), scene.ambient[0], scene.ambient[1], scene.ambient[2]);
+    gl_.Uniform1i(Uniform(p, "u_shadows"), shadows ? 1 : 0);
+    gl_.ActiveTexture(GL_TEXTURE0);
+    gl_.BindTexture(GL_TEXTURE_2D, shadow_texture_);
+    gl_.Uniform1i(Uniform(p, "u_shadow_map"), 0);
+    gl_.Uniform1f(Uniform(p, "u_shadow_texel"), 1.0f / kShadowMapSize);
+    gl_.Uniform1i(Uniform(p, "u_grid"), 0);
+
+    if (scene.grid.enabled && scene.grid.extent > 0.0f && scene.grid.spacing > 0.0f) {
+      const Grid& g = scene.grid;
+      gl_.Uniform1i(Uniform(p, "u_grid"), 1);
+      gl_.Uniform2f(Uniform(p, "u_grid_center"), g.center.x(), g.center.y());
+      gl_.Uniform1f(Uniform(p, "u_grid_spacing"), g.spacing);
+      gl_.Uniform4f(Uniform(p, "u_grid_line"), g.line_rgba[0], g.line_rgba[1], g.line_rgba[2],
+                    g.line_rgba[3]);
+      Material flat;
+      flat.specular = 0.0f;
+      const Eigen::Matrix4f model =
+          Translate(Eigen::Vector3f(g.center.x(), g.center.y(), g.height)) *
+          Scale(Eigen::Vector3f(g.extent, g.extent, 1.0f));
+      scratch_.assign(1, MakeInstance(model, g.plane_rgba, flat));
+      DrawInstances(quad_, scratch_);
+      gl_.Uniform1i(Uniform(p, "u_grid"), 0);
+    }
+    for (const auto& [mesh, items] : opaque_) DrawInstances(*mesh, items);
+
+    if (!translucent_.empty()) {
+      // Back to front by view depth of the instance origin.
+      const Eigen::Matrix4f view = ViewMatrix(camera);
+      std::stable_sort(
+          translucent_.begin(), translucent_.end(), [&view](const auto& a, const auto& b) {
+            const float za = (view * Eigen::Vector4f(a.second.model[12], a.second.model[13],
+                                                     a.second.model[14], 1.0f))
+                                 .z();
+            const float zb = (view * Eigen::Vector4f(b.second.model[12], b.second.model[13],
+                                                     b.second.model[14], 1.0f))
+                                 .z();
+            return za < zb;
+          });
+      gl_.Enable(GL_BLEND);
+      gl_.BlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+      gl_.DepthMask(GL_FALSE);
+      for (const auto& [mesh, inst] : translucent_) {
+        scratch_.assign(1, inst);
+        DrawInstances(*mesh, scratch_);
+      }
+      gl_.DepthMask(GL_TRUE);
+      gl_.Disable(GL_BLEND);
+    }
+
+    if (!scene.lines.empty()) {
+      gl_.UseProgram(line_program_);
+      gl_.UniformMatrix4fv(Uniform(line_program_, "u_view_proj"), 1, GL_FALSE, view_proj.data());
+      gl_.BindVertexArray(line_vao_);
+      gl_.BindBuffer(GL_ARRAY_BUFFER, line_buffer_);
+      for (const Lines& l : scene.lines) {
+        if (l.points.size() < 2) continue;
+        gl_.Uniform4f(Uniform(line_program_, "u_color"), l.rgba[0], l.rgba[1], l.rgba[2],
+                      l.rgba[3]);
+        gl_.BufferData(GL_ARRAY_BUFFER,
+                       static_cast<GLsizeiptr>(l.points.size() * sizeof(Eigen::Vector3f)),
+                       l.points.data(), GL_STREAM_DRAW);
+        gl_.LineWidth(std::max(1.0f, l.width));
+        gl_.DrawArrays(l.strip ? GL_LINE_STRIP : GL_LINES, 0,
+                       static_cast<GLsizei>(l.strip ? l.points.size() : l.points.size() / 2 * 2));
+      }
+      gl_.LineWidth(1.0f);
+      gl_.BindVertexArray(0);
+    }
+    gl_.UseProgram(0);
+  }
+
+ private:
+  struct CachedMesh {
+    std::weak_ptr<const TriangleMesh> owner;
+    GpuMesh gpu;
+  };
+
+  static void CheckSize(int width, int height) {
+    if (width < 1 || height < 1 || width > kMaxSize || height > kMaxSize) {
+      throw std::invalid_argument("render size " + std::to_string(width) + "x" +
+                                  std::to_string(height) + " outside 1..8192");
+    }
+  }
+
+  GLint Uniform(GLuint program, const char* name) const {
+    return gl_.GetUniformLocation(program, name);
+  }
+
+  static void AddBounds(Bounds* b, const Instance& inst, float mesh_radius) {
+    const Eigen::Map<const Eigen::Matrix4f> m(inst.model.data());
+    const float scale =
+        std::max({m.col(0).head<3>().norm(), m.col(1).head<3>().norm(), m.col(2).head<3>().norm()});
+    b->Add(m.block<3, 1>(0, 3), scale * mesh_radius);
+  }
+
+  GpuMesh Upload(const TriangleMesh& input) {
+    const TriangleMesh mesh = internal::WithNormals(input);
+    GpuMesh g;
+    std::vector<float> interleaved;
+    interleaved.reserve(6 * mesh.positions.size());
+    float r2 = 0.0f;
+    for (size_t i = 0; i < mesh.positions.size(); ++i) {
+      for (int c = 0; c < 3; ++c) interleaved.push_back(mesh.positions[i][c]);
+      for (int c = 0; c < 3; ++c) interleaved.push_back(mesh.normals[i][c]);
+      r2 = std::max(r2, mesh.positions[i].squaredNorm());
+    }
+    g.bound_radius = std::sqrt(r2);
+    g.index_count = static_cast<GLsizei>(mesh.indices.size());
+    gl_.GenVertexArrays(1, &g.vao);
+    gl_.GenBuffers(1, &g.vertex_buffer);
+    gl_.GenBuffers(1, &g.index_buffer);
+    gl_.GenBuffers(1, &g.instance_buffer);
+    gl_.BindVertexArray(g.vao);
+    gl_.BindBuffer(GL_ARRAY_BUFFER, g.vertex_buffer);
+    gl_.BufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(interleaved.size() * sizeof(float)),
+                   interleaved.data(), GL_STATIC_DRAW);
+    gl_.EnableVertexAttribArray(0);
+    gl_.VertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 6 * sizeof(float), nullptr);
+    gl_.EnableVertexAttribArray(1);
+    gl_.VertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 6 * sizeof(float),
+                            reinterpret_cast<void*>(3 * sizeof(float)));
+    gl_.BindBuffer(GL_ELEMENT_ARRAY_BUFFER, g.index_buffer);
+    gl_.BufferData(GL_ELEMENT_ARRAY_BUFFER,
+                   static_cast<GLsizeiptr>(mesh.indices.size() * sizeof(std::uint32_t)),
+                   mesh.indices.data(), GL_STATIC_DRAW);
+    gl_.BindBuffer(GL_ARRAY_BUFFER, g.instance_buffer);
+    // Instance attributes: model columns (2..5), colour (6), material (7).
+    for (int k = 0; k < 6; ++k) {
+      gl_.EnableVertexAttribArray(static_cast<GLuint>(2 + k));
+      gl_.VertexAttribPointer(static_cast<GLuint>(2 + k), 4, GL_FLOAT, GL_FALSE, sizeof(Instance),
+                              reinterpret_cast<void*>(4 * k * sizeof(float)));
+      gl_.VertexAttribDivisor(static_cast<GLuint>(2 + k), 1);
+    }
+    gl_.BindVertexArray(0);
+    return g;
+  }
+
+  void Release(GpuMesh* g) {
+    gl_.DeleteVertexArrays(1, &g->vao);
+    GLuint buffers[] = {g->vertex_buffer, g->index_buffer, g->instance_buffer};
+    gl_.DeleteBuffers(3, buffers);
+    *g = GpuMesh{};
+  }
+
+  const GpuMesh* MeshFor(const std::shared_ptr<const TriangleMesh>& mesh) {
+    auto it = mesh_cache_.find(mesh.get());
+    if (it != mesh_cache_.end() && it->second.owner.lock() == mesh) return &it->second.gpu;
+    if (it != mesh_cache_.end()) {
+      Release(&it->second.gpu);
+      mesh_cache_.erase(it);
+    }
+    // Drop entries whose meshes are gone so the cache does not grow without bound.
+    for (auto e = mesh_cache_.begin(); e != mesh_cache_.end();) {
+      if (e->second.owner.expired()) {
+        Release(&e->second.gpu);
+        e = mesh_cache_.erase(e);
+      } else {
+        ++e;
+      }
+    }
+    CachedMesh entry{mesh, Upload(*mesh)};
+    return &mesh_cache_.emplace(mesh.get(), entry).first->second.gpu;
+  }
+
+  void Add(const GpuMesh* mesh, const Eigen::Matrix4f& model, const std::array<float, 4>& rgba,
+           const Material& material) {
+    const Instance inst = MakeInstance(model, rgba, material);
+    if (rgba[3] < 1.0f) {
+      translucent_.emplace_back(mesh, inst);
+      return;
+    }
+    for (auto& batch : opaque_) {
+      if (batch.first == mesh) {
+        batch.second.push_back(inst);
+        return;
+      }
+    }
+    opaque_.emplace_back(mesh, std::vector<Instance>{inst});
+  }
+
+  // Scene -> instance batches (opaque_, in first-use order) and translucent_ instances.
+  void Collect(const Scene& scene) {
+    for (auto& batch : opaque_) batch.second.clear();
+    translucent_.clear();
+    for (const Shape& s : scene.shapes) {
+      const Eigen::Matrix4f& w = s.world_from_shape;
+      const std::array<float, 4>& rgba = s.material.rgba;
+      switch (s.kind) {
+        case Shape::Kind::kSphere:
+          Add(&sphere_, w * Scale(Eigen::Vector3f::Constant(s.size.x())), rgba, s.material);
+          break;
+        case Shape::Kind::kCapsule: {
+          const float r = s.size.x(), len = s.size.y();
+          if (len > 0.0f) {
+            Add(&cylinder_, w * Scale(Eigen::Vector3f(r, r, len)), rgba, s.material);
+          }
+          for (float z : {-0.5f * len, 0.5f * len}) {
+            Add(&sphere_,
+                w * Translate(Eigen::Vector3f(0, 0, z)) * Scale(Eigen::Vector3f::Constant(r)), rgba,
+                s.material);
+          }
+          break;
+        }
+        case Shape::Kind::kCylinder:
+          Add(&cylinder_, w * Scale(Eigen::Vector3f(s.size.x(), s.size.x(), s.size.y())), rgba,
+              s.material);
+          break;
+        case Shape::Kind::kBox:
+          Add(&box_, w * Scale(s.size), rgba, s.material);
+          break;
+        case Shape::Kind::kMesh:
+          if (s.mesh && !s.mesh->indices.empty()) {
+            Add(MeshFor(s.mesh), w * Scale(s.size), rgba, s.material);
+          }
+          break;
+      }
+    }
+    for (const Tube& t : scene.tubes) {
+      const size_t n = t.points.size();
+      const bool per_segment = !t.segment_colors.empty() && t.segment_colors.size() + 1 >= n;
+      auto colour = [&](size_t seg) {
+        return per_segment ? t.segment_colors[std::min(seg, t.segment_colors.size() - 1)]
+                           : t.material.rgba;
+      };
+      for (size_t i = 0; i + 1 < n; ++i) {
+        const Eigen::Vector3f& a = t.points[i];
+        const Eigen::Vector3f& b = t.points[i + 1];
+        const float len = (b - a).norm();
+        if (!(len > 0.0f)) continue;
+        Add(&cylinder_, SegmentFrame(a, b) * Scale(Eigen::Vector3f(t.radius, t.radius, len)),
+            colour(i), t.material);
+      }
+      const float bead = t.bead_radius > 0.0f ? t.bead_radius : t.radius;
+      for (size_t i = 0; i < n; ++i) {
+        Add(&sphere_, Translate(t.points[i]) * Scale(Eigen::Vector3f::Constant(bead)),
+            colour(i == 0 ? 0 : (i + 1 < n ? i : i - 1)), t.material);
+      }
+    }
+    // Batches unused this frame may point at meshes dropped from the cache: forget them.
+    std::erase_if(opaque_, [](const auto& batch) { return batch.second.empty(); });
+  }
+
+  void DrawInstances(const GpuMesh& mesh, const std::vector<Instance>& items) {
+    if (items.empty()) return;
+    gl_.BindVertexArray(mesh.vao);
+    gl_.BindBuffer(GL_ARRAY_BUFFER, mesh.instance_buffer);
+    gl_.BufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(items.size() * sizeof(Instance)),
+                   items.data(), GL_STREAM_DRAW);
+    gl_.DrawElementsInstanced(GL_TRIANGLES, mesh.index_count, GL_UNSIGNED_INT, nullptr,
+                              static_cast<GLsizei>(items.size()));
+    gl_.BindVertexArray(0);
+  }
+
+  void CreateShadowMap() {
+    gl_.GenTextures(1, &shadow_texture_);
+    gl_.BindTexture(GL_TEXTURE_2D, shadow_texture_);
+    gl_.TexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT24, kShadowMapSize, kShadowMapSize, 0,
+                   GL_DEPTH_COMPONENT, GL_UNSIGNED_INT, nullptr);
+    gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
+    gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
+    gl_.GenFramebuffers(1, &shadow_fbo_);
+    gl_.BindFramebuffer(GL_FRAMEBUFFER, shadow_fbo_);
+    gl_.FramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, shadow_texture_,
+                             0);
+    gl_.DrawBuffer(GL_NONE);
+    gl_.ReadBuffer(GL_NONE);
+    if (gl_.CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
+      throw ContextError("GL: shadow-map framebuffer incomplete");
+    }
+    gl_.BindFramebuffer(GL_FRAMEBUFFER, 0);
+  }
+
+  // Single-sample colour+depth FBO (fbo_) and, for MSAA, a multisample one resolved into it.
+  void EnsureTargets(int width, int height, int samples) {
+    if (fbo_ && width == target_w_ && height == target_h_ && samples == target_samples_) return;
+    ReleaseTargets();
+    auto make = [&](int s, GLuint* fbo, GLuint* color, GLuint* depth) {
+      gl_.GenFramebuffers(1, fbo);
+      gl_.GenRenderbuffers(1, color);
+      gl_.GenRenderbuffers(1, depth);
+      gl_.BindFramebuffer(GL_FRAMEBUFFER, *fbo);
+      gl_.BindRenderbuffer(GL_RENDERBUFFER, *color);
+      if (s) {
+        gl_.RenderbufferStorageMultisample(GL_RENDERBUFFER, s, GL_RGBA8, width, height);
+      } else {
+        gl_.RenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, width, height);
+      }
+      gl_.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, *color);
+      gl_.BindRenderbuffer(GL_RENDERBUFFER, *depth);
+      if (s) {
+        gl_.RenderbufferStorageMultisample(GL_RENDERBUFFER, s, GL_DEPTH24_STENCIL8, width, height);
+      } else {
+        gl_.RenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH24_STENCIL8, width, height);
+      }
+      gl_.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_RENDERBUFFER,
+                                  *depth);
+      if (gl_.CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
+        gl_.BindFramebuffer(GL_FRAMEBUFFER, 0);
+        throw ContextError("GL: framebuffer " + std::to_string(width) + "x" +
+                           std::to_string(height) + " with " + std::to_string(s) +
+                           " samples is incomplete (MSAA unsupported?)");
+      }
+    };
+    make(0, &fbo_, &color_rb_, &depth_rb_);
+    if (samples) make(samples, &msaa_fbo_, &msaa_color_rb_, &msaa_depth_rb_);
+    gl_.BindFramebuffer(GL_FRAMEBUFFER, 0);
+    target_w_ = width;
+    target_h_ = height;
+    target_samples_ = samples;
+  }
+
+  void ReleaseTargets() {
+    for (GLuint* f : {&fbo_, &msaa_fbo_}) {
+      if (*f) gl_.DeleteFramebuffers(1, f);
+      *f = 0;
+    }
+    for (GLuint* r : {&color_rb_, &depth_rb_, &msaa_color_rb_, &msaa_depth_rb_}) {
+      if (*r) gl_.DeleteRenderbuffers(1, r);
+      *r = 0;
+    }
+  }
+
+  GlApi gl_;
+  GLuint mesh_program_ = 0, depth_program_ = 0, line_program_ = 0;
+  GpuMesh sphere_, cylinder_, box_, quad_;
+  std::map<const TriangleMesh*, CachedMesh> mesh_cache_;
+  GLuint line_vao_ = 0, line_buffer_ = 0;
+  GLuint shadow_fbo_ = 0, shadow_texture_ = 0;
+  GLuint fbo_ = 0, color_rb_ = 0, depth_rb_ = 0;
+  GLuint msaa_fbo_ = 0, msaa_color_rb_ = 0, msaa_depth_rb_ = 0;
+  int target_w_ = 0, target_h_ = 0, target_samples_ = 0;
+  // Per-frame scratch, reused between frames (no reallocation once sized).
+  std::vector<std::pair<const GpuMesh*, std::vector<Instance>>> opaque_;
+  std::vector<std::pair<const GpuMesh*, Instance>> translucent_;
+  std::vector<Instance> scratch_;
+};
+
+Renderer::Renderer(const GlProcLoader& load) : impl_(std::make_unique<Impl>(load)) {}
+Renderer::~Renderer() = default;
+
+Image Renderer::Render(const Scene& scene, const Camera& camera, int width, int height,
+                       const RenderOptions& options) {
+  return impl_->Render(scene, camera, width, height, options);
+}
+
+void Renderer::Draw(const Scene& scene, const Camera& camera, int width, int height, unsigned fbo,
+                    const RenderOptions& options) {
+  impl_->Draw(scene, camera, width, height, fbo, options);
+}
+
+GlInfo Renderer::info() const { return impl_->info(); }
+
+}  // namespace render
