@@ -1,0 +1,438 @@
+#include "planning/aico.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+namespace planning {
+namespace {
+
+constexpr double kStartPrecision = 1e10;  // S_0⁻¹: the start state is fixed
+
+void ResizeState(int slices, int d, AicoState* st) {
+  for (auto* vecs : {&st->s, &st->v, &st->r, &st->b, &st->xhat, &st->bref}) {
+    vecs->assign(slices, Eigen::VectorXd::Zero(d));
+  }
+  for (auto* mats : {&st->Sinv, &st->Vinv, &st->R, &st->Binv}) {
+    mats->assign(slices, Eigen::MatrixXd::Zero(d, d));
+  }
+  st->rhat.assign(slices, 0.0);
+  st->task_cost.assign(slices, 0.0);
+}
+
+// The solver's view of one run: problem, options, workspace and derived constants.
+class Aico {
+ public:
+  Aico(const MotionProblem& p, const AicoOptions& o, AicoWorkspace* ws)
+      : p_(p),
+        o_(o),
+        ws_(ws),
+        n_(static_cast<int>(p.q0.size())),
+        d_(state_dim(p)),
+        T_(p.num_steps),
+        tau_(tau(p)),
+        lambda_(o.damping) {
+    SetUpProcess();
+  }
+
+  AicoResult Run(const AicoCallback& callback, const Trajectory* init);
+
+ private:
+  AicoState& st() { return ws_->state; }
+
+  void SetUpProcess();
+  void Initialise(const Trajectory* init);
+  void TaskMessage(int t, const Eigen::VectorXd& x);
+  void InvertSpd(const Eigen::MatrixXd& m, Eigen::MatrixXd* out);
+  void UpdateForward(int t);
+  void UpdateBackward(int t);
+  void UpdateBelief(int t);
+  bool Relocate(int t, bool force);
+  double ControlCost(const AicoState& s) const;
+  double EvaluateAll();
+  void Sweep(int sweep);
+  void Export(AicoResult* result) const;
+
+  const MotionProblem& p_;
+  const AicoOptions& o_;
+  AicoWorkspace* ws_;
+  int n_, d_, T_;
+  double tau_, lambda_;
+  Eigen::VectorXd metric_;
+  std::vector<Eigen::VectorXd> err_;  // per task residual buffer, allocated once per run
+};
+
+void Aico::SetUpProcess() {
+  metric_ = p_.metric.size() > 0 ? p_.metric : Eigen::VectorXd::Ones(n_);
+  AicoWorkspace& w = *ws_;
+  w.eye.setIdentity(d_, d_);
+  if (!p_.dynamic) {
+    w.A.setIdentity(d_, d_);
+    w.Ainv.setIdentity(d_, d_);
+    w.Winv.setZero(d_, d_);
+    w.Winv.diagonal() = (p_.w_rate * metric_).cwiseInverse();
+    w.Qbar = w.Winv;
+    return;
+  }
+  // A = [[I, τI], [0, I]]; A⁻¹ negates the upper-right block.
+  w.A.setIdentity(d_, d_);
+  w.A.topRightCorner(n_, n_).diagonal().setConstant(tau_);
+  w.Ainv.setIdentity(d_, d_);
+  w.Ainv.topRightCorner(n_, n_).diagonal().setConstant(-tau_);
+  // Q̄ = Q + B H⁻¹ Bᵀ with B = [½τ² I; τ I], H = h_rate·τ·W (diagonal).
+  const Eigen::VectorXd hinv = (p_.h_rate * tau_ * metric_).cwiseInverse();
+  const double b1 = 0.5 * tau_ * tau_, b2 = tau_;
+  w.Qbar.setZero(d_, d_);
+  w.Qbar.topLeftCorner(n_, n_).diagonal() = b1 * b1 * hinv;
+  w.Qbar.topRightCorner(n_, n_).diagonal() = b1 * b2 * hinv;
+  w.Qbar.bottomLeftCorner(n_, n_).diagonal() = b1 * b2 * hinv;
+  w.Qbar.bottomRightCorner(n_, n_).diagonal() = b2 * b2 * hinv;
+  w.Qbar.diagonal().array() += p_.q_rate * tau_;
+  w.Winv = w.Qbar;
+}
+
+void Aico::InvertSpd(const Eigen::MatrixXd& m, Eigen::MatrixXd* out) {
+  ws_->llt.compute(m);
+  out->setIdentity();
+  ws_->llt.solveInPlace(*out);
+}
+
+// R_t, r_t, r̂_t and the task cost at x (the linearisation point).
+void Aico::TaskMessage(int t, const Eigen::VectorXd& x) {
+  AicoWorkspace& w = *ws_;
+  w.q = x.head(n_);
+  if (p_.dynamic) w.qdot = x.tail(n_);
+  EvaluateTasks(p_, t, w.q, true, &w.tasks);
+  Eigen::MatrixXd& R = st().R[t];
+  Eigen::VectorXd& r = st().r[t];
+  R.setZero();
+  r.setZero();
+  double rhat = 0.0, cost = 0.0;
+  for (size_t i = 0; i < p_.tasks.size(); ++i) {
+    const Task& task = p_.tasks[i];
+    const double rho = task.precision[t];
+    if (rho <= 0.0) continue;
+    const Eigen::MatrixXd& J = w.tasks.J[i];
+    Eigen::VectorXd& e = err_[i];
+    if (task.order == 0) {
+      e = task.target.col(t) - w.tasks.y[i];
+      cost += rho * e.squaredNorm();
+      e.noalias() += J * w.q;
+      R.topLeftCorner(n_, n_).noalias() += rho * J.transpose() * J;
+      r.head(n_).noalias() += rho * J.transpose() * e;
+      rhat += rho * e.squaredNorm();
+    } else if (p_.dynamic) {
+      e = task.target.col(t);
+      R.bottomRightCorner(n_, n_).noalias() += rho * J.transpose() * J;
+      r.tail(n_).noalias() += rho * J.transpose() * e;
+      e.noalias() -= J * w.qdot;
+      cost += rho * e.squaredNorm();
+    }
+  }
+  st().rhat[t] = rhat;
+  st().task_cost[t] = cost;
+}
+
+void Aico::UpdateForward(int t) {
+  AicoWorkspace& w = *ws_;
+  AicoState& s = st();
+  w.tmp = s.Sinv[t - 1] + s.R[t - 1];
+  InvertSpd(w.tmp, &w.Sbar);
+  w.vtmp = s.r[t - 1];
+  w.vtmp.noalias() += s.Sinv[t - 1] * s.s[t - 1];
+  w.vtmp2.noalias() = w.Sbar * w.vtmp;
+  if (p_.dynamic) {
+    s.s[t].noalias() = w.A * w.vtmp2;
+    w.tmp.noalias() = w.A * w.Sbar;
+    w.tmp2 = w.Qbar;
+    w.tmp2.noalias() += w.tmp * w.A.transpose();
+  } else {
+    s.s[t] = w.vtmp2;
+    w.tmp2 = w.Winv + w.Sbar;
+  }
+  InvertSpd(w.tmp2, &s.Sinv[t]);
+}
+
+void Aico::UpdateBackward(int t) {
+  AicoWorkspace& w = *ws_;
+  AicoState& s = st();
+  if (t == T_) {
+    s.v[t] = s.b[t];
+    s.Vinv[t] = (p_.dynamic ? 1e-4 : 1.0) * w.eye;
+    return;
+  }
+  w.tmp = s.Vinv[t + 1] + s.R[t + 1];
+  InvertSpd(w.tmp, &w.Sbar);  // V̄
+  w.vtmp = s.r[t + 1];
+  w.vtmp.noalias() += s.Vinv[t + 1] * s.v[t + 1];
+  w.vtmp2.noalias() = w.Sbar * w.vtmp;
+  if (p_.dynamic) {
+    s.v[t].noalias() = w.Ainv * w.vtmp2;
+    w.tmp = w.Qbar + w.Sbar;
+    w.tmp2.noalias() = w.Ainv * w.tmp;
+    w.tmp.noalias() = w.tmp2 * w.Ainv.transpose();
+    InvertSpd(w.tmp, &s.Vinv[t]);
+  } else {
+    s.v[t] = w.vtmp2;
+    w.tmp2 = w.Winv + w.Sbar;
+    InvertSpd(w.tmp2, &s.Vinv[t]);
+  }
+}
+
+void Aico::UpdateBelief(int t) {
+  AicoWorkspace& w = *ws_;
+  AicoState& s = st();
+  s.Binv[t] = s.Sinv[t] + s.Vinv[t] + s.R[t];
+  s.Binv[t].diagonal().array() += lambda_;
+  w.vtmp = s.r[t] + lambda_ * s.bref[t];
+  w.vtmp.noalias() += s.Sinv[t] * s.s[t];
+  w.vtmp.noalias() += s.Vinv[t] * s.v[t];
+  w.llt.compute(s.Binv[t]);
+  s.b[t] = w.vtmp;
+  w.llt.solveInPlace(s.b[t]);
+}
+
+bool Aico::Relocate(int t, bool force) {
+  AicoState& s = st();
+  AicoWorkspace& w = *ws_;
+  w.vtmp = s.b[t] - s.xhat[t];
+  if (!force && w.vtmp.lpNorm<Eigen::Infinity>() <= o_.tolerance) return false;
+  const double step = w.vtmp.norm();
+  if (step > o_.max_step) {
+    s.xhat[t].noalias() += (o_.max_step / step) * w.vtmp;
+  } else {
+    s.xhat[t] = s.b[t];
+  }
+  TaskMessage(t, s.xhat[t]);
+  UpdateBelief(t);
+  return true;
+}
+
+double Aico::ControlCost(const AicoState& s) const {
+  double cost = 0.0;
+  for (int t = 0; t < T_; ++t) {
+    if (p_.dynamic) {
+      const auto dv = s.b[t + 1].tail(n_) - s.b[t].tail(n_);
+      cost += p_.h_rate / tau_ * (dv.array().square() * metric_.array()).sum();
+    } else {
+      const auto dq = s.b[t + 1] - s.b[t];
+      cost += p_.w_rate * (dq.array().square() * metric_.array()).sum();
+    }
+  }
+  return cost;
+}
+
+// Task messages at x̂ = b for every slice; returns the total cost.
+double Aico::EvaluateAll() {
+  AicoState& s = st();
+  double task = 0.0;
+  for (int t = 0; t <= T_; ++t) {
+    s.xhat[t] = s.b[t];
+    TaskMessage(t, s.xhat[t]);
+    task += s.task_cost[t];
+  }
+  s.cost = task + ControlCost(s);
+  return s.cost;
+}
+
+void Aico::Initialise(const Trajectory* init) {
+  AicoState& s = st();
+  err_.clear();
+  for (const Task& task : p_.tasks) err_.emplace_back(Eigen::VectorXd::Zero(task.feature->dim()));
+  for (int t = 0; t <= T_; ++t) {
+    Eigen::VectorXd& x = s.b[t];
+    if (init != nullptr) {
+      x.head(n_) = init->q.col(t);
+      if (p_.dynamic) {
+        x.tail(n_) = t < T_ ? ((init->q.col(t + 1) - init->q.col(t)) / tau_).eval()
+                            : Eigen::VectorXd::Zero(n_);
+      }
+    } else {
+      x.head(n_) = p_.q0;
+      if (p_.dynamic) x.tail(n_).setZero();
+    }
+    s.xhat[t] = x;
+    s.bref[t] = x;
+    s.s[t] = x;
+    s.v[t] = x;
+    s.Sinv[t] = lambda_ * ws_->eye;
+    s.Vinv[t] = lambda_ * ws_->eye;
+    s.Binv[t] = ws_->eye;
+  }
+  // The start slice is fixed.
+  s.b[0].head(n_) = p_.q0;
+  if (p_.dynamic) {
+    if (p_.qdot0.size() > 0) {
+      s.b[0].tail(n_) = p_.qdot0;
+    } else {
+      s.b[0].tail(n_).setZero();
+    }
+  }
+  s.s[0] = s.b[0];
+  s.Sinv[0] = kStartPrecision * ws_->eye;
+  EvaluateAll();
+}
+
+void Aico::Sweep(int sweep) {
+  int fwd_reloc = 1, bwd_reloc = 0;
+  if (o_.sweep_mode == SweepMode::kSymmetric && sweep > 0) bwd_reloc = 1;
+  if (o_.sweep_mode == SweepMode::kLocalGaussNewton && sweep > 0) fwd_reloc = bwd_reloc = 5;
+  for (int t = 1; t <= T_; ++t) {
+    UpdateForward(t);
+    UpdateBelief(t);
+    for (int k = 0; k < fwd_reloc; ++k) {
+      if (!Relocate(t, sweep == 0 && k == 0)) break;
+    }
+  }
+  for (int t = T_; t >= 1; --t) {
+    UpdateBackward(t);
+    UpdateBelief(t);
+    for (int k = 0; k < bwd_reloc; ++k) {
+      if (!Relocate(t, false)) break;
+    }
+  }
+}
+
+void Aico::Export(AicoResult* result) const {
+  const AicoState& s = ws_->state;
+  result->trajectory.dt = tau_;
+  result->trajectory.q.resize(n_, T_ + 1);
+  if (p_.dynamic) result->velocities.resize(n_, T_ + 1);
+  double task = 0.0;
+  for (int t = 0; t <= T_; ++t) {
+    result->trajectory.q.col(t) = s.b[t].head(n_);
+    if (p_.dynamic) result->velocities.col(t) = s.b[t].tail(n_);
+    task += s.task_cost[t];
+  }
+  result->cost = s.cost;
+  result->task_cost = task;
+  result->control_cost = s.cost - task;
+}
+
+AicoResult Aico::Run(const AicoCallback& callback, const Trajectory* init) {
+  AicoResult result;
+  const long evals0 = ws_->tasks.evaluations;
+  const long coll0 = CollisionQueries(p_, ws_->tasks);
+  Initialise(init);
+  result.cost_history.push_back(st().cost);
+  int backtracks = 0;
+  result.status = SolveStatus::kMaxIterations;
+  for (int sweep = 0; sweep < o_.max_iterations; ++sweep) {
+    ws_->backup = ws_->state;  // same sizes: no allocation
+    Sweep(sweep);
+    // Belief step against the previous sweep's belief, then the true cost at the beliefs.
+    double b_step = 0.0;
+    for (int t = 0; t <= T_; ++t) {
+      b_step = std::max(b_step, (st().b[t] - st().bref[t]).lpNorm<Eigen::Infinity>());
+      st().bref[t] = st().b[t];
+    }
+    const double cost = EvaluateAll();
+    ++result.iterations;
+    const bool accepted = std::isfinite(cost) && cost <= ws_->backup.cost;
+    if (!accepted) {
+      std::swap(ws_->state, ws_->backup);
+      lambda_ *= 10.0;
+      ++result.rejected;
+      ++backtracks;
+    } else {
+      lambda_ /= 5.0;
+      backtracks = 0;
+      result.cost_history.push_back(cost);
+    }
+    if (callback) {
+      Export(&result);
+      callback(sweep, cost, accepted, result.trajectory);
+    }
+    if (accepted && b_step < o_.tolerance) {
+      result.status = SolveStatus::kConverged;
+      break;
+    }
+    if (backtracks > o_.max_backtracks) {
+      result.status = SolveStatus::kDiverged;
+      break;
+    }
+  }
+  Export(&result);
+  result.task_evaluations = ws_->tasks.evaluations - evals0;
+  result.collision_queries = CollisionQueries(p_, ws_->tasks) - coll0;
+  return result;
+}
+
+}  // namespace
+
+AicoWorkspace::AicoWorkspace(const MotionProblem& problem) : tasks(problem) {
+  const int d = state_dim(problem), n = static_cast<int>(problem.q0.size());
+  ResizeState(problem.num_steps + 1, d, &state);
+  ResizeState(problem.num_steps + 1, d, &backup);
+  for (auto* m : {&A, &Ainv, &Qbar, &Winv, &Sbar, &tmp, &tmp2, &eye}) m->setZero(d, d);
+  vtmp.setZero(d);
+  vtmp2.setZero(d);
+  q.setZero(n);
+  qdot.setZero(n);
+  llt = Eigen::LLT<Eigen::MatrixXd>(d);
+}
+
+AicoResult SolveAico(const MotionProblem& problem, const AicoOptions& options, AicoWorkspace* ws,
+                     const AicoCallback& callback, const Trajectory* init) {
+  ValidateProblem(problem);
+  const int d = state_dim(problem);
+  if (ws == nullptr || static_cast<int>(ws->state.b.size()) != problem.num_steps + 1 ||
+      ws->state.b[0].size() != d) {
+    throw std::invalid_argument("SolveAico: workspace was built for another problem size");
+  }
+  if (init != nullptr && (init->num_dofs() != problem.q0.size() ||
+                          init->num_points() != problem.num_steps + 1 || !init->q.allFinite())) {
+    throw std::invalid_argument(
+        "SolveAico: init trajectory is " + std::to_string(init->num_dofs()) + "x" +
+        std::to_string(init->num_points()) + ", expected " + std::to_string(problem.q0.size()) +
+        "x" + std::to_string(problem.num_steps + 1));
+  }
+  if (!(options.tolerance > 0.0) || !(options.damping >= 0.0) || !(options.max_step > 0.0) ||
+      options.max_iterations < 0) {
+    throw std::invalid_argument("SolveAico: need tolerance > 0, damping >= 0, max_step > 0");
+  }
+  Aico aico(problem, options, ws);
+  return aico.Run(callback, init);
+}
+
+double TrajectoryCost(const MotionProblem& problem, const Eigen::MatrixXd& q,
+                      const Eigen::MatrixXd& qdot, TaskWorkspace* ws, double* task_cost,
+                      double* control_cost) {
+  const int T = problem.num_steps;
+  const int n = static_cast<int>(problem.q0.size());
+  if (q.rows() != n || q.cols() != T + 1) {
+    throw std::invalid_argument("TrajectoryCost: q must be " + std::to_string(n) + "x" +
+                                std::to_string(T + 1));
+  }
+  const double dt = tau(problem);
+  Eigen::MatrixXd v = qdot;
+  if (problem.dynamic && v.size() == 0) {
+    v.setZero(n, T + 1);
+    for (int t = 0; t < T; ++t) v.col(t) = (q.col(t + 1) - q.col(t)) / dt;
+  }
+  const Eigen::VectorXd metric =
+      problem.metric.size() > 0 ? problem.metric : Eigen::VectorXd::Ones(n);
+  double task = 0.0, control = 0.0;
+  for (int t = 0; t <= T; ++t) {
+    EvaluateTasks(problem, t, q.col(t), true, ws);
+    task +=
+        TaskCost(problem, t, problem.dynamic ? Eigen::VectorXd(v.col(t)) : Eigen::VectorXd(), *ws);
+    if (t < T) {
+      if (problem.dynamic) {
+        control += problem.h_rate / dt *
+                   ((v.col(t + 1) - v.col(t)).array().square() * metric.array()).sum();
+      } else {
+        control +=
+            problem.w_rate * ((q.col(t + 1) - q.col(t)).array().square() * metric.array()).sum();
+      }
+    }
+  }
+  if (task_cost != nullptr) *task_cost = task;
+  if (control_cost != nullptr) *control_cost = control;
+  return task + control;
+}
+
+}  // namespace planning

@@ -1,0 +1,99 @@
+// AICO: approximate inference control (Toussaint, ICML 2009), kinematic and pseudo-dynamic
+// (double-integrator) variants, with Levenberg-style damping (seed-methods.md §3.1–3.3).
+//
+// Model: x_{t+1} = A x_t + B u_t + ξ, ξ ~ N(0, Q), u ~ N(0, H⁻¹); task factors exp(−c_t(x_t)).
+//   kinematic: x = q, A = I, transition covariance W⁻¹.
+//   dynamic:   x = (q, q̇), A = [[I, τI], [0, I]], B = [[½τ²I], [τI]], H = h_rate·τ·W,
+//              Q = q_rate·τ·I; Q̄ = Q + B H⁻¹ Bᵀ.
+// Messages per slice t = 0..T (d = state dimension):
+//   forward   S̄ = (S_{t−1}⁻¹ + R_{t−1})⁻¹, s_t = A S̄ (S_{t−1}⁻¹ s_{t−1} + r_{t−1}),
+//             S_t = Q̄ + A S̄ Aᵀ (kinematic: s_t = S̄(…), S_t = W⁻¹ + S̄); s_0 = x_0, S_0⁻¹ = 10¹⁰ I.
+//   backward  V̄ = (V_{t+1}⁻¹ + R_{t+1})⁻¹, v_t = A⁻¹ V̄ (V_{t+1}⁻¹ v_{t+1} + r_{t+1}),
+//             V_t = A⁻¹ (Q̄ + V̄) A⁻ᵀ (kinematic: V_t = W⁻¹ + V̄); v_T = b_T, V_T⁻¹ = 10⁻⁴ I (dynamic)
+//             or I (kinematic).
+//   task      linearised at x̂_t: R_t = Σ ρ JᵀJ, r_t = Σ ρ Jᵀ (y* − φ(q̂) + J q̂) (position block);
+//             velocity block Σ ν JᵀJ and Σ ν Jᵀ v* for order-1 tasks.
+//   belief    B_t⁻¹ = S_t⁻¹ + V_t⁻¹ + R_t + λI, b_t = B_t (S_t⁻¹ s_t + V_t⁻¹ v_t + r_t + λ
+//   b_ref,t).
+// Relocation: when |b_t − x̂_t|∞ > tolerance, x̂_t ← b_t (moved at most max_step), task message and
+// belief recomputed. After each sweep the true cost (task.h) is evaluated at the beliefs; a sweep
+// that raises it is rejected (state restored, λ ← 10λ), otherwise λ ← λ/5. Converged when an
+// accepted sweep moves the beliefs by less than `tolerance` (max norm).
+#pragma once
+
+#include <Eigen/Cholesky>
+#include <Eigen/Core>
+#include <functional>
+#include <vector>
+
+#include "planning/task.h"
+#include "planning/trajectory.h"
+
+namespace planning {
+
+enum class SweepMode {
+  kForwardly,         // relocate once per step in the forward pass (forced in the first sweep)
+  kSymmetric,         // relocate once per step in both passes
+  kLocalGaussNewton,  // up to 5 relocations per step in both passes after the first sweep
+};
+
+struct AicoOptions {
+  int max_iterations = 20;  // accepted + rejected sweeps
+  double tolerance = 1e-2;  // belief-step convergence and relocation threshold (max norm)
+  double damping = 1.0;     // initial λ
+  SweepMode sweep_mode = SweepMode::kForwardly;
+  double max_step = 1.0;    // cap on one relocation move |x̂_new − x̂| (2-norm)
+  int max_backtracks = 10;  // consecutive rejected sweeps before giving up (kDiverged)
+};
+
+// All messages and beliefs of one AICO state (one entry per slice t = 0..T).
+struct AicoState {
+  std::vector<Eigen::VectorXd> s, v, r, b, xhat, bref;
+  std::vector<Eigen::MatrixXd> Sinv, Vinv, R, Binv;
+  std::vector<double> rhat, task_cost;
+  double cost = 0.0;
+};
+
+// Preallocated state (current + backup for rejected sweeps) and scratch. Sized from the problem;
+// reuse it for repeated solves of problems with the same sizes.
+struct AicoWorkspace {
+  explicit AicoWorkspace(const MotionProblem& problem);
+  AicoState state, backup;
+  TaskWorkspace tasks;
+  Eigen::MatrixXd A, Ainv, Qbar, Winv, Sbar, tmp, tmp2, eye;
+  Eigen::VectorXd vtmp, vtmp2, q, qdot;
+  Eigen::LLT<Eigen::MatrixXd> llt;
+};
+
+struct AicoResult {
+  SolveStatus status = SolveStatus::kMaxIterations;
+  Trajectory trajectory;             // q part of the beliefs, T+1 columns, dt = τ
+  Eigen::MatrixXd velocities;        // q̇ part (dynamic variant), n × (T+1); empty otherwise
+  std::vector<double> cost_history;  // cost of the initial trajectory, then of each accepted sweep
+  double cost = 0.0;                 // final total cost
+  double task_cost = 0.0;            // its task part
+  double control_cost = 0.0;         // its control part
+  int iterations = 0;                // sweeps run (accepted + rejected)
+  int rejected = 0;                  // rejected sweeps
+  long task_evaluations = 0;         // EvaluateTasks calls (one kinematics + features pass each)
+  long collision_queries = 0;        // narrow-phase queries made by collision features
+};
+
+// Called after every sweep: sweep index (0-based), its cost, whether it was accepted, and the
+// current trajectory (the restored one after a rejection).
+using AicoCallback =
+    std::function<void(int sweep, double cost, bool accepted, const Trajectory& trajectory)>;
+
+// Runs AICO from `init` (T+1 configurations; nullptr = q0 repeated, zero velocity). Throws
+// std::invalid_argument for an invalid problem (ValidateProblem) or init size; returns a status
+// for non-convergence. No allocation inside sweeps once `ws` exists.
+AicoResult SolveAico(const MotionProblem& problem, const AicoOptions& options, AicoWorkspace* ws,
+                     const AicoCallback& callback = {}, const Trajectory* init = nullptr);
+
+// Total cost (task.h) of a trajectory q (n × (T+1)) with velocities (dynamic; empty = finite
+// differences q̇_t = (q_{t+1} − q_t)/τ, last = 0). Evaluates tasks through `ws`.
+double TrajectoryCost(const MotionProblem& problem, const Eigen::MatrixXd& q,
+                      const Eigen::MatrixXd& qdot, TaskWorkspace* ws, double* task_cost = nullptr,
+                      double* control_cost = nullptr);
+
+}  // namespace planning

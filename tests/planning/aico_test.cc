@@ -1,0 +1,128 @@
+// AICO on a planar 2-link arm: the end pose must match the analytic inverse kinematics, and
+// accepted sweeps never raise the cost.
+#include "planning/aico.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "planning/robot_io.h"
+
+namespace planning {
+namespace {
+
+constexpr double kL1 = 1.0, kL2 = 0.8;
+
+constexpr char kPlanar2Link[] = R"(<?xml version="1.0"?>
+<robot name="planar2">
+  <link name="base"/>
+  <link name="link1"/>
+  <link name="link2"/>
+  <joint name="j1" type="revolute">
+    <parent link="base"/><child link="link1"/>
+    <origin xyz="0 0 0" rpy="0 0 0"/><axis xyz="0 0 1"/>
+    <limit lower="-3.14" upper="3.14" effort="1" velocity="1"/>
+  </joint>
+  <joint name="j2" type="revolute">
+    <parent link="link1"/><child link="link2"/>
+    <origin xyz="1.0 0 0" rpy="0 0 0"/><axis xyz="0 0 1"/>
+    <limit lower="-3.14" upper="3.14" effort="1" velocity="1"/>
+  </joint>
+</robot>)";
+
+// Elbow-up/down solution with the sign of q2 given.
+Eigen::Vector2d AnalyticIk(const Eigen::Vector2d& p, double elbow_sign) {
+  const double c2 = (p.squaredNorm() - kL1 * kL1 - kL2 * kL2) / (2 * kL1 * kL2);
+  const double q2 = elbow_sign * std::acos(c2);
+  const double q1 =
+      std::atan2(p.y(), p.x()) - std::atan2(kL2 * std::sin(q2), kL1 + kL2 * std::cos(q2));
+  return {q1, q2};
+}
+
+MotionProblem ReachProblem(const Robot& robot, bool dynamic, const Eigen::Vector3d& goal) {
+  MotionProblem p;
+  p.robot = &robot;
+  p.q0 = Eigen::Vector2d(0.3, 0.6);
+  p.num_steps = 20;
+  p.duration = 1.0;
+  p.dynamic = dynamic;
+  Task reach;
+  reach.name = "reach";
+  reach.feature = MakePositionFeature(robot, FindLink(robot, "link2"), Eigen::Vector3d(kL2, 0, 0));
+  SetConstantTarget(&reach, goal, 0.0, p.num_steps);
+  reach.precision[p.num_steps] = 1e4;
+  p.tasks.push_back(std::move(reach));
+  return p;
+}
+
+class AicoPlanarTest : public ::testing::TestWithParam<bool> {};
+
+TEST_P(AicoPlanarTest, ReachesAnalyticIkSolution) {
+  const Robot robot = ParseRobot(kPlanar2Link, "planar2", ".");
+  const Eigen::Vector3d goal(0.4, 1.2, 0.0);
+  MotionProblem problem = ReachProblem(robot, GetParam(), goal);
+  AicoWorkspace ws(problem);
+  AicoOptions options;
+  options.max_iterations = 100;
+  options.tolerance = 1e-4;
+  const AicoResult r = SolveAico(problem, options, &ws);
+  EXPECT_EQ(r.status, SolveStatus::kConverged) << StatusName(r.status);
+  const Eigen::Vector2d q_end = r.trajectory.q.col(problem.num_steps);
+  const Eigen::Vector2d ik = AnalyticIk(goal.head<2>(), q_end[1] >= 0 ? 1.0 : -1.0);
+  EXPECT_NEAR(q_end[0], ik[0], 2e-3);
+  EXPECT_NEAR(q_end[1], ik[1], 2e-3);
+  // The start is fixed.
+  EXPECT_TRUE(r.trajectory.q.col(0).isApprox(problem.q0, 1e-9));
+  // Accepted sweeps never raise the cost.
+  ASSERT_GE(r.cost_history.size(), 2u);
+  for (size_t k = 1; k < r.cost_history.size(); ++k) {
+    EXPECT_LE(r.cost_history[k], r.cost_history[k - 1] + 1e-12) << "sweep " << k;
+  }
+  EXPECT_LT(r.cost_history.back(), 0.05 * r.cost_history.front());
+}
+
+TEST_P(AicoPlanarTest, CallbackSeesEverySweepAndRejectionsRestore) {
+  const Robot robot = ParseRobot(kPlanar2Link, "planar2", ".");
+  MotionProblem problem = ReachProblem(robot, GetParam(), Eigen::Vector3d(-1.2, 0.6, 0));
+  AicoWorkspace ws(problem);
+  AicoOptions options;
+  options.damping = 1e-3;  // small damping: large first steps, rejections likely
+  options.max_iterations = 40;
+  options.tolerance = 1e-5;
+  int calls = 0, rejected = 0;
+  double last_accepted = 1e300;
+  const AicoResult r = SolveAico(problem, options, &ws,
+                                 [&](int sweep, double cost, bool accepted, const Trajectory& tr) {
+                                   EXPECT_EQ(sweep, calls);
+                                   ++calls;
+                                   EXPECT_EQ(tr.num_points(), problem.num_steps + 1);
+                                   if (accepted) {
+                                     EXPECT_LE(cost, last_accepted);
+                                     last_accepted = cost;
+                                   } else {
+                                     ++rejected;
+                                   }
+                                 });
+  EXPECT_EQ(calls, r.iterations);
+  EXPECT_EQ(rejected, r.rejected);
+  for (size_t k = 1; k < r.cost_history.size(); ++k) {
+    EXPECT_LE(r.cost_history[k], r.cost_history[k - 1]);
+  }
+  EXPECT_GT(r.task_evaluations, problem.num_steps);
+}
+
+INSTANTIATE_TEST_SUITE_P(KinematicAndDynamic, AicoPlanarTest, ::testing::Values(false, true),
+                         [](const ::testing::TestParamInfo<bool>& info) {
+                           return info.param ? std::string("Dynamic") : std::string("Kinematic");
+                         });
+
+TEST(Aico, InvalidProblemThrows) {
+  const Robot robot = ParseRobot(kPlanar2Link, "planar2", ".");
+  MotionProblem problem = ReachProblem(robot, true, Eigen::Vector3d(0.4, 1.2, 0));
+  AicoWorkspace ws(problem);
+  problem.tasks[0].target.resize(2, problem.num_steps + 1);
+  EXPECT_THROW(SolveAico(problem, AicoOptions{}, &ws), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace planning
