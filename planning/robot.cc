@@ -27,6 +27,27 @@ int RigidBodyRoot(const Robot& robot, int link) {
   }
 }
 
+// True if any link rigidly attached to body root `body` has collision geometry.
+bool BodyHasCollision(const Robot& robot, int body) {
+  for (size_t l = 0; l < robot.links.size(); ++l) {
+    if (!robot.links[l].collisions.empty() && RigidBodyRoot(robot, static_cast<int>(l)) == body) {
+      return true;
+    }
+  }
+  return false;
+}
+
+// The nearest ancestor body of `body` (a rigid-body root) that has collision geometry, skipping
+// massless frames such as the intermediate link of a 2-DOF joint; −1 if none.
+int CollisionParentBody(const Robot& robot, int body) {
+  while (true) {
+    const int j = robot.links[body].parent_joint;
+    if (j < 0) return -1;
+    body = RigidBodyRoot(robot, robot.joints[j].parent_link);
+    if (BodyHasCollision(robot, body)) return body;
+  }
+}
+
 }  // namespace
 
 int FindLink(const Robot& robot, const std::string& name) {
@@ -62,12 +83,7 @@ bool AreAdjacent(const Robot& robot, int link_a, int link_b) {
   const int a = RigidBodyRoot(robot, link_a);
   const int b = RigidBodyRoot(robot, link_b);
   if (a == b) return true;
-  // Body a's movable parent joint connects it to body RigidBodyRoot(parent link).
-  const int ja = robot.links[a].parent_joint;
-  if (ja >= 0 && RigidBodyRoot(robot, robot.joints[ja].parent_link) == b) return true;
-  const int jb = robot.links[b].parent_joint;
-  if (jb >= 0 && RigidBodyRoot(robot, robot.joints[jb].parent_link) == a) return true;
-  return false;
+  return CollisionParentBody(robot, a) == b || CollisionParentBody(robot, b) == a;
 }
 
 }  // namespace planning

@@ -119,9 +119,10 @@ std::vector<std::string> DofNames(const Robot& robot);
 Eigen::VectorXd LowerLimits(const Robot& robot);
 Eigen::VectorXd UpperLimits(const Robot& robot);
 
-// True if links a and b are rigidly attached (only fixed joints between them) or are separated by
-// exactly one movable joint once fixed joints are collapsed (parent/child bodies). Self-collision
-// checks skip such pairs.
+// True if links a and b are rigidly attached (only fixed joints between them) or are parent and
+// child bodies: bodies are links merged across fixed joints, and bodies without collision geometry
+// (e.g. the massless frame between the two axes of a 2-DOF joint) are skipped when looking for the
+// parent. Self-collision checks skip such pairs. O(links · depth); call it at set-up time.
 bool AreAdjacent(const Robot& robot, int link_a, int link_b);
 
 }  // namespace planning
