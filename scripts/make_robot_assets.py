@@ -230,7 +230,9 @@ def make_lwr4_sdh():
                 limit=(-math.radians(lim[i]), math.radians(lim[i]), vel[i], eff[i]))
         name = "lwr_link_%d" % (i + 1)
         if i < 5:  # capsules between consecutive joint centres (reference 1.3, simpler set)
-            length = offsets[i + 1]
+            # Link 5 stops 0.065 below the wrist centre (the wrist sphere covers the joint) so
+            # that it does not overlap the flange, which is not adjacent to it.
+            length = offsets[i + 1] if i < 4 else offsets[i + 1] - 0.065
             mat = "kuka_orange" if i % 2 == 0 else "kuka_grey"
             u.link(name, [cap(0.065, length, (0, 0, length / 2), material=mat)],
                    [cap(r, length, (0, 0, length / 2))])
@@ -317,26 +319,33 @@ def make_human_hand():
            [prim("box", (HB, 0.028, palm_len), (0, 0, palm_len / 2))],
            comment="palm: box HB x 0.028 x 0.45 HL from the wrist crease to the MCP line; thenar pad")
     # Fingers: MCP position (axial x HL, radio-ulnar x HB), segment lengths (x HL), radii, abd limit.
-    fingers = [("index", 0.447, 0.251, (0.265, 0.143, 0.097), (0.010, 0.009, 0.008), 20),
-               ("middle", 0.446, 0.0, (0.277, 0.170, 0.108), (0.010, 0.009, 0.008), 15),
-               ("ring", 0.409, -0.206, (0.259, 0.165, 0.107), (0.010, 0.009, 0.008), 15),
-               ("little", 0.368, -0.402, (0.206, 0.117, 0.093), (0.0085, 0.0075, 0.007), 25)]
+    # Visual radii from reference 3.5; collision capsules are 1-1.5 mm thinner so that
+    # neighbouring fingers at rest (MCPs 16.7-21.3 mm apart) do not touch. Fixed splay (deg) about
+    # the palm normal fans the fingers slightly, as in a relaxed hand.
+    fingers = [("index", 0.447, 0.251, (0.265, 0.143, 0.097), (0.010, 0.009, 0.008),
+                (0.0085, 0.008, 0.0075), 20, 4),
+               ("middle", 0.446, 0.0, (0.277, 0.170, 0.108), (0.010, 0.009, 0.008),
+                (0.0085, 0.008, 0.0075), 15, 0),
+               ("ring", 0.409, -0.206, (0.259, 0.165, 0.107), (0.010, 0.009, 0.008),
+                (0.0085, 0.008, 0.0075), 15, -4),
+               ("little", 0.368, -0.402, (0.206, 0.117, 0.093), (0.0085, 0.0075, 0.007),
+                (0.008, 0.007, 0.0065), 25, -9)]
     chains = []
     deg = math.radians
-    for name, ax, rad, lens, radii, abd in fingers:
+    for name, ax, rad, lens, radii, cradii, abd, splay in fingers:
         mcp = (rad * HB, 0.0, ax * HL)
         pp, mp, dp = (c * HL for c in lens)
         u.joint("%s_mcp_abd" % name, "revolute", "hand_palm", "%s_mcp_link" % name, mcp,
-                axis=(0, 1, 0), limit=(-deg(abd), deg(abd), 2.0, 5.0))
+                (0, deg(splay), 0), axis=(0, 1, 0), limit=(-deg(abd), deg(abd), 2.0, 5.0))
         u.link("%s_mcp_link" % name)
         u.joint("%s_mcp_flex" % name, "revolute", "%s_mcp_link" % name, "%s_proximal" % name,
                 axis=(1, 0, 0), limit=(deg(-30), deg(90), 2.0, 5.0))
         u.link("%s_proximal" % name, [cap(radii[0], pp, (0, 0, pp / 2), material="skin")],
-               [cap(radii[0], pp, (0, 0, pp / 2))])
+               [cap(cradii[0], pp, (0, 0, pp / 2))])
         u.joint("%s_pip" % name, "revolute", "%s_proximal" % name, "%s_middle" % name, (0, 0, pp),
                 axis=(1, 0, 0), limit=(0, deg(110), 2.0, 5.0))
         u.link("%s_middle" % name, [cap(radii[1], mp, (0, 0, mp / 2), material="skin")],
-               [cap(radii[1], mp, (0, 0, mp / 2))])
+               [cap(cradii[1], mp, (0, 0, mp / 2))])
         u.joint("%s_dip" % name, "revolute", "%s_middle" % name, "%s_distal" % name, (0, 0, mp),
                 axis=(1, 0, 0), limit=(0, deg(90), 2.0, 5.0))
         dl = dp - radii[2]
@@ -344,7 +353,7 @@ def make_human_hand():
                [cap(radii[2], dl, (0, 0, dl / 2), material="skin"),
                 prim("box", (radii[2] * 1.2, 0.002, dl * 0.6), (0, radii[2] * 0.85, dl * 0.55),
                      material="nail")],
-               [cap(radii[2], dl, (0, 0, dl / 2))])
+               [cap(cradii[2], dl, (0, 0, dl / 2))])
         u.joint("%s_tip_joint" % name, "fixed", "%s_distal" % name, "%s_tip" % name, (0, 0, dp))
         u.link("%s_tip" % name)
         chains.append(chain(name, [("%s_proximal" % name, (0, 0, 0)), ("%s_middle" % name, (0, 0, 0)),
@@ -352,9 +361,12 @@ def make_human_hand():
     # Thumb: CMC (2 DOF) at (0.196 HB, -, 0.073 HL), metacarpal abducted ~44 deg and turned -60 deg
     # about its long axis (reference 3.3) so that flexion moves it across the palm.
     mc, pp, dp = 0.251 * HL, 0.196 * HL, 0.158 * HL
-    base = matmul(rot_axis((0, 1, 0), deg(44.1)), rot_axis((0, 0, 1), deg(-60)))
+    # Also tilted 25 deg towards the palm side (and 12 mm palmar) so the thumb rests in front of
+    # the palm instead of inside it.
+    base = matmul(matmul(rot_axis((0, 1, 0), deg(44.1)), rot_axis((1, 0, 0), deg(25))),
+                  rot_axis((0, 0, 1), deg(-60)))
     u.joint("thumb_cmc_abd", "revolute", "hand_palm", "thumb_cmc_link",
-            (0.196 * HB, -0.008, 0.073 * HL), rpy_of(base), (0, 1, 0), (deg(-20), deg(60), 2.0, 5.0),
+            (0.196 * HB, -0.012, 0.073 * HL), rpy_of(base), (0, 1, 0), (deg(-20), deg(60), 2.0, 5.0),
             comment="thumb CMC abduction (about local y) and flexion (about local x)")
     u.link("thumb_cmc_link")
     u.joint("thumb_cmc_flex", "revolute", "thumb_cmc_link", "thumb_metacarpal", axis=(1, 0, 0),

@@ -170,10 +170,10 @@ TEST(Kinematics, HumanHandFingertipsAtZero) {
   const Robot robot = LoadRobot(AssetFile("robots/human_hand.urdf"));
   KinematicsData kin(robot);
   ForwardKinematics(robot, Eigen::VectorXd::Zero(num_dofs(robot)), &kin);
-  // Index: MCP at 0.447 HL, then (0.265 + 0.143 + 0.097) HL along z (HL = 0.19 m).
-  const Eigen::Vector3d tip = kin.world_from_link[FindLink(robot, "index_tip")].translation();
-  EXPECT_NEAR(tip.z(), 0.19 * (0.447 + 0.265 + 0.143 + 0.097), 1e-12);
-  EXPECT_NEAR(tip.x(), 0.085 * 0.251, 1e-12);
+  // Middle finger (no splay): MCP at 0.446 HL, then (0.277 + 0.170 + 0.108) HL along z.
+  const Eigen::Vector3d tip = kin.world_from_link[FindLink(robot, "middle_tip")].translation();
+  EXPECT_NEAR(tip.z(), 0.19 * (0.446 + 0.277 + 0.170 + 0.108), 1e-12);
+  EXPECT_NEAR(tip.x(), 0.0, 1e-12);
   // Flexion (positive) moves the fingertip towards the palm side (−y).
   Eigen::VectorXd q = Eigen::VectorXd::Zero(num_dofs(robot));
   q[7] = 0.5;  // index_mcp_flex

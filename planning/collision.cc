@@ -1,0 +1,389 @@
+// Collision and distance queries through FCL: shapes built once, transforms refreshed per query.
+#include "planning/collision.h"
+
+#include <fcl/geometry/bvh/BVH_model.h>
+#include <fcl/geometry/shape/box.h>
+#include <fcl/geometry/shape/capsule.h>
+#include <fcl/geometry/shape/cylinder.h>
+#include <fcl/geometry/shape/sphere.h>
+#include <fcl/math/bv/OBBRSS.h>
+#include <fcl/narrowphase/collision.h>
+#include <fcl/narrowphase/distance.h>
+
+#include <algorithm>
+#include <cassert>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <tuple>
+
+#include "planning/internal/fcl_scene.h"
+
+namespace planning {
+namespace {
+
+using internal::FclPair;
+using internal::FclScene;
+using internal::FclShape;
+
+std::shared_ptr<fcl::CollisionGeometryd> MakeGeometry(const Robot& model, const Geometry& g) {
+  switch (g.kind) {
+    case Geometry::Kind::kBox:
+      return std::make_shared<fcl::Boxd>(g.size[0], g.size[1], g.size[2]);
+    case Geometry::Kind::kSphere:
+      return std::make_shared<fcl::Sphered>(g.size[0]);
+    case Geometry::Kind::kCylinder:
+      return std::make_shared<fcl::Cylinderd>(g.size[0], g.size[1]);
+    case Geometry::Kind::kCapsule:
+      return std::make_shared<fcl::Capsuled>(g.size[0], g.size[1]);
+    case Geometry::Kind::kMesh: {
+      const Mesh& mesh = model.meshes.at(g.mesh);
+      std::vector<fcl::Vector3d> points;
+      points.reserve(mesh.vertices.size());
+      for (const Eigen::Vector3f& v : mesh.vertices) {
+        points.push_back(v.cast<double>().cwiseProduct(g.size));
+      }
+      std::vector<fcl::Triangle> tris;
+      tris.reserve(mesh.triangles.size());
+      for (const Eigen::Vector3i& t : mesh.triangles) tris.emplace_back(t[0], t[1], t[2]);
+      auto bvh = std::make_shared<fcl::BVHModel<fcl::OBBRSSd>>();
+      bvh->beginModel(static_cast<int>(tris.size()), static_cast<int>(points.size()));
+      bvh->addSubModel(points, tris);
+      bvh->endModel();
+      return bvh;
+    }
+  }
+  throw std::logic_error("unknown geometry kind");
+}
+
+// Shape pointer stored as FCL user data.
+const FclShape* ShapeOf(const fcl::CollisionObjectd* o) {
+  return static_cast<const FclShape*>(o->getUserData());
+}
+
+struct BroadphaseQuery {
+  const FclScene* scene;
+  CollisionData* coll;
+  bool hit = false;
+  ProximityPair pair;
+};
+
+bool Skip(const FclScene& s, const FclShape& a, const FclShape& b) {
+  if (a.object >= 0 && b.object >= 0) return true;  // environment vs environment
+  if (a.object < 0 && b.object < 0) {
+    return !s.self_collision || s.skip[a.link * s.num_links + b.link] != 0;
+  }
+  return !s.environment;
+}
+
+// Broadphase callback: filter, count, narrow phase; returns true (stop) at the first hit.
+bool CollideCallback(fcl::CollisionObjectd* o1, fcl::CollisionObjectd* o2, void* data) {
+  auto* q = static_cast<BroadphaseQuery*>(data);
+  const FclShape* a = ShapeOf(o1);
+  const FclShape* b = ShapeOf(o2);
+  if (Skip(*q->scene, *a, *b)) return false;
+  if (a->object >= 0) std::swap(a, b);  // robot shape first
+  ++q->coll->narrow_phase_calls;
+  bool hit = false;
+  try {
+    fcl::CollisionRequestd request;
+    fcl::CollisionResultd result;
+    hit = fcl::collide(a->obj.get(), b->obj.get(), request, result) > 0;
+  } catch (const std::exception&) {
+    hit = true;  // libccd failures on touching shapes: be conservative
+  }
+  if (hit) {
+    q->hit = true;
+    q->pair.link_a = a->link;
+    q->pair.link_b = b->object >= 0 ? -1 : b->link;
+    q->pair.object = b->object;
+  }
+  return hit;
+}
+
+void UpdateRobot(const KinematicsData& kin, FclScene* s) {
+  for (FclShape& shape : s->robot) {
+    shape.obj->setTransform(kin.world_from_link[shape.link] * shape.link_from_shape);
+    shape.obj->computeAABB();
+  }
+  s->robot_manager.update();
+}
+
+// Signed distance between two shapes with witness points and the normal from b to a.
+void ShapeDistance(const FclShape& a, const FclShape& b, CollisionData* coll, ProximityPair* out) {
+  ++coll->narrow_phase_calls;
+  fcl::DistanceRequestd request(true, true);
+  fcl::DistanceResultd result;
+  double d = 0.0;
+  bool ok = true;
+  try {
+    d = fcl::distance(a.obj.get(), b.obj.get(), request, result);
+  } catch (const std::exception&) {
+    ok = false;
+  }
+  if (ok && d > 1e-9) {
+    out->distance = d;
+    out->point_a = result.nearest_points[0];
+    out->point_b = result.nearest_points[1];
+    const Eigen::Vector3d diff = out->point_a - out->point_b;
+    const double len = diff.norm();
+    if (len > 1e-12) {
+      out->normal = diff / len;
+    } else {
+      const Eigen::Vector3d c = a.obj->getTranslation() - b.obj->getTranslation();
+      out->normal = c.norm() > 1e-12 ? Eigen::Vector3d(c.normalized()) : Eigen::Vector3d::UnitZ();
+    }
+    return;
+  }
+  // In contact (or the distance solver failed): penetration depth and normal from the contact.
+  ++coll->narrow_phase_calls;
+  fcl::CollisionRequestd creq(1, true);
+  fcl::CollisionResultd cres;
+  bool contact = false;
+  try {
+    contact = fcl::collide(a.obj.get(), b.obj.get(), creq, cres) > 0;
+  } catch (const std::exception&) {
+    contact = false;
+  }
+  if (contact) {
+    const fcl::Contactd& c = cres.getContact(0);
+    // FCL's normal points from o1 (= a) to o2 (= b); ours points from b to a.
+    const bool swapped = c.o1 != a.obj->collisionGeometry().get();
+    Eigen::Vector3d n = swapped ? Eigen::Vector3d(c.normal) : Eigen::Vector3d(-c.normal);
+    if (!(n.norm() > 1e-12)) n = Eigen::Vector3d::UnitZ();
+    out->distance = -std::abs(c.penetration_depth);
+    out->point_a = c.pos;
+    out->point_b = c.pos;
+    out->normal = n.normalized();
+  } else {
+    // Touching: distance 0 at the reported points.
+    out->distance = ok ? std::max(d, 0.0) : 0.0;
+    out->point_a = result.nearest_points[0];
+    out->point_b = result.nearest_points[1];
+    const Eigen::Vector3d c = a.obj->getTranslation() - b.obj->getTranslation();
+    out->normal = c.norm() > 1e-12 ? Eigen::Vector3d(c.normalized()) : Eigen::Vector3d::UnitZ();
+  }
+}
+
+// Distance between the world AABBs of two objects (0 if they overlap).
+double AabbGap(const fcl::CollisionObjectd& a, const fcl::CollisionObjectd& b) {
+  const fcl::AABBd& x = a.getAABB();
+  const fcl::AABBd& y = b.getAABB();
+  const Eigen::Vector3d gap =
+      (x.min_ - y.max_).cwiseMax(y.min_ - x.max_).cwiseMax(Eigen::Vector3d::Zero());
+  return gap.norm();
+}
+
+template <typename Visit>
+void ForEachClosePair(const Robot& robot, const KinematicsData& kin, double margin,
+                      CollisionData* coll, Visit&& visit) {
+  FclScene& s = *coll->scene;
+  assert(kin.world_from_link.size() == robot.links.size());
+  (void)robot;
+  UpdateRobot(kin, &s);
+  ++coll->queries;
+  for (const FclPair& p : s.pairs) {
+    const FclShape& a = s.robot[p.a];
+    const FclShape& b = p.env_pair ? s.env[p.b] : s.robot[p.b];
+    if (AabbGap(*a.obj, *b.obj) >= margin) continue;
+    ProximityPair pair;
+    pair.link_a = a.link;
+    pair.link_b = p.env_pair ? -1 : b.link;
+    pair.object = p.env_pair ? b.object : -1;
+    ShapeDistance(a, b, coll, &pair);
+    visit(pair);
+  }
+}
+
+}  // namespace
+
+// ---- Environment
+// ---------------------------------------------------------------------------------
+
+void AddObject(const Robot& object, const Eigen::Isometry3d& world_from_object,
+               const std::string& name, Environment* env) {
+  for (const PlacedObject& o : env->objects) {
+    if (o.name == name)
+      throw std::invalid_argument("AddObject: duplicate object name '" + name + "'");
+  }
+  env->objects.push_back({name, object, world_from_object});
+}
+
+Robot MakePrimitiveObject(const std::string& name, const Geometry& geometry) {
+  if (geometry.kind == Geometry::Kind::kMesh) {
+    throw std::invalid_argument("MakePrimitiveObject: '" + name + "' must be a primitive");
+  }
+  Robot r;
+  r.name = name;
+  r.source = "<primitive " + name + ">";
+  Link link;
+  link.name = name;
+  link.visuals.push_back(geometry);
+  link.collisions.push_back(geometry);
+  r.links.push_back(link);
+  return r;
+}
+
+int FindObject(const Environment& env, const std::string& name) {
+  for (size_t i = 0; i < env.objects.size(); ++i) {
+    if (env.objects[i].name == name) return static_cast<int>(i);
+  }
+  throw std::invalid_argument("no object named '" + name + "' in the environment");
+}
+
+Eigen::Matrix3Xd ObjectChainPoints(const Environment& env, int object, int chain) {
+  const PlacedObject& o = env.objects.at(object);
+  KinematicsData kin(o.model);
+  ForwardKinematics(o.model, Eigen::VectorXd::Zero(num_dofs(o.model)), &kin);
+  Eigen::Matrix3Xd p;
+  ChainPoints(o.model, kin, chain, &p);
+  for (Eigen::Index k = 0; k < p.cols(); ++k) p.col(k) = o.world_from_object * p.col(k);
+  return p;
+}
+
+// ---- CollisionData
+// -------------------------------------------------------------------------------
+
+CollisionData::CollisionData(const Robot& robot, const Environment& env,
+                             const CollisionOptions& options)
+    : scene(std::make_unique<internal::FclScene>()) {
+  FclScene& s = *scene;
+  s.self_collision = options.self_collision;
+  s.environment = options.environment;
+  s.num_links = static_cast<int>(robot.links.size());
+  // Robot shapes.
+  size_t count = 0;
+  for (const Link& l : robot.links) count += l.collisions.size();
+  s.robot.resize(count);
+  int k = 0;
+  for (size_t l = 0; l < robot.links.size(); ++l) {
+    for (const Geometry& g : robot.links[l].collisions) {
+      FclShape& shape = s.robot[k];
+      shape.link = static_cast<int>(l);
+      shape.index = k++;
+      shape.link_from_shape = g.link_from_geometry;
+      shape.obj = std::make_unique<fcl::CollisionObjectd>(MakeGeometry(robot, g));
+      shape.obj->setUserData(&shape);
+    }
+  }
+  // Environment shapes at their fixed world poses.
+  count = 0;
+  for (const PlacedObject& o : env.objects) {
+    for (const Link& l : o.model.links) count += l.collisions.size();
+  }
+  s.env.resize(count);
+  k = 0;
+  for (size_t i = 0; i < env.objects.size(); ++i) {
+    const PlacedObject& o = env.objects[i];
+    KinematicsData okin(o.model);
+    ForwardKinematics(o.model, Eigen::VectorXd::Zero(num_dofs(o.model)), &okin);
+    for (size_t l = 0; l < o.model.links.size(); ++l) {
+      for (const Geometry& g : o.model.links[l].collisions) {
+        FclShape& shape = s.env[k];
+        shape.link = static_cast<int>(l);
+        shape.object = static_cast<int>(i);
+        shape.index = k++;
+        shape.link_from_shape = g.link_from_geometry;
+        shape.obj = std::make_unique<fcl::CollisionObjectd>(MakeGeometry(o.model, g));
+        shape.obj->setTransform(o.world_from_object * okin.world_from_link[l] *
+                                g.link_from_geometry);
+        shape.obj->computeAABB();
+        shape.obj->setUserData(&shape);
+      }
+    }
+  }
+  // Self pairs that are never checked.
+  s.skip.assign(static_cast<size_t>(s.num_links) * s.num_links, 0);
+  for (int a = 0; a < s.num_links; ++a) {
+    for (int b = 0; b < s.num_links; ++b) {
+      if (AreAdjacent(robot, a, b)) s.skip[a * s.num_links + b] = 1;
+    }
+  }
+  for (const auto& [na, nb] : options.disabled_pairs) {
+    const int a = FindLink(robot, na), b = FindLink(robot, nb);
+    s.skip[a * s.num_links + b] = s.skip[b * s.num_links + a] = 1;
+  }
+  // Candidate shape pairs for distance queries: self pairs (a < b), then per object.
+  if (s.self_collision) {
+    for (size_t a = 0; a < s.robot.size(); ++a) {
+      for (size_t b = a + 1; b < s.robot.size(); ++b) {
+        if (s.skip[s.robot[a].link * s.num_links + s.robot[b].link]) continue;
+        s.pairs.push_back({static_cast<int>(a), static_cast<int>(b), false});
+      }
+    }
+  }
+  if (s.environment) {
+    for (size_t e = 0; e < s.env.size(); ++e) {
+      for (size_t a = 0; a < s.robot.size(); ++a) {
+        s.pairs.push_back({static_cast<int>(a), static_cast<int>(e), true});
+      }
+    }
+    std::stable_sort(s.pairs.begin(), s.pairs.end(), [&](const FclPair& x, const FclPair& y) {
+      const int ox = x.env_pair ? s.env[x.b].object : -1;
+      const int oy = y.env_pair ? s.env[y.b].object : -1;
+      return ox < oy;
+    });
+  }
+  // Broadphase managers.
+  for (FclShape& shape : s.robot) s.robot_manager.registerObject(shape.obj.get());
+  for (FclShape& shape : s.env) s.env_manager.registerObject(shape.obj.get());
+  s.robot_manager.setup();
+  s.env_manager.setup();
+}
+
+CollisionData::~CollisionData() = default;
+CollisionData::CollisionData(CollisionData&&) noexcept = default;
+CollisionData& CollisionData::operator=(CollisionData&&) noexcept = default;
+
+// ---- Queries
+// -------------------------------------------------------------------------------------
+
+bool InCollision(const Robot& robot, const KinematicsData& kin, CollisionData* coll,
+                 ProximityPair* hit) {
+  FclScene& s = *coll->scene;
+  assert(kin.world_from_link.size() == robot.links.size());
+  (void)robot;
+  UpdateRobot(kin, &s);
+  ++coll->queries;
+  BroadphaseQuery q{&s, coll, false, {}};
+  if (s.environment && !s.env.empty()) s.robot_manager.collide(&s.env_manager, &q, CollideCallback);
+  if (!q.hit && s.self_collision) s.robot_manager.collide(&q, CollideCallback);
+  if (q.hit && hit) *hit = q.pair;
+  return q.hit;
+}
+
+void ComputeProximity(const Robot& robot, const KinematicsData& kin, double margin,
+                      CollisionData* coll, std::vector<ProximityPair>* out) {
+  if (!(margin >= 0)) throw std::invalid_argument("ComputeProximity: margin must be >= 0");
+  out->clear();
+  ForEachClosePair(robot, kin, margin, coll, [&](const ProximityPair& p) {
+    if (p.distance >= margin) return;
+    // Pairs arrive grouped by (object, link_a, link_b) shape order; keep the closest per link pair.
+    for (ProximityPair& existing : *out) {
+      if (existing.link_a == p.link_a && existing.link_b == p.link_b &&
+          existing.object == p.object) {
+        if (p.distance < existing.distance) existing = p;
+        return;
+      }
+    }
+    out->push_back(p);
+  });
+  std::sort(out->begin(), out->end(), [](const ProximityPair& x, const ProximityPair& y) {
+    return std::tie(x.object, x.link_a, x.link_b) < std::tie(y.object, y.link_a, y.link_b);
+  });
+}
+
+double MinDistance(const Robot& robot, const KinematicsData& kin, CollisionData* coll,
+                   ProximityPair* closest) {
+  double best = std::numeric_limits<double>::infinity();
+  ForEachClosePair(robot, kin, std::numeric_limits<double>::infinity(), coll,
+                   [&](const ProximityPair& p) {
+                     if (p.distance < best) {
+                       best = p.distance;
+                       if (closest) *closest = p;
+                     }
+                   });
+  return best;
+}
+
+}  // namespace planning

@@ -1,0 +1,42 @@
+// Private: the FCL side of CollisionData. Only planning/collision.cc includes this file.
+#pragma once
+
+#include <fcl/broadphase/broadphase_dynamic_AABB_tree.h>
+#include <fcl/narrowphase/collision_object.h>
+
+#include <Eigen/Geometry>
+#include <memory>
+#include <vector>
+
+namespace planning::internal {
+
+// One collision shape: a robot link's geometry (object == −1) or an environment object's.
+struct FclShape {
+  int link = -1;    // robot link, or the object's link
+  int object = -1;  // −1 for robot shapes, else index into Environment::objects
+  int index = 0;    // position in FclScene::robot / env
+  Eigen::Isometry3d link_from_shape = Eigen::Isometry3d::Identity();
+  std::unique_ptr<fcl::CollisionObjectd> obj;
+};
+
+// A candidate pair for distance queries: shape indices (b into env if env_pair) and the AABB test
+// is done per query.
+struct FclPair {
+  int a = 0;
+  int b = 0;
+  bool env_pair = false;
+};
+
+struct FclScene {
+  std::vector<FclShape> robot;  // pointers to elements are used as FCL user data: never resized
+  std::vector<FclShape> env;
+  std::vector<char> skip;  // links × links: 1 if the self pair is not checked
+  int num_links = 0;
+  bool self_collision = true;
+  bool environment = true;
+  std::vector<FclPair> pairs;  // every checked shape pair, ordered (self first, then by object)
+  fcl::DynamicAABBTreeCollisionManagerd robot_manager;
+  fcl::DynamicAABBTreeCollisionManagerd env_manager;
+};
+
+}  // namespace planning::internal
