@@ -5,7 +5,9 @@
 #include <nlohmann/json.hpp>
 
 #include "app/command.h"
+#include "app/figures.h"
 #include "app/io.h"
+#include "render/image.h"
 #include "topology/polyline.h"
 #include "topology/winding.h"
 #include "topology/writhe.h"
@@ -43,7 +45,7 @@ void PrintTable(const Eigen::MatrixXd& w, double total, bool unsigned_variant) {
 }
 
 struct WritheArgs {
-  std::string a_path, b_path;
+  std::string a_path, b_path, heatmap_path, heatmap_size = "640x480";
   bool json = false, total_only = false, unsigned_variant = false;
 };
 
@@ -67,6 +69,9 @@ void AddTopologyCommands(CLI::App* root, CommandList* commands) {
   writhe->add_flag("--total", wa->total_only, "print only rows, cols and the total");
   writhe->add_flag("--unsigned", wa->unsigned_variant,
                    "unsigned solid angle Omega* in [0, 2pi) per entry (the thesis code's variant)");
+  writhe->add_option("--heatmap", wa->heatmap_path,
+                     "also write the matrix as a heatmap figure (PNG; see `topoplan heatmap`)");
+  writhe->add_option("--heatmap-size", wa->heatmap_size, "heatmap size WxH (default 640x480)");
   writhe->footer(
       "Entry (i,j) = 1/(4pi) * double integral over segment i of A and segment j of B of\n"
       "(a-b).(da x db)/|a-b|^3. For two closed polygons the total is their linking number.");

@@ -31,6 +31,7 @@ using CommandList = std::vector<Command>;
 // Registration functions, one per command family (app/cmd_*.cc).
 void AddTopologyCommands(CLI::App* root, CommandList* commands);  // writhe, winding
 void AddDemoCommand(CLI::App* root, CommandList* commands);       // demo
+void AddRenderCommands(CLI::App* root, CommandList* commands);    // render, heatmap, diff
 
 // Runs `run`, mapping exceptions to exit codes and printing "topoplan <name>: error: ..." to
 // stderr.

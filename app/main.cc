@@ -12,6 +12,7 @@ int main(int argc, char** argv) {
   app::CommandList commands;
   app::AddTopologyCommands(&root, &commands);
   app::AddDemoCommand(&root, &commands);
+  app::AddRenderCommands(&root, &commands);
   try {
     root.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -403,7 +403,11 @@ class Renderer::Impl {
           Translate(Eigen::Vector3f(g.center.x(), g.center.y(), g.height)) *
           Scale(Eigen::Vector3f(g.extent, g.extent, 1.0f));
       scratch_.assign(1, MakeInstance(model, g.plane_rgba, flat));
+      // Pushed back in depth so that shapes resting on the ground do not z-fight with it.
+      gl_.Enable(GL_POLYGON_OFFSET_FILL);
+      gl_.PolygonOffset(1.0f, 2.0f);
       DrawInstances(quad_, scratch_);
+      gl_.Disable(GL_POLYGON_OFFSET_FILL);
       gl_.Uniform1i(Uniform(p, "u_grid"), 0);
     }
     for (const auto& [mesh, items] : opaque_) DrawInstances(*mesh, items);

@@ -1,0 +1,30 @@
+// Figure helpers shared by commands that draw (render, heatmap, writhe --heatmap, later plan and
+// bench): image-size flags, the writhe heatmap figure, and mapping render's environment errors
+// to exit code 3.
+#pragma once
+
+#include <Eigen/Core>
+#include <functional>
+#include <string>
+
+#include "render/image.h"
+
+namespace app {
+
+// Parses "WxH" (e.g. "640x480") into *width, *height in [16, 8192]. Throws
+// std::invalid_argument naming `flag` otherwise.
+void ParseImageSize(const std::string& text, const std::string& flag, int* width, int* height);
+
+// The writhe-matrix heatmap figure: diverging colours symmetric about 0 (sequential for an
+// all-non-negative matrix such as the unsigned variant), rows = segments of chain A named
+// `a_name`, columns = segments of B. An empty title becomes
+// "Writhe matrix <a_name> × <b_name> (total <sum>)".
+render::Image WritheHeatmapFigure(const Eigen::MatrixXd& w, const std::string& a_name,
+                                  const std::string& b_name, int width, int height,
+                                  const std::string& title = "");
+
+// Runs `run`, rethrowing render::EnvironmentError (no GL context, no font) as
+// app::EnvironmentError so that RunGuarded exits with code 3.
+int WithRenderErrors(const std::function<int()>& run);
+
+}  // namespace app

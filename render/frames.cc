@@ -1,0 +1,137 @@
+// Frame sequences, contact sheets and optional ffmpeg videos (see frames.h).
+#include "render/frames.h"
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <stdexcept>
+
+#include "render/internal/canvas.h"
+#include "render/internal/text.h"
+
+namespace render {
+namespace fs = std::filesystem;
+
+std::string FindExecutable(const std::string& name) {
+  const char* path = std::getenv("PATH");
+  if (path == nullptr) return "";
+  std::string all(path);
+  size_t start = 0;
+  while (start <= all.size()) {
+    const size_t end = std::min(all.find(':', start), all.size());
+    const fs::path candidate = fs::path(all.substr(start, end - start)) / name;
+    if (end > start && access(candidate.c_str(), X_OK) == 0 && fs::is_regular_file(candidate)) {
+      return candidate.string();
+    }
+    start = end + 1;
+  }
+  return "";
+}
+
+Image MakeContactSheet(const std::vector<Image>& thumbnails,
+                       const std::vector<std::string>& labels) {
+  if (thumbnails.empty() || thumbnails.size() != labels.size()) {
+    throw std::invalid_argument("contact sheet: need one label per thumbnail and at least one");
+  }
+  const int n = static_cast<int>(thumbnails.size());
+  const int cols = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(n))));
+  const int rows = (n + cols - 1) / cols;
+  int cell_w = 0, cell_h = 0;
+  for (const Image& t : thumbnails) {
+    cell_w = std::max(cell_w, t.width);
+    cell_h = std::max(cell_h, t.height);
+  }
+  constexpr int kGutter = 8, kLabel = 16;
+  Image sheet(kGutter + cols * (cell_w + kGutter), kGutter + rows * (cell_h + kLabel + kGutter),
+              255, 255, 255);
+  const internal::Font& font = internal::Font::Regular();
+  for (int i = 0; i < n; ++i) {
+    const int x = kGutter + (i % cols) * (cell_w + kGutter);
+    const int y = kGutter + (i / cols) * (cell_h + kLabel + kGutter);
+    internal::Blit(&sheet, thumbnails[static_cast<size_t>(i)], x, y);
+    internal::StrokeRect(&sheet, x - 1, y - 1, x + thumbnails[static_cast<size_t>(i)].width + 1,
+                         y + thumbnails[static_cast<size_t>(i)].height + 1, {160, 160, 160});
+    font.Draw(&sheet, x + 0.5f * cell_w, y + cell_h + 3 + font.Ascent(11.0f),
+              labels[static_cast<size_t>(i)], 11.0f, {40, 40, 40}, internal::Align::kCenter);
+  }
+  return sheet;
+}
+
+FrameWriter::FrameWriter(const std::string& dir, const FrameWriterOptions& options)
+    : dir_(dir), options_(options) {
+  std::error_code ec;
+  fs::create_directories(dir_, ec);
+  if (!fs::is_directory(dir_)) throw std::runtime_error(dir_ + ": cannot create folder");
+}
+
+std::string FrameWriter::Add(const Image& frame) {
+  char name[64];
+  std::snprintf(name, sizeof(name), "%05d.png", size());
+  const std::string path = (fs::path(dir_) / (options_.prefix + name)).string();
+  WritePng(path, frame);
+  sequence_.frames.push_back(path);
+  if (options_.contact_sheet) {
+    const int w = std::min(options_.thumbnail_width, frame.width);
+    const int h = std::max(
+        1, static_cast<int>(std::lround(static_cast<double>(w) * frame.height / frame.width)));
+    thumbnails_.push_back(Downscale(frame, w, h));
+  }
+  return path;
+}
+
+FrameSequence FrameWriter::Finish() {
+  const int n = size();
+  if (options_.contact_sheet && n > 0) {
+    // Evenly sampled frames, always including the first and the last.
+    const int m = std::min(n, std::max(1, options_.contact_sheet_max_frames));
+    std::vector<Image> picked;
+    std::vector<std::string> labels;
+    for (int k = 0; k < m; ++k) {
+      const int i =
+          m == 1 ? 0 : static_cast<int>(std::lround(static_cast<double>(k) * (n - 1) / (m - 1)));
+      picked.push_back(thumbnails_[static_cast<size_t>(i)]);
+      labels.push_back("frame " + std::to_string(i));
+    }
+    sequence_.contact_sheet = (fs::path(dir_) / "contact_sheet.png").string();
+    WritePng(sequence_.contact_sheet, MakeContactSheet(picked, labels));
+  }
+  thumbnails_.clear();
+  const std::string ffmpeg = options_.video && n > 0 ? FindExecutable("ffmpeg") : "";
+  if (!ffmpeg.empty()) {
+    const std::string out =
+        (fs::path(dir_) / (options_.prefix + (options_.gif ? "video.gif" : "video.mp4"))).string();
+    const std::string pattern = (fs::path(dir_) / (options_.prefix + "%05d.png")).string();
+    std::vector<std::string> args = {ffmpeg,  "-y",         "-loglevel",
+                                     "error", "-framerate", std::to_string(options_.fps),
+                                     "-i",    pattern};
+    if (options_.gif) {
+      args.insert(args.end(), {"-vf", "split[a][b];[a]palettegen[p];[b][p]paletteuse"});
+    } else {
+      // yuv420p needs even sizes; H.264 for players everywhere.
+      args.insert(args.end(), {"-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2", "-c:v", "libx264",
+                               "-pix_fmt", "yuv420p"});
+    }
+    args.push_back(out);
+    std::vector<char*> argv;
+    for (std::string& a : args) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    const pid_t pid = fork();
+    if (pid == 0) {
+      execv(argv[0], argv.data());
+      _exit(127);
+    }
+    int status = 0;
+    if (pid > 0 && waitpid(pid, &status, 0) == pid && WIFEXITED(status) &&
+        WEXITSTATUS(status) == 0) {
+      sequence_.video = out;
+    }
+  }
+  return sequence_;
+}
+
+}  // namespace render
