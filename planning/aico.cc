@@ -45,6 +45,7 @@ class Aico {
 
   void SetUpProcess();
   void Initialise(const Trajectory* init);
+  Trajectory Rollout();
   void TaskMessage(int t, const Eigen::VectorXd& x);
   void InvertSpd(const Eigen::MatrixXd& m, Eigen::MatrixXd* out);
   void UpdateForward(int t);
@@ -238,10 +239,69 @@ double Aico::EvaluateAll() {
   return s.cost;
 }
 
+// Per slice t: damped Gauss–Newton from q_{t−1} on the prior step cost plus the order-0 tasks.
+Trajectory Aico::Rollout() {
+  Trajectory out;
+  out.dt = tau_;
+  out.q.resize(n_, T_ + 1);
+  out.q.col(0) = p_.q0;
+  TaskWorkspace& tw = ws_->tasks;
+  Eigen::MatrixXd H(n_, n_);
+  Eigen::VectorXd g(n_), q(n_), step(n_), prev(n_), trial(n_);
+  Eigen::LLT<Eigen::MatrixXd> llt(n_);
+  const double rho_p = o_.rollout_prior;
+  // Cost at q (evaluates tasks with Jacobians into tw) and, if wanted, the GN system at q.
+  auto cost_at = [&](int t, const Eigen::VectorXd& x, bool system) {
+    EvaluateTasks(p_, t, x, true, &tw);
+    double c = rho_p * (x - prev).squaredNorm();
+    if (system) {
+      H.setZero();
+      H.diagonal().setConstant(rho_p);
+      g = rho_p * (x - prev);
+    }
+    for (size_t i = 0; i < p_.tasks.size(); ++i) {
+      const Task& task = p_.tasks[i];
+      const double rho = task.precision[t];
+      if (rho <= 0.0 || task.order != 0) continue;
+      err_[i] = task.target.col(t) - tw.y[i];
+      c += rho * err_[i].squaredNorm();
+      if (system) {
+        H.noalias() += rho * tw.J[i].transpose() * tw.J[i];
+        g.noalias() -= rho * tw.J[i].transpose() * err_[i];
+      }
+    }
+    return c;
+  };
+  for (int t = 1; t <= T_; ++t) {
+    prev = out.q.col(t - 1);
+    q = prev;
+    double mu = 1e-3;
+    double cost = cost_at(t, q, true);
+    for (int it = 0; it < o_.rollout_iterations; ++it) {
+      H.diagonal().array() += mu;
+      llt.compute(H);
+      step = -llt.solve(g);
+      const double norm = step.norm();
+      if (norm > o_.max_step) step *= o_.max_step / norm;
+      trial = q + step;
+      const double c = cost_at(t, trial, false);
+      if (std::isfinite(c) && c < cost) {
+        q = trial;
+        mu = std::max(1e-6, mu / 5.0);
+        cost = cost_at(t, q, true);
+        if (step.lpNorm<Eigen::Infinity>() < 1e-4) break;
+      } else {
+        H.diagonal().array() -= mu;
+        mu *= 10.0;
+      }
+    }
+    out.q.col(t) = q;
+  }
+  return out;
+}
+
 void Aico::Initialise(const Trajectory* init) {
   AicoState& s = st();
-  err_.clear();
-  for (const Task& task : p_.tasks) err_.emplace_back(Eigen::VectorXd::Zero(task.feature->dim()));
   for (int t = 0; t <= T_; ++t) {
     Eigen::VectorXd& x = s.b[t];
     if (init != nullptr) {
@@ -316,8 +376,15 @@ AicoResult Aico::Run(const AicoCallback& callback, const Trajectory* init) {
   AicoResult result;
   const long evals0 = ws_->tasks.evaluations;
   const long coll0 = CollisionQueries(p_, ws_->tasks);
+  err_.clear();
+  for (const Task& task : p_.tasks) err_.emplace_back(Eigen::VectorXd::Zero(task.feature->dim()));
+  Trajectory rollout;
+  if (init == nullptr && o_.rollout_init) {
+    rollout = Rollout();
+    init = &rollout;
+  }
   Initialise(init);
-  result.cost_history.push_back(st().cost);
+  if (!o_.accept_first_sweep) result.cost_history.push_back(st().cost);
   int backtracks = 0;
   result.status = SolveStatus::kMaxIterations;
   for (int sweep = 0; sweep < o_.max_iterations; ++sweep) {
@@ -331,7 +398,8 @@ AicoResult Aico::Run(const AicoCallback& callback, const Trajectory* init) {
     }
     const double cost = EvaluateAll();
     ++result.iterations;
-    const bool accepted = std::isfinite(cost) && cost <= ws_->backup.cost;
+    const bool accepted =
+        std::isfinite(cost) && (cost <= ws_->backup.cost || (sweep == 0 && o_.accept_first_sweep));
     if (!accepted) {
       std::swap(ws_->state, ws_->backup);
       lambda_ *= 10.0;

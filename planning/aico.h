@@ -44,6 +44,19 @@ struct AicoOptions {
   SweepMode sweep_mode = SweepMode::kForwardly;
   double max_step = 1.0;    // cap on one relocation move |x̂_new − x̂| (2-norm)
   int max_backtracks = 10;  // consecutive rejected sweeps before giving up (kDiverged)
+  // Accept the first sweep whatever its cost (the reference implementation's rule: the initial
+  // trajectory is only a linearisation point). If false, the first sweep must beat the cost of
+  // the initial trajectory too.
+  bool accept_first_sweep = true;
+  // Task-space rollout initialisation (the "plan in topology space, then map to joint space"
+  // hierarchy): when no init trajectory is given, q_t for t = 1..T is found by damped
+  // Gauss–Newton from q_{t−1} on  rollout_prior·||q − q_{t−1}||² + Σ_i ρ_{i,t}||y*_{i,t} −
+  // φ_i(q)||² (order-0 tasks), with steps capped at max_step. It tracks interpolated targets (e.g.
+  // a writhe target moving from y(q_0) to y_T) in small steps, so the initial trajectory does not
+  // jump through obstacles between time slices. false: q_0 repeated (the reference's cold start).
+  bool rollout_init = false;
+  double rollout_prior = 100.0;  // precision of the step to the previous slice
+  int rollout_iterations = 10;   // Gauss–Newton iterations per slice
 };
 
 // All messages and beliefs of one AICO state (one entry per slice t = 0..T).
@@ -67,16 +80,18 @@ struct AicoWorkspace {
 
 struct AicoResult {
   SolveStatus status = SolveStatus::kMaxIterations;
-  Trajectory trajectory;             // q part of the beliefs, T+1 columns, dt = τ
-  Eigen::MatrixXd velocities;        // q̇ part (dynamic variant), n × (T+1); empty otherwise
-  std::vector<double> cost_history;  // cost of the initial trajectory, then of each accepted sweep
-  double cost = 0.0;                 // final total cost
-  double task_cost = 0.0;            // its task part
-  double control_cost = 0.0;         // its control part
-  int iterations = 0;                // sweeps run (accepted + rejected)
-  int rejected = 0;                  // rejected sweeps
-  long task_evaluations = 0;         // EvaluateTasks calls (one kinematics + features pass each)
-  long collision_queries = 0;        // narrow-phase queries made by collision features
+  Trajectory trajectory;       // q part of the beliefs, T+1 columns, dt = τ
+  Eigen::MatrixXd velocities;  // q̇ part (dynamic variant), n × (T+1); empty otherwise
+  // Cost of each accepted sweep (preceded by the initial trajectory's cost when
+  // accept_first_sweep is false); non-increasing.
+  std::vector<double> cost_history;
+  double cost = 0.0;           // final total cost
+  double task_cost = 0.0;      // its task part
+  double control_cost = 0.0;   // its control part
+  int iterations = 0;          // sweeps run (accepted + rejected)
+  int rejected = 0;            // rejected sweeps
+  long task_evaluations = 0;   // EvaluateTasks calls (one kinematics + features pass each)
+  long collision_queries = 0;  // narrow-phase queries made by collision features
 };
 
 // Called after every sweep: sweep index (0-based), its cost, whether it was accepted, and the
