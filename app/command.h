@@ -32,6 +32,8 @@ using CommandList = std::vector<Command>;
 void AddTopologyCommands(CLI::App* root, CommandList* commands);  // writhe, winding
 void AddDemoCommand(CLI::App* root, CommandList* commands);       // demo
 void AddRenderCommands(CLI::App* root, CommandList* commands);    // render, heatmap, diff
+void AddGraspCommands(CLI::App* root, CommandList* commands);     // grasp synthesize|transfer
+void AddRobotCommands(CLI::App* root, CommandList* commands);     // fk, check
 
 // Runs `run`, mapping exceptions to exit codes and printing "topoplan <name>: error: ..." to
 // stderr.

@@ -13,6 +13,8 @@ int main(int argc, char** argv) {
   app::AddTopologyCommands(&root, &commands);
   app::AddDemoCommand(&root, &commands);
   app::AddRenderCommands(&root, &commands);
+  app::AddGraspCommands(&root, &commands);
+  app::AddRobotCommands(&root, &commands);
   try {
     root.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -1,0 +1,79 @@
+// Graspable objects for grasp transfer: primitive shapes with an analytic signed distance, a mass,
+// and the reference curve (axis or loop) that winding numbers are measured about.
+//
+// Frames: every quantity is in the object frame unless the name says otherwise. Units SI.
+// The catalogue file format is documented in README.md ("Grasp transfer") and
+// assets/grasps/README.md.
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <string>
+#include <vector>
+
+#include "topology/polyline.h"
+#include "topology/winding.h"
+
+namespace planning {
+
+// One solid primitive placed in the object frame.
+struct GraspPrimitive {
+  enum class Kind { kSphere, kCylinder, kBox, kCapsule, kTorus };
+  Kind kind = Kind::kSphere;
+  // kSphere: (radius, −, −). kCylinder: (radius, length, −), axis local z, centred.
+  // kBox: full sides (x, y, z). kCapsule: (radius, length between cap centres, −) along local z.
+  // kTorus: (major radius R, tube radius r, half-angle of the arc in rad) about local z; the arc
+  //   covers polar angles in [−half, +half] around local +x; half-angle ≥ π is a full torus.
+  Eigen::Vector3d size = Eigen::Vector3d::Zero();
+  Eigen::Isometry3d object_from_primitive = Eigen::Isometry3d::Identity();
+};
+
+// The curve windings are measured about. kAxis: an oriented line (topology::Axis, object frame),
+// used with topology::WindingNumber. kLoop: a closed polyline (3×N, last point = first point),
+// used with the Gauss linking integral (topology::TotalWrithe) of the finger chain against it.
+struct ReferenceCurve {
+  enum class Kind { kAxis, kLoop };
+  Kind kind = Kind::kAxis;
+  topology::Axis axis;
+  topology::Chain loop;
+};
+
+struct GraspObject {
+  std::string name;
+  std::vector<GraspPrimitive> primitives;  // the solid is their union
+  double mass = 0.1;                       // [kg]
+  ReferenceCurve reference;
+  std::string description;
+};
+
+// Signed distance from p (object frame) to the object surface: negative inside, the minimum over
+// the primitives (exact for the union's exterior, an upper bound on depth inside overlaps). If
+// `grad` is not null it receives ∂d/∂p (unit length almost everywhere) of the closest primitive.
+double SignedDistance(const GraspObject& object, const Eigen::Vector3d& p,
+                      Eigen::Vector3d* grad = nullptr);
+
+// Signed distance to one primitive (object frame), with gradient as above.
+double PrimitiveSignedDistance(const GraspPrimitive& prim, const Eigen::Vector3d& p,
+                               Eigen::Vector3d* grad = nullptr);
+
+// Reads the object catalogue (JSON, see README): {"objects": [{"name", "mass", "description",
+// "primitives": [{"type": "sphere|cylinder|box|capsule|torus", "size": [..3], "xyz": [..3],
+// "rpy": [..3]}], "reference": {"type": "axis", "point": [..], "direction": [..]} or
+// {"type": "loop", "points": [[x,y,z], ...]} or {"type": "circle", "center", "normal",
+// "radius", "segments"}}]}. Throws std::invalid_argument naming the file and JSON path.
+std::vector<GraspObject> LoadGraspObjects(const std::string& path);
+
+// The object with this name; throws std::invalid_argument listing the known names.
+const GraspObject& FindGraspObject(const std::vector<GraspObject>& objects,
+                                   const std::string& name);
+
+// Reference curve mapped to the world frame by world_from_object.
+ReferenceCurve TransformReference(const ReferenceCurve& ref,
+                                  const Eigen::Isometry3d& world_from_object);
+
+// Pose from translation xyz and roll-pitch-yaw (URDF convention R = Rz(y)·Ry(p)·Rx(r)).
+Eigen::Isometry3d PoseFromXyzRpy(const Eigen::Vector3d& xyz, const Eigen::Vector3d& rpy);
+// Inverse of PoseFromXyzRpy (rpy with pitch in [−π/2, π/2]).
+void PoseToXyzRpy(const Eigen::Isometry3d& pose, Eigen::Vector3d* xyz, Eigen::Vector3d* rpy);
+
+}  // namespace planning
