@@ -1,0 +1,198 @@
+// Loading robots and scene JSON files for the robot commands and the renderer glue.
+#include "app/robot_scene.h"
+
+#include <cctype>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+#include "app/assets.h"
+#include "app/io.h"
+#include "planning/robot_io.h"
+
+namespace app {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string Ext(const std::string& path) {
+  std::string e = fs::path(path).extension().string();
+  for (char& c : e) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return e;
+}
+
+// A file named in a scene: relative to the scene's folder first, then to the asset root.
+std::string ResolveRelative(const std::string& name, const fs::path& base_dir) {
+  const fs::path p(name);
+  if (p.is_absolute()) return name;
+  if (fs::exists(base_dir / p)) return (base_dir / p).string();
+  const fs::path asset = fs::path(AssetRoot()) / p;
+  if (fs::exists(asset)) return asset.string();
+  return (base_dir / p).string();  // the loader reports it as missing
+}
+
+Eigen::Vector3d Vec3(const nlohmann::json& j, const std::string& src, const std::string& path) {
+  if (!j.is_array() || j.size() != 3) {
+    throw std::invalid_argument(src + ": " + path + ": expected [x, y, z]");
+  }
+  Eigen::Vector3d v;
+  for (int i = 0; i < 3; ++i) {
+    if (!j[i].is_number() || !std::isfinite(j[i].get<double>())) {
+      throw std::invalid_argument(src + ": " + path + "[" + std::to_string(i) +
+                                  "]: expected a finite number");
+    }
+    v[i] = j[i].get<double>();
+  }
+  return v;
+}
+
+Eigen::Isometry3d Pose(const Eigen::Vector3d& xyz, const Eigen::Vector3d& rpy) {
+  Eigen::Isometry3d t = Eigen::Isometry3d::Identity();
+  t.translation() = xyz;
+  t.linear() = (Eigen::AngleAxisd(rpy[2], Eigen::Vector3d::UnitZ()) *
+                Eigen::AngleAxisd(rpy[1], Eigen::Vector3d::UnitY()) *
+                Eigen::AngleAxisd(rpy[0], Eigen::Vector3d::UnitX()))
+                   .toRotationMatrix();
+  return t;
+}
+
+}  // namespace
+
+std::vector<std::string> PackagePaths(const std::vector<std::string>& extra) {
+  std::vector<std::string> out = extra;
+  if (const char* env = std::getenv("ROS_PACKAGE_PATH")) {
+    std::stringstream ss(env);
+    std::string item;
+    while (std::getline(ss, item, ':')) {
+      if (!item.empty()) out.push_back(item);
+    }
+  }
+  return out;
+}
+
+bool IsRobotSceneFile(const std::string& path) {
+  const std::string ext = Ext(path);
+  if (ext == ".urdf") return true;
+  if (ext != ".json") return false;
+  std::ifstream in(path);
+  if (!in) return false;
+  const nlohmann::json doc = nlohmann::json::parse(in, nullptr, false);
+  return doc.is_object() && doc.contains("robot");
+}
+
+Eigen::VectorXd ParseQ(const planning::Robot& robot, const std::string& text) {
+  const int n = planning::num_dofs(robot);
+  if (text.empty()) return Eigen::VectorXd::Zero(n);
+  std::vector<double> v;
+  try {
+    v = ParseNumberList(text, "--q", n);
+  } catch (const std::invalid_argument& e) {
+    std::string names;
+    for (const std::string& s : planning::DofNames(robot)) names += (names.empty() ? "" : ",") + s;
+    throw std::invalid_argument(std::string(e.what()) + " (robot '" + robot.name + "' takes " +
+                                std::to_string(n) + " values: " + names + ")");
+  }
+  return Eigen::Map<const Eigen::VectorXd>(v.data(), n);
+}
+
+void AddObjectSpec(const std::string& spec, RobotScene* scene) {
+  const size_t at = spec.find('@');
+  const std::string file = spec.substr(0, at);
+  Eigen::Vector3d xyz = Eigen::Vector3d::Zero(), rpy = Eigen::Vector3d::Zero();
+  if (at != std::string::npos) {
+    const std::vector<double> v = ParseNumberList(spec.substr(at + 1), "--object");
+    if (v.size() != 3 && v.size() != 6) {
+      throw std::invalid_argument("--object '" + spec + "': expected URDF@x,y,z[,roll,pitch,yaw]");
+    }
+    xyz = Eigen::Vector3d(v[0], v[1], v[2]);
+    if (v.size() == 6) rpy = Eigen::Vector3d(v[3], v[4], v[5]);
+  }
+  const std::string path = ResolveRelative(file, fs::current_path());
+  const planning::Robot object = planning::LoadRobot(path);
+  std::string name = object.name;
+  for (int k = 2; [&] {
+         for (const auto& o : scene->env.objects) {
+           if (o.name == name) return true;
+         }
+         return false;
+       }();
+       ++k) {
+    name = object.name + "_" + std::to_string(k);
+  }
+  planning::AddObject(object, Pose(xyz, rpy), name, &scene->env);
+}
+
+RobotScene LoadRobotScene(const std::string& path, const std::vector<std::string>& package_paths) {
+  planning::RobotLoadOptions options;
+  options.package_paths = package_paths;
+  RobotScene s;
+  s.source = path;
+  const std::string ext = Ext(path);
+  if (ext == ".urdf") {
+    s.robot = planning::LoadRobot(path, options);
+    s.q = Eigen::VectorXd::Zero(planning::num_dofs(s.robot));
+    return s;
+  }
+  if (ext != ".json") {
+    throw std::invalid_argument(path + ": expected a robot .urdf or a scene .json");
+  }
+  std::ifstream in(path);
+  if (!in) throw std::invalid_argument(path + ": cannot open scene file");
+  try {
+    s.document = nlohmann::json::parse(in);
+  } catch (const nlohmann::json::parse_error& e) {
+    throw std::invalid_argument(path + ": JSON error: " + e.what());
+  }
+  const nlohmann::json& doc = s.document;
+  const fs::path base = fs::path(path).parent_path();
+  if (!doc.is_object() || !doc.contains("robot") || !doc["robot"].is_string()) {
+    throw std::invalid_argument(path + ": robot: expected a URDF path (string)");
+  }
+  s.robot = planning::LoadRobot(ResolveRelative(doc["robot"].get<std::string>(), base), options);
+  const int n = planning::num_dofs(s.robot);
+  s.q = Eigen::VectorXd::Zero(n);
+  if (doc.contains("q")) {
+    const nlohmann::json& q = doc["q"];
+    if (!q.is_array() || static_cast<int>(q.size()) != n) {
+      throw std::invalid_argument(path + ": q: expected an array of " + std::to_string(n) +
+                                  " numbers (robot '" + s.robot.name + "')");
+    }
+    for (int k = 0; k < n; ++k) {
+      if (!q[k].is_number()) {
+        throw std::invalid_argument(path + ": q[" + std::to_string(k) + "]: expected a number");
+      }
+      s.q[k] = q[k].get<double>();
+    }
+  }
+  if (doc.contains("objects")) {
+    const nlohmann::json& objs = doc["objects"];
+    if (!objs.is_array()) throw std::invalid_argument(path + ": objects: expected an array");
+    for (size_t i = 0; i < objs.size(); ++i) {
+      const std::string jp = "objects[" + std::to_string(i) + "]";
+      const nlohmann::json& o = objs[i];
+      if (!o.is_object() || !o.contains("urdf") || !o["urdf"].is_string()) {
+        throw std::invalid_argument(path + ": " + jp + ".urdf: expected a URDF path");
+      }
+      const planning::Robot object =
+          planning::LoadRobot(ResolveRelative(o["urdf"].get<std::string>(), base));
+      const std::string name =
+          o.contains("name") && o["name"].is_string() ? o["name"].get<std::string>() : object.name;
+      const Eigen::Vector3d xyz = o.contains("position")
+                                      ? Vec3(o["position"], path, jp + ".position")
+                                      : Eigen::Vector3d::Zero();
+      const Eigen::Vector3d rpy =
+          o.contains("rpy") ? Vec3(o["rpy"], path, jp + ".rpy") : Eigen::Vector3d::Zero();
+      try {
+        planning::AddObject(object, Pose(xyz, rpy), name, &s.env);
+      } catch (const std::invalid_argument& e) {
+        throw std::invalid_argument(path + ": " + jp + ".name: " + e.what());
+      }
+    }
+  }
+  return s;
+}
+
+}  // namespace app

@@ -1,0 +1,48 @@
+// A robot with a configuration and static objects, loaded from a URDF or a scene/scenario JSON:
+// what `topoplan fk/check/render` and the viewer work on.
+//
+// Scene JSON (also accepted: any scenario file with these keys; other keys are ignored):
+//   {"robot": "robots/lwr4_sdh.urdf",          // relative to the JSON file, else to assets/
+//    "q": [0, 0.5, ...],                        // optional, fk joint order; default zeros
+//    "objects": [{"name": "pole", "urdf": "objects/pole.urdf",
+//                 "position": [x, y, z], "rpy": [roll, pitch, yaw]}, ...],   // optional
+//    "camera": {...}}                           // optional, used by `render` (scene_json format)
+// Errors name the file and JSON path (exit 2).
+#pragma once
+
+#include <Eigen/Core>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "planning/collision.h"
+#include "planning/robot.h"
+
+namespace app {
+
+struct RobotScene {
+  std::string source;  // file it was loaded from
+  planning::Robot robot;
+  Eigen::VectorXd q;  // size num_dofs(robot)
+  planning::Environment env;
+  nlohmann::json document;  // the JSON document (null for a URDF input), for optional extras
+};
+
+// Package roots for package:// URIs: `extra` followed by the entries of $ROS_PACKAGE_PATH.
+std::vector<std::string> PackagePaths(const std::vector<std::string>& extra);
+
+// Loads `path`: a .urdf robot (q = 0, no objects), or a .json scene with a "robot" key.
+RobotScene LoadRobotScene(const std::string& path, const std::vector<std::string>& package_paths);
+
+// True if `path` names something LoadRobotScene accepts: a .urdf file, or a .json whose top-level
+// object has a "robot" key.
+bool IsRobotSceneFile(const std::string& path);
+
+// Parses "--q v1,...,vn" for `robot`; empty text gives zeros. Throws std::invalid_argument naming
+// the flag and listing the expected joints when the count differs.
+Eigen::VectorXd ParseQ(const planning::Robot& robot, const std::string& text);
+
+// Adds an object from "URDF[@x,y,z[,roll,pitch,yaw]]" (the `--object` flag).
+void AddObjectSpec(const std::string& spec, RobotScene* scene);
+
+}  // namespace app
