@@ -11,6 +11,7 @@ namespace planning {
 
 std::unique_ptr<FeatureData> Feature::CreateData(const Robot&) const { return nullptr; }
 long Feature::collision_queries(const FeatureData*) const { return 0; }
+long Feature::narrow_phase_calls(const FeatureData*) const { return 0; }
 
 namespace {
 

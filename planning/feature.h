@@ -11,6 +11,7 @@
 #include <memory>
 #include <string>
 
+#include "planning/collision.h"
 #include "planning/kinematics.h"
 #include "planning/robot.h"
 #include "topology/winding.h"
@@ -40,6 +41,8 @@ class Feature {
   // Number of narrow-phase collision queries made by Evals through `data` so far (0 for features
   // that make none). Planners add these up into their collision_checks report.
   virtual long collision_queries(const FeatureData* data) const;
+  // Narrow-phase (shape-pair) FCL calls made through `data` so far (0 for non-collision features).
+  virtual long narrow_phase_calls(const FeatureData* data) const;
 };
 
 // --- Factories (throw std::invalid_argument for out-of-range links/chains or bad sizes) --------
@@ -86,5 +89,16 @@ std::unique_ptr<Feature> MakeWritheFeature(const Robot& robot, int chain,
 // (signed variant), J = Σ_k (∂w/∂p_k)ᵀ ∂p_k/∂q.
 std::unique_ptr<Feature> MakeWindingFeature(const Robot& robot, int chain,
                                             const topology::Axis& axis);
+
+// Collision avoidance against `env` (and self-collision per `options`) as a hinge per robot link
+// (dim = number of links, target 0): with the FCL proximity pairs p closer than `margin` (signed
+// distance d_p, witness points, normal n_p from b to a),
+//   y_k = Σ_{p : link_a(p) = k} (1 − d_p / margin),
+// so ρ||y||² is the thesis' squared-hinge proxy cost; ∂y_k/∂q = −(1/margin) Σ_p n_pᵀ (J_a(p_a) −
+// J_b(p_b)) (J_b = 0 for environment objects). Penetration (d < 0) keeps growing linearly. Each
+// Eval makes one ComputeProximity query (counted by collision_queries). `env` must outlive the
+// feature. Throws std::invalid_argument for margin <= 0.
+std::unique_ptr<Feature> MakeCollisionFeature(const Robot& robot, const Environment& env,
+                                              const CollisionOptions& options, double margin);
 
 }  // namespace planning

@@ -115,4 +115,12 @@ long CollisionQueries(const MotionProblem& problem, const TaskWorkspace& ws) {
   return total;
 }
 
+long NarrowPhaseCalls(const MotionProblem& problem, const TaskWorkspace& ws) {
+  long total = 0;
+  for (size_t i = 0; i < problem.tasks.size(); ++i) {
+    total += problem.tasks[i].feature->narrow_phase_calls(ws.data[i].get());
+  }
+  return total;
+}
+
 }  // namespace planning

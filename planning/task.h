@@ -79,5 +79,7 @@ double TaskCost(const MotionProblem& problem, int t, const Eigen::VectorXd& qdot
 
 // Narrow-phase collision queries made so far by all features through `ws`.
 long CollisionQueries(const MotionProblem& problem, const TaskWorkspace& ws);
+// Shape-pair (narrow-phase) FCL calls made so far by all features through `ws`.
+long NarrowPhaseCalls(const MotionProblem& problem, const TaskWorkspace& ws);
 
 }  // namespace planning
