@@ -1,0 +1,99 @@
+// Transfer of a human grasp to the Schunk SDH: finger correspondence, the winding-number method
+// (AICO on a floating SDH) and the two classical baselines (linear joint mapping, fingertip
+// mapping).
+//
+// Finger correspondence (documented in README "Grasp transfer"): SDH thumb ← human thumb (the
+// opposing finger); SDH finger_2 (the rotating finger on the radial side once the SDH palm is
+// placed on the human palm) ← index + middle; SDH finger_1 (ulnar side) ← ring + little.
+// Winding targets are averages: y*_SDH = M y_human with
+//   M = [1 0 0 0 0; 0 0 0 ½ ½; 0 ½ ½ 0 0]  (rows thumb, finger_1, finger_2).
+//
+// SDH placement: the SDH palm frame (z out of the palm, x from the thumb towards the rotating
+// fingers) is put on the human palm: z_SDH = human palm normal (−y_h), y_SDH = −x_h (so the
+// thumb sits on the wrist side, as the human thumb's base does); the palm origin lies on the line
+// along z_SDH through the grasp centre (the reference-axis point nearest the human palm centre,
+// or the reference loop's centroid), max(0.12, 0.095 + object depth) m before it so the knuckles
+// clear the object. All three methods start there; the winding and fingertip methods then
+// optimise the palm pose (6 DOF, with a prior towards the placement) together with the fingers.
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <string>
+#include <vector>
+
+#include "planning/aico.h"
+#include "planning/grasp.h"
+#include "planning/grasp_object.h"
+#include "planning/robot.h"
+#include "planning/trajectory.h"
+
+namespace planning {
+
+enum class TransferMethod { kWinding, kJointMapping, kFingertip };
+const char* ToString(TransferMethod method);
+// "winding" | "joint" | "fingertip"; throws std::invalid_argument otherwise.
+TransferMethod ParseTransferMethod(const std::string& text);
+
+// A floating copy of a robot's subtree: 6 joints (hand_tx, hand_ty, hand_tz prismatic along the
+// world axes, then hand_rz, hand_ry, hand_rx revolute) carry `root_link` and everything below it.
+// The rotation joints are measured from `nominal`: palm = Trans(t)·R_nominal·Rz·Ry·Rx, so small
+// rotations about the nominal orientation stay far from the Euler singularity. q = (t, rz, ry, rx,
+// subtree dofs in the source order); mimic joints keep their masters. Chains whose points all lie
+// in the subtree are kept. Throws std::invalid_argument if root_link does not exist.
+Robot MakeFloatingHand(const Robot& source, const std::string& root_link,
+                       const Eigen::Matrix3d& nominal);
+
+struct TransferOptions {
+  AicoOptions aico;
+  int num_steps = 10;                // AICO time slices (approach motion)
+  double winding_precision = 1e3;    // per turn²
+  double contact_precision = 1e4;    // per m² (fingers to the surface)
+  double clearance_precision = 1e5;  // per m² (hinge on penetration)
+  double clearance_margin = 0.001;   // [m]
+  double tip_precision = 1e4;        // fingertip method, per m²
+  double palm_precision = 100.0;     // palm pose prior (6 floating dofs), per m² / rad²
+  double retreat = 0.03;             // start pose: palm retracted along −z_SDH [m], fingers open
+};
+
+// Result of one transfer.
+struct TransferResult {
+  TransferMethod method = TransferMethod::kWinding;
+  Eigen::VectorXd q;               // final SDH configuration (floating hand robot)
+  Trajectory trajectory;           // approach motion (winding/fingertip: AICO; joint: 2 points)
+  Eigen::VectorXd human_winding;   // 5: thumb, index, middle, ring, little
+  Eigen::VectorXd target_winding;  // 3: M · human_winding
+  Eigen::VectorXd robot_winding;   // 3: SDH thumb, finger_1, finger_2 at q
+  std::vector<Eigen::VectorXd> robot_phalanx_winding;
+  double min_clearance = 0.0;  // hand vs object at q [m] (negative = penetration)
+  std::string solver;          // "aico" or "direct"
+  SolveStatus status = SolveStatus::kConverged;
+  int iterations = 0;
+};
+
+// Everything a transfer needs, built once per grasp.
+struct TransferSetup {
+  Robot human;  // human hand with the grasp chains
+  std::vector<int> human_chains;
+  Robot sdh;  // floating SDH (nominal = placement rotation) with chains
+  std::vector<int> sdh_chains;
+  GraspObject object;
+  HumanGrasp grasp;
+  ReferenceCurve reference;  // world frame
+  Eigen::VectorXd human_q;
+  Eigen::Isometry3d sdh_placement;  // nominal SDH palm pose (world)
+};
+
+// Builds the setup from the human hand model, the LWR4+SDH model (its SDH subtree is used), the
+// object and the grasp. Throws std::invalid_argument for inconsistent inputs.
+TransferSetup MakeTransferSetup(const Robot& human_hand, const Robot& sdh_source,
+                                const GraspObject& object, const HumanGrasp& grasp);
+
+// Correspondence matrix M (3 × 5), see the file comment.
+Eigen::MatrixXd FingerCorrespondence();
+
+// Runs one method. Deterministic.
+TransferResult TransferGrasp(const TransferSetup& setup, TransferMethod method,
+                             const TransferOptions& options = {});
+
+}  // namespace planning
