@@ -5,6 +5,7 @@
 #include <plplot.h>
 
 #include <algorithm>
+#include <cmath>
 #include <mutex>
 #include <stdexcept>
 #include <string>
@@ -162,9 +163,13 @@ Image RenderPlot(const std::vector<PlotSeries>& series, const PlotOptions& o) {
   }
   plinit();
   pladv(0);
-  plschr(0.0, 0.9);
-  // Viewport in normalised page coordinates: room for tick labels, axis labels and title.
-  plvpor(0.115, 0.965, 0.11, o.title.empty() ? 0.95 : 0.91);
+  // PLplot sizes text relative to the page; grow it on small figures so that it stays readable
+  // (about 11 px at 640x480, 9 px at 320x240), and size the margins in text heights.
+  const double text_scale = 0.9 * std::pow(480.0 / o.height, 0.7);
+  const double text_px = 11.0 * (text_scale / 0.9) * o.height / 480.0;
+  plschr(0.0, text_scale);
+  plvpor(5.2 * text_px / o.width, 1.0 - 1.6 * text_px / o.width, 3.6 * text_px / o.height,
+         1.0 - (o.title.empty() ? 1.2 : 2.6) * text_px / o.height);
   plwind(x_lo - x_pad, x_hi + x_pad, y_lo, y_hi);
   plcol0(kGridSlot);
   plwidth(0.6);
@@ -206,9 +211,9 @@ Image RenderPlot(const std::vector<PlotSeries>& series, const PlotOptions& o) {
         if (std::isfinite(ay)) fy = ay;
       }
       const double fx = ps.failure_x[k];
-      plschr(0.0, 1.2);
+      plschr(0.0, 1.3 * text_scale);
       plstring(1, &fx, &fy, kFailureGlyph);
-      plschr(0.0, 0.9);
+      plschr(0.0, text_scale);
     }
   }
 
@@ -240,7 +245,7 @@ Image RenderPlot(const std::vector<PlotSeries>& series, const PlotOptions& o) {
     text_colors.assign(n, kInkSlot);
     line_styles.assign(n, 1);
     line_widths.assign(n, 2.0);
-    symbol_scales.assign(n, 1.0);
+    symbol_scales.assign(n, text_scale / 0.9);
     symbol_numbers.assign(n, 1);
     PLINT position = PL_POSITION_INSIDE;
     position |= (o.legend == LegendPosition::kTopLeft || o.legend == LegendPosition::kTopRight)
@@ -251,10 +256,10 @@ Image RenderPlot(const std::vector<PlotSeries>& series, const PlotOptions& o) {
                     : PL_POSITION_RIGHT;
     PLFLT legend_w = 0, legend_h = 0;
     pllegend(&legend_w, &legend_h, PL_LEGEND_BACKGROUND | PL_LEGEND_BOUNDING_BOX, position, 0.02,
-             0.02, 0.08, 0, kInkSlot, 1, 0, 0, static_cast<PLINT>(n), opts.data(), 1.0, 0.85, 2.0,
-             0.0, text_colors.data(), texts.data(), nullptr, nullptr, nullptr, nullptr,
-             line_colors.data(), line_styles.data(), line_widths.data(), symbol_colors.data(),
-             symbol_scales.data(), symbol_numbers.data(), symbols.data());
+             0.02, 0.08, 0, kInkSlot, 1, 0, 0, static_cast<PLINT>(n), opts.data(), 1.0,
+             0.95 * text_scale, 2.0, 0.0, text_colors.data(), texts.data(), nullptr, nullptr,
+             nullptr, nullptr, line_colors.data(), line_styles.data(), line_widths.data(),
+             symbol_colors.data(), symbol_scales.data(), symbol_numbers.data(), symbols.data());
   }
   plend1();
   plsstrm(previous);
