@@ -9,6 +9,7 @@
 #include "app/command.h"
 #include "app/figures.h"
 #include "app/io.h"
+#include "app/scene_builder.h"
 #include "app/scene_json.h"
 #include "render/diff.h"
 #include "render/image.h"
@@ -23,7 +24,7 @@ namespace {
 namespace fs = std::filesystem;
 
 struct RenderArgs {
-  std::string input, output, size, camera, gl;
+  std::string input, output, size, camera, gl, q;
   int msaa = 0;
   bool no_shadows = false;
 };
@@ -42,12 +43,15 @@ struct DiffArgs {
 // What `render` can draw. Dispatch is by extension and content so that other inputs can be
 // added here: a scene file (JSON object with "shapes"/"camera"/...); issue 4 adds URDF robots
 // (".urdf") and scenario files (JSON with a "robot" key).
-SceneDocument LoadRenderInput(const std::string& path) {
+SceneDocument LoadRenderInput(const std::string& path, const std::string& q) {
   if (!fs::is_regular_file(path)) throw std::invalid_argument(path + ": file not found");
   const std::string ext = fs::path(path).extension().string();
+  if (IsRobotSceneFile(path)) return RobotSceneDocument(path, q);  // app/scene_builder.h
+  if (!q.empty()) throw std::invalid_argument("--q: only for a robot .urdf or scenario input");
   if (ext == ".json") return LoadSceneFile(path);
-  throw std::invalid_argument(path + ": don't know how to render '" + ext +
-                              "' files (expected a scene .json)");
+  throw std::invalid_argument(
+      path + ": don't know how to render '" + ext +
+      "' files (expected a scene .json, a robot .urdf or a scenario .json)");
 }
 
 std::string Stem(const std::string& path) { return fs::path(path).stem().string(); }
@@ -59,9 +63,15 @@ void AddRenderCommands(CLI::App* root, CommandList* commands) {
   auto ra = std::make_shared<RenderArgs>();
   CLI::App* render_cmd =
       root->add_subcommand("render", "Render a scene file offscreen (OSMesa/llvmpipe) to a PNG");
-  render_cmd->add_option("SCENE", ra->input, "scene .json (format: README, section Rendering)")
+  render_cmd
+      ->add_option("SCENE", ra->input,
+                   "scene .json (format: README, section Rendering), robot .urdf, or "
+                   "scenario .json with a \"robot\" key")
       ->required();
   render_cmd->add_option("-o,--output", ra->output, "output PNG")->required();
+  render_cmd->add_option("--q", ra->q,
+                         "robot configuration v1,v2,... in the `fk` joint order (robot .urdf or "
+                         "scenario input; default: the scenario's q, else zeros)");
   render_cmd->add_option("--size", ra->size,
                          "image size WxH (default: the file's \"size\", else 640x480)");
   render_cmd->add_option("--camera", ra->camera,
@@ -78,7 +88,7 @@ void AddRenderCommands(CLI::App* root, CommandList* commands) {
   commands->push_back(
       {render_cmd, [ra]() {
          return WithRenderErrors([&]() {
-           SceneDocument doc = LoadRenderInput(ra->input);
+           SceneDocument doc = LoadRenderInput(ra->input, ra->q);
            int width = doc.width > 0 ? doc.width : 640, height = doc.height > 0 ? doc.height : 480;
            if (!ra->size.empty()) ParseImageSize(ra->size, "--size", &width, &height);
            if (!ra->camera.empty()) {

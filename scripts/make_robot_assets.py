@@ -361,12 +361,13 @@ def make_human_hand():
     # Thumb: CMC (2 DOF) at (0.196 HB, -, 0.073 HL), metacarpal abducted ~44 deg and turned -60 deg
     # about its long axis (reference 3.3) so that flexion moves it across the palm.
     mc, pp, dp = 0.251 * HL, 0.196 * HL, 0.158 * HL
-    # Also tilted 25 deg towards the palm side (and 12 mm palmar) so the thumb rests in front of
-    # the palm instead of inside it.
-    base = matmul(matmul(rot_axis((0, 1, 0), deg(44.1)), rot_axis((1, 0, 0), deg(25))),
+    # The CMC sits 8 mm further radial than 0.196 HB and 10 mm palmar, and the metacarpal is
+    # tilted 10 deg towards the palm side, so that the resting thumb clears the palm box (which
+    # stands in for the thenar muscles) by ~5 mm.
+    base = matmul(matmul(rot_axis((0, 1, 0), deg(44.1)), rot_axis((1, 0, 0), deg(10))),
                   rot_axis((0, 0, 1), deg(-60)))
     u.joint("thumb_cmc_abd", "revolute", "hand_palm", "thumb_cmc_link",
-            (0.196 * HB, -0.012, 0.073 * HL), rpy_of(base), (0, 1, 0), (deg(-20), deg(60), 2.0, 5.0),
+            (0.025, -0.010, 0.073 * HL), rpy_of(base), (0, 1, 0), (deg(-20), deg(60), 2.0, 5.0),
             comment="thumb CMC abduction (about local y) and flexion (about local x)")
     u.link("thumb_cmc_link")
     u.joint("thumb_cmc_flex", "revolute", "thumb_cmc_link", "thumb_metacarpal", axis=(1, 0, 0),

@@ -1,0 +1,243 @@
+// planning state → render::Scene.
+#include "app/scene_builder.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace app {
+namespace {
+
+render::Material ToMaterial(const std::array<float, 4>& rgba) {
+  render::Material m;
+  m.rgba = rgba;
+  return m;
+}
+
+Eigen::Matrix4f ToMatrix(const Eigen::Isometry3d& t) { return t.matrix().cast<float>(); }
+
+std::shared_ptr<const render::TriangleMesh> ConvertMesh(const planning::Mesh& mesh,
+                                                        SceneMeshCache* cache) {
+  auto it = cache->meshes.find(&mesh);
+  if (it != cache->meshes.end()) return it->second;
+  auto out = std::make_shared<render::TriangleMesh>();
+  out->positions = mesh.vertices;
+  out->normals = mesh.normals;
+  out->indices.reserve(mesh.triangles.size() * 3);
+  for (const Eigen::Vector3i& t : mesh.triangles) {
+    for (int i = 0; i < 3; ++i) out->indices.push_back(static_cast<std::uint32_t>(t[i]));
+  }
+  cache->meshes[&mesh] = out;
+  return out;
+}
+
+render::Shape ToShape(const planning::Robot& model, const planning::Geometry& g,
+                      const Eigen::Isometry3d& world_from_geometry,
+                      const std::array<float, 4>& rgba, SceneMeshCache* cache) {
+  render::Shape s;
+  s.world_from_shape = ToMatrix(world_from_geometry);
+  s.material = ToMaterial(rgba);
+  const Eigen::Vector3f size = g.size.cast<float>();
+  switch (g.kind) {
+    case planning::Geometry::Kind::kSphere:
+      s.kind = render::Shape::Kind::kSphere;
+      s.size = Eigen::Vector3f(size.x(), 0, 0);
+      break;
+    case planning::Geometry::Kind::kCapsule:
+      s.kind = render::Shape::Kind::kCapsule;
+      s.size = Eigen::Vector3f(size.x(), size.y(), 0);
+      break;
+    case planning::Geometry::Kind::kCylinder:
+      s.kind = render::Shape::Kind::kCylinder;
+      s.size = Eigen::Vector3f(size.x(), size.y(), 0);
+      break;
+    case planning::Geometry::Kind::kBox:
+      s.kind = render::Shape::Kind::kBox;
+      s.size = size;
+      break;
+    case planning::Geometry::Kind::kMesh:
+      s.kind = render::Shape::Kind::kMesh;
+      s.size = size;
+      s.mesh = ConvertMesh(model.meshes.at(g.mesh), cache);
+      break;
+  }
+  return s;
+}
+
+// Distinct, saturated colours for chains (cycled).
+std::array<float, 4> ChainColor(int k) {
+  static const std::array<float, 4> kColors[] = {
+      {0.10f, 0.75f, 0.25f, 1}, {0.95f, 0.20f, 0.55f, 1}, {0.15f, 0.55f, 0.95f, 1},
+      {0.95f, 0.75f, 0.10f, 1}, {0.55f, 0.25f, 0.85f, 1}, {0.10f, 0.80f, 0.80f, 1}};
+  return kColors[k % 6];
+}
+
+void AddTube(const Eigen::Matrix3Xd& points, const std::array<float, 4>& rgba, float radius,
+             render::Scene* scene) {
+  render::Tube tube;
+  for (Eigen::Index k = 0; k < points.cols(); ++k)
+    tube.points.push_back(points.col(k).cast<float>());
+  tube.radius = radius;
+  tube.bead_radius = 1.6f * radius;
+  tube.material = ToMaterial(rgba);
+  scene->tubes.push_back(std::move(tube));
+}
+
+void AddModel(const planning::Robot& model, const planning::KinematicsData& kin,
+              const Eigen::Isometry3d& world_from_model, const SceneBuildOptions& options,
+              SceneMeshCache* cache, render::Scene* scene) {
+  const std::array<float, 4> kCollisionColor{0.45f, 0.6f, 0.85f, 1.0f};
+  for (size_t l = 0; l < model.links.size(); ++l) {
+    const Eigen::Isometry3d world_from_link = world_from_model * kin.world_from_link[l];
+    const auto& geoms = options.visuals ? model.links[l].visuals : model.links[l].collisions;
+    for (const planning::Geometry& g : geoms) {
+      scene->shapes.push_back(ToShape(model, g, world_from_link * g.link_from_geometry,
+                                      options.visuals ? g.rgba : kCollisionColor, cache));
+    }
+  }
+}
+
+// Scene extent: the diagonal of the bounding box of shape origins, at least 0.3 m.
+float SceneSize(const render::Scene& scene) {
+  Eigen::Vector3f lo = Eigen::Vector3f::Constant(std::numeric_limits<float>::max());
+  Eigen::Vector3f hi = -lo;
+  for (const render::Shape& s : scene.shapes) {
+    const Eigen::Vector3f p = s.world_from_shape.block<3, 1>(0, 3);
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  return scene.shapes.empty() ? 1.0f : std::max(0.3f, (hi - lo).norm());
+}
+
+void AddChains(const planning::Robot& model, const planning::KinematicsData& kin,
+               const Eigen::Isometry3d& world_from_model, float radius, int* color,
+               render::Scene* scene) {
+  Eigen::Matrix3Xd p;
+  for (int c = 0; c < static_cast<int>(model.chains.size()); ++c) {
+    planning::ChainPoints(model, kin, c, &p);
+    for (Eigen::Index k = 0; k < p.cols(); ++k) p.col(k) = world_from_model * p.col(k);
+    AddTube(p, ChainColor((*color)++), radius, scene);
+  }
+}
+
+}  // namespace
+
+void AddRobotShapes(const planning::Robot& robot, const planning::KinematicsData& kin,
+                    const Eigen::Isometry3d& world_from_robot, const SceneBuildOptions& options,
+                    SceneMeshCache* cache, render::Scene* scene) {
+  int color = 0;
+  AddModel(robot, kin, world_from_robot, options, cache, scene);
+  if (options.chains) {
+    const float r = options.chain_radius > 0 ? options.chain_radius : 0.004f;
+    AddChains(robot, kin, world_from_robot, r, &color, scene);
+  }
+}
+
+void AddEnvironmentShapes(const planning::Environment& env, const SceneBuildOptions& options,
+                          SceneMeshCache* cache, render::Scene* scene) {
+  int color = 3;
+  for (const planning::PlacedObject& o : env.objects) {
+    planning::KinematicsData kin(o.model);
+    planning::ForwardKinematics(o.model, Eigen::VectorXd::Zero(planning::num_dofs(o.model)), &kin);
+    AddModel(o.model, kin, o.world_from_object, options, cache, scene);
+    if (options.chains) {
+      const float r = options.chain_radius > 0 ? options.chain_radius : 0.004f;
+      AddChains(o.model, kin, o.world_from_object, r, &color, scene);
+    }
+  }
+}
+
+render::Scene BuildRobotScene(const planning::Robot& robot, const planning::KinematicsData& kin,
+                              const planning::Environment& env, const SceneBuildOptions& options,
+                              SceneMeshCache* cache) {
+  render::Scene scene;
+  SceneBuildOptions local = options;
+  local.chains = false;
+  AddRobotShapes(robot, kin, Eigen::Isometry3d::Identity(), local, cache, &scene);
+  if (options.objects) AddEnvironmentShapes(env, local, cache, &scene);
+  // Chains last, with a radius that scales with the scene so they stay visible.
+  if (options.chains) {
+    const float r = options.chain_radius > 0 ? options.chain_radius : 0.004f * SceneSize(scene);
+    int color = 0;
+    AddChains(robot, kin, Eigen::Isometry3d::Identity(), std::min(r, 0.012f), &color, &scene);
+    if (options.objects) {
+      for (const planning::PlacedObject& o : env.objects) {
+        planning::KinematicsData okin(o.model);
+        planning::ForwardKinematics(o.model, Eigen::VectorXd::Zero(planning::num_dofs(o.model)),
+                                    &okin);
+        AddChains(o.model, okin, o.world_from_object, std::min(r, 0.012f), &color, &scene);
+      }
+    }
+  }
+  if (options.grid) {
+    scene.grid.enabled = true;
+    const float size = SceneSize(scene);
+    scene.grid.extent = std::max(1.0f, 2.0f * size);
+    scene.grid.spacing = size > 2.0f ? 0.5f : (size > 0.6f ? 0.1f : 0.05f);
+  }
+  return scene;
+}
+
+render::Camera FrameSceneCamera(const render::Scene& scene, const Eigen::Vector3f& view_dir,
+                                float fovy_deg) {
+  // Bounding sphere of the shapes, each shape bounded by a sphere of its largest size entry.
+  Eigen::Vector3f lo = Eigen::Vector3f::Constant(std::numeric_limits<float>::max());
+  Eigen::Vector3f hi = -lo;
+  auto grow = [&](const Eigen::Vector3f& p, float r) {
+    lo = lo.cwiseMin(p - Eigen::Vector3f::Constant(r));
+    hi = hi.cwiseMax(p + Eigen::Vector3f::Constant(r));
+  };
+  for (const render::Shape& s : scene.shapes) {
+    float r = s.size.maxCoeff();
+    if (s.kind == render::Shape::Kind::kCapsule || s.kind == render::Shape::Kind::kCylinder) {
+      r = s.size.x() + 0.5f * s.size.y();
+    } else if (s.kind == render::Shape::Kind::kBox) {
+      r = 0.5f * s.size.norm();
+    } else if (s.kind == render::Shape::Kind::kMesh && s.mesh) {
+      r = 0;
+      for (const Eigen::Vector3f& v : s.mesh->positions)
+        r = std::max(r, v.cwiseProduct(s.size).norm());
+    }
+    grow(s.world_from_shape.block<3, 1>(0, 3), r);
+  }
+  for (const render::Tube& t : scene.tubes) {
+    for (const Eigen::Vector3f& p : t.points) grow(p, t.radius);
+  }
+  render::Camera camera;
+  if (!(lo.x() <= hi.x())) return camera;
+  const Eigen::Vector3f center = 0.5f * (lo + hi);
+  const float radius = std::max(0.5f * (hi - lo).norm(), 0.05f);
+  const float half = 0.5f * fovy_deg * static_cast<float>(M_PI) / 180.0f;
+  const float distance = 1.05f * radius / std::sin(half);
+  camera.target = center;
+  camera.eye = center + distance * view_dir.normalized();
+  camera.fovy_deg = fovy_deg;
+  return camera;
+}
+
+SceneDocument RobotSceneDocument(const std::string& path, const std::string& q_text,
+                                 const SceneBuildOptions& options) {
+  RobotScene rs = LoadRobotScene(path, PackagePaths({}));
+  if (!q_text.empty()) rs.q = ParseQ(rs.robot, q_text);
+  planning::KinematicsData kin(rs.robot);
+  planning::ForwardKinematics(rs.robot, rs.q, &kin);
+  SceneMeshCache cache;
+  SceneDocument doc;
+  doc.scene = BuildRobotScene(rs.robot, kin, rs.env, options, &cache);
+  doc.camera = FrameSceneCamera(doc.scene);
+  if (rs.document.is_object() && rs.document.contains("camera")) {
+    doc.camera = ParseCameraJson(rs.document["camera"], path, "camera");
+    doc.has_camera = true;
+  }
+  if (rs.document.is_object() && rs.document.contains("size")) {
+    const nlohmann::json& s = rs.document["size"];
+    if (!s.is_array() || s.size() != 2 || !s[0].is_number_integer() || !s[1].is_number_integer()) {
+      throw std::invalid_argument(path + ": size: expected [width, height]");
+    }
+    doc.width = s[0].get<int>();
+    doc.height = s[1].get<int>();
+  }
+  return doc;
+}
+
+}  // namespace app

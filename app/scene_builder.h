@@ -1,0 +1,61 @@
+// The renderer glue (our mjv_updateScene): robot + configuration + chains + objects →
+// render::Scene. The only code that knows both planning:: and render:: types.
+#pragma once
+
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "app/robot_scene.h"
+#include "app/scene_json.h"
+#include "planning/collision.h"
+#include "planning/kinematics.h"
+#include "planning/robot.h"
+#include "render/scene.h"
+
+namespace app {
+
+struct SceneBuildOptions {
+  bool visuals = true;        // draw <visual> geometry (else <collision> geometry, in grey-blue)
+  bool chains = true;         // draw every robot and object chain as a tube
+  float chain_radius = 0.0f;  // tube radius [m]; 0: 1.2% of the scene's size
+  bool objects = true;        // draw the environment's objects
+  bool grid = true;           // ground grid at z = 0
+};
+
+// Converted meshes, shared between frames so the renderer uploads each one once. Keyed by the
+// planning::Mesh address: the Robot / Environment must outlive the cache.
+struct SceneMeshCache {
+  std::map<const planning::Mesh*, std::shared_ptr<const render::TriangleMesh>> meshes;
+};
+
+// Appends the shapes of `robot` at the configuration in `kin` (ForwardKinematics done), placed by
+// world_from_robot, and (if options.chains) its chains as tubes, one colour per chain.
+void AddRobotShapes(const planning::Robot& robot, const planning::KinematicsData& kin,
+                    const Eigen::Isometry3d& world_from_robot, const SceneBuildOptions& options,
+                    SceneMeshCache* cache, render::Scene* scene);
+
+// Appends every object of `env` (at its zero configuration) with its chains.
+void AddEnvironmentShapes(const planning::Environment& env, const SceneBuildOptions& options,
+                          SceneMeshCache* cache, render::Scene* scene);
+
+// Robot at q + environment + ground grid + default lights.
+render::Scene BuildRobotScene(const planning::Robot& robot, const planning::KinematicsData& kin,
+                              const planning::Environment& env, const SceneBuildOptions& options,
+                              SceneMeshCache* cache);
+
+// A camera that frames every shape of `scene`, looking from the direction `view_dir` (from the
+// target towards the eye, world frame) with vertical field of view fovy_deg.
+render::Camera FrameSceneCamera(const render::Scene& scene,
+                                const Eigen::Vector3f& view_dir = Eigen::Vector3f(1.0f, -1.3f,
+                                                                                  0.8f),
+                                float fovy_deg = 35.0f);
+
+// What `topoplan render ROBOT.urdf|SCENE.json` draws: the scene's robot at its q (or `q_text`
+// from --q when not empty) with objects and chains; the camera from the JSON's "camera" or framed
+// automatically; the size from the JSON's "size" if present.
+SceneDocument RobotSceneDocument(const std::string& path, const std::string& q_text,
+                                 const SceneBuildOptions& options = {});
+
+}  // namespace app
