@@ -332,7 +332,22 @@ TransferSetup MakeTransferSetup(const Robot& human_hand, const Robot& sdh_source
   }
   s.sdh_placement = Eigen::Isometry3d::Identity();
   s.sdh_placement.linear() = r;
-  s.sdh_placement.translation() = centre - std::max(0.12, 0.095 + depth) * r.col(2);
+  Eigen::Vector3d finger_offset = Eigen::Vector3d::Zero();
+  double standoff = std::max(0.12, 0.095 + depth);
+  if (s.reference.kind == ReferenceCurve::Kind::kLoop) {
+    // Loops: the SDH finger with the largest target winding goes through the loop's centre, and
+    // the loop sits near that finger's distal joint so the distal link can curl around it.
+    const Eigen::VectorXd target =
+        FingerCorrespondence() * EncodeGrasp(s.human, kin, s.human_chains, s.reference).finger;
+    int f = 0;
+    target.cwiseAbs().maxCoeff(&f);
+    const Eigen::Vector3d bases[3] = {Eigen::Vector3d(-0.03811, 0, 0),
+                                      Eigen::Vector3d(0.01905, 0.033, 0),
+                                      Eigen::Vector3d(0.01905, -0.033, 0)};
+    finger_offset = r * bases[f];
+    standoff = 0.16;
+  }
+  s.sdh_placement.translation() = centre - finger_offset - standoff * r.col(2);
   s.sdh = MakeFloatingHand(sdh_source, "sdh_palm", r);
   s.sdh_chains = AddGraspChains(false, &s.sdh);
   return s;
@@ -452,13 +467,25 @@ TransferResult TransferGrasp(const TransferSetup& s, TransferMethod method,
                       o.tip_precision, T));
       }
     }
+    // Multi-start (deterministic): one AICO run per initial flexion, keep the lowest cost.
     AicoWorkspace ws(problem);
-    AicoOptions aico = o.aico;
-    const AicoResult r = SolveAico(problem, aico, &ws);
-    res.trajectory = r.trajectory;
-    res.q = r.trajectory.q.col(T);
-    res.status = r.status;
-    res.iterations = r.iterations;
+    const Eigen::VectorXd q0 = problem.q0;
+    double best_cost = std::numeric_limits<double>::infinity();
+    for (double flex : o.initial_flexions) {
+      problem.q0 = q0;
+      for (int f = 0; f < 3; ++f) {
+        problem.q0[Dof(sdh, std::string(fingers[f]) + "_proximal_joint")] = flex;
+        problem.q0[Dof(sdh, std::string(fingers[f]) + "_distal_joint")] = flex;
+      }
+      const AicoResult r = SolveAico(problem, o.aico, &ws);
+      if (r.cost < best_cost) {
+        best_cost = r.cost;
+        res.trajectory = r.trajectory;
+        res.q = r.trajectory.q.col(T);
+        res.status = r.status;
+        res.iterations = r.iterations;
+      }
+    }
     res.solver = "aico";
   }
 

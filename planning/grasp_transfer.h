@@ -53,7 +53,9 @@ struct TransferOptions {
   double clearance_margin = 0.001;   // [m]
   double tip_precision = 1e4;        // fingertip method, per m²
   double palm_precision = 100.0;     // palm pose prior (6 floating dofs), per m² / rad²
-  double retreat = 0.03;             // start pose: palm retracted along −z_SDH [m], fingers open
+  // Start postures of the SDH flexion joints [rad]; AICO runs from each, the lowest cost wins.
+  std::vector<double> initial_flexions = {0.0, 0.2};
+  double retreat = 0.03;  // start pose: palm retracted along −z_SDH [m], fingers open
 };
 
 // Result of one transfer.

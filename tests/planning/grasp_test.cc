@@ -1,0 +1,222 @@
+// Human grasp files, object signed distances, winding encoding and SDH transfer.
+#include "planning/grasp.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "planning/grasp_object.h"
+#include "planning/grasp_transfer.h"
+#include "planning/kinematics.h"
+#include "planning/robot_io.h"
+
+namespace planning {
+namespace {
+
+const std::string kAssets = std::string(TOPOPLAN_SOURCE_DIR) + "/assets/";
+
+const std::vector<GraspObject>& Objects() {
+  static const std::vector<GraspObject> objects = LoadGraspObjects(kAssets + "grasps/objects.json");
+  return objects;
+}
+const Robot& Human() {
+  static const Robot robot = LoadRobot(kAssets + "robots/human_hand.urdf");
+  return robot;
+}
+const Robot& LwrSdh() {
+  static const Robot robot = LoadRobot(kAssets + "robots/lwr4_sdh.urdf");
+  return robot;
+}
+
+std::vector<std::string> GraspFiles() {
+  std::vector<std::string> files;
+  for (const auto& e : std::filesystem::directory_iterator(kAssets + "grasps")) {
+    if (e.path().extension() == ".json" && e.path().filename() != "objects.json") {
+      files.push_back(e.path().string());
+    }
+  }
+  std::sort(files.begin(), files.end());
+  return files;
+}
+
+TEST(GraspObjectTest, SignedDistancesOfPrimitivesHaveKnownValues) {
+  GraspObject o;
+  GraspPrimitive p;
+  p.kind = GraspPrimitive::Kind::kCylinder;
+  p.size = Eigen::Vector3d(0.03, 0.2, 0);
+  o.primitives = {p};
+  Eigen::Vector3d g;
+  EXPECT_NEAR(SignedDistance(o, Eigen::Vector3d(0.05, 0, 0.0), &g), 0.02, 1e-12);
+  EXPECT_NEAR(g.x(), 1.0, 1e-6);
+  EXPECT_NEAR(SignedDistance(o, Eigen::Vector3d(0.0, 0, 0.0)), -0.03, 1e-12);
+  EXPECT_NEAR(SignedDistance(o, Eigen::Vector3d(0.0, 0, 0.13)), 0.03, 1e-12);
+  p.kind = GraspPrimitive::Kind::kTorus;
+  p.size = Eigen::Vector3d(0.045, 0.012, M_PI);
+  o.primitives = {p};
+  EXPECT_NEAR(SignedDistance(o, Eigen::Vector3d(0, 0, 0)), 0.033, 1e-12);       // hole centre
+  EXPECT_NEAR(SignedDistance(o, Eigen::Vector3d(0, 0.045, 0)), -0.012, 1e-12);  // core
+  p.kind = GraspPrimitive::Kind::kBox;
+  p.size = Eigen::Vector3d(0.02, 0.04, 0.06);
+  p.object_from_primitive.translation() = Eigen::Vector3d(1, 0, 0);
+  o.primitives = {p};
+  EXPECT_NEAR(SignedDistance(o, Eigen::Vector3d(1.03, 0, 0)), 0.02, 1e-12);
+}
+
+TEST(GraspObjectTest, CatalogueLoadsAndBadFilesNameThePath) {
+  EXPECT_GE(Objects().size(), 8u);
+  EXPECT_NO_THROW(FindGraspObject(Objects(), "bottle"));
+  EXPECT_THROW(FindGraspObject(Objects(), "teapot"), std::invalid_argument);
+  const std::string bad = std::string(TOPOPLAN_BINARY_DIR) + "/bad_objects.json";
+  std::ofstream(bad) << R"({"objects": [{"name": "x", "mass": 1, "primitives": [{"type": "cone",
+                          "size": [1, 1, 1]}], "reference": {"type": "axis"}}]})";
+  try {
+    LoadGraspObjects(bad);
+    FAIL();
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("bad_objects.json: objects[0].primitives[0].type"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
+TEST(HumanGraspTest, AtLeastEightPlausibleGraspsWithFingersOnTheSurface) {
+  const std::vector<std::string> files = GraspFiles();
+  ASSERT_GE(files.size(), 8u);
+  const HandSpheres spheres = SampleHandSpheres(Human(), {}, 0.002);
+  KinematicsData kin(Human());
+  for (const std::string& f : files) {
+    const HumanGrasp g = LoadHumanGrasp(f);
+    const GraspObject& object = FindGraspObject(Objects(), g.object);
+    ForwardKinematics(Human(), HumanConfiguration(Human(), g), &kin);
+    std::vector<double> per_link;
+    const double clearance =
+        HandClearance(Human(), kin, spheres, object, g.world_from_object, &per_link);
+    EXPECT_GE(clearance, -0.003) << f << ": penetration beyond 3 mm";
+    int touching = 0;
+    for (double d : per_link) touching += std::abs(d) <= 0.002 ? 1 : 0;
+    EXPECT_GE(touching, 3) << f << ": fewer than 3 hand links on the object surface";
+  }
+}
+
+TEST(HumanGraspTest, PowerGraspWindsClearlyAroundTheBottleAxis) {
+  Robot human = Human();
+  const std::vector<int> chains = AddGraspChains(true, &human);
+  const HumanGrasp g = LoadHumanGrasp(kAssets + "grasps/power_bottle.json");
+  const GraspObject& bottle = FindGraspObject(Objects(), "bottle");
+  KinematicsData kin(human);
+  ForwardKinematics(human, HumanConfiguration(human, g), &kin);
+  const GraspEncoding enc =
+      EncodeGrasp(human, kin, chains, TransformReference(bottle.reference, g.world_from_object));
+  ASSERT_EQ(enc.finger.size(), 5);
+  EXPECT_LT(enc.finger[0], -0.2);  // the thumb wraps the other way round
+  for (int f = 1; f < 5; ++f) EXPECT_GT(enc.finger[f], 0.3) << HumanFingers()[f];
+  // Per phalanx: the segments sum to the finger value.
+  for (int f = 0; f < 5; ++f) EXPECT_NEAR(enc.phalanx[f].sum(), enc.finger[f], 1e-12);
+}
+
+TEST(HumanGraspTest, MalformedGraspFilesNameThePath) {
+  const std::string dir = std::string(TOPOPLAN_BINARY_DIR) + "/";
+  std::ofstream(dir + "bad_grasp.json") << "{\"name\": \"x\", \"object\": \"bottle\"";
+  EXPECT_THROW(LoadHumanGrasp(dir + "bad_grasp.json"), std::invalid_argument);
+  std::ofstream(dir + "bad_joint.json")
+      << R"({"name": "x", "object": "bottle", "object_pose": {"xyz": [0,0,0], "rpy": [0,0,0]},
+             "palm_pose": {"xyz": [0,0,0], "rpy": [0,0,0]}, "joints": {"index_pip": 7.0}})";
+  const HumanGrasp g = LoadHumanGrasp(dir + "bad_joint.json");
+  try {
+    HumanConfiguration(Human(), g);
+    FAIL();
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("bad_joint.json: joints.index_pip"), std::string::npos)
+        << e.what();
+  }
+}
+
+TEST(GraspTransferTest, FloatingSdhReproducesTheArmMountedHandKinematics) {
+  const Eigen::Matrix3d nominal =
+      Eigen::AngleAxisd(0.3, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+  const Robot sdh = MakeFloatingHand(LwrSdh(), "sdh_palm", nominal);
+  EXPECT_EQ(num_dofs(sdh), 13);  // 6 floating + 7 SDH (the coupled spread is one variable)
+  Eigen::VectorXd q = Eigen::VectorXd::Zero(13);
+  q.head<3>() = Eigen::Vector3d(0.1, -0.2, 0.3);
+  for (int k = 6; k < 13; ++k) q[k] = 0.1 * (k - 5);
+  KinematicsData kin(sdh);
+  ForwardKinematics(sdh, q, &kin);
+  const Eigen::Isometry3d palm = kin.world_from_link[FindLink(sdh, "sdh_palm")];
+  EXPECT_TRUE(palm.linear().isApprox(nominal, 1e-12));
+  EXPECT_TRUE(palm.translation().isApprox(Eigen::Vector3d(0.1, -0.2, 0.3), 1e-12));
+  // Same finger configuration on the arm: tips agree relative to the palm.
+  Eigen::VectorXd qa = Eigen::VectorXd::Zero(num_dofs(LwrSdh()));
+  qa.tail<7>() = q.tail<7>();
+  KinematicsData ka(LwrSdh());
+  ForwardKinematics(LwrSdh(), qa, &ka);
+  for (const char* tip : {"sdh_thumb_tip", "sdh_finger_1_tip", "sdh_finger_2_tip"}) {
+    const Eigen::Vector3d a = ka.world_from_link[FindLink(LwrSdh(), "sdh_palm")].inverse() *
+                              ka.world_from_link[FindLink(LwrSdh(), tip)].translation();
+    const Eigen::Vector3d b =
+        palm.inverse() * kin.world_from_link[FindLink(sdh, tip)].translation();
+    EXPECT_TRUE(a.isApprox(b, 1e-9)) << tip;
+  }
+}
+
+TEST(GraspTransferTest, WindingJacobianMatchesFiniteDifferences) {
+  Robot sdh = MakeFloatingHand(LwrSdh(), "sdh_palm", Eigen::Matrix3d::Identity());
+  const std::vector<int> chains = AddGraspChains(false, &sdh);
+  ReferenceCurve ref;
+  ref.axis.point = Eigen::Vector3d(0.0, 0.0, 0.15);
+  ref.axis.direction = Eigen::Vector3d(0.1, 1.0, 0.05);
+  Eigen::VectorXd q = Eigen::VectorXd::Zero(13);
+  q.segment<3>(3) = Eigen::Vector3d(0.05, -0.04, 0.03);
+  q.tail<7>() << 0.3, 0.4, 0.7, 0.5, 0.6, 0.8, 0.9;
+  KinematicsData kin(sdh);
+  ForwardKinematics(sdh, q, &kin);
+  Eigen::MatrixXd J;
+  EncodeGrasp(sdh, kin, chains, ref, &J);
+  const double h = 1e-6;
+  for (int k = 0; k < 13; ++k) {
+    Eigen::VectorXd qp = q, qm = q;
+    qp[k] += h;
+    qm[k] -= h;
+    ForwardKinematics(sdh, qp, &kin);
+    const Eigen::VectorXd yp = EncodeGrasp(sdh, kin, chains, ref).finger;
+    ForwardKinematics(sdh, qm, &kin);
+    const Eigen::VectorXd ym = EncodeGrasp(sdh, kin, chains, ref).finger;
+    EXPECT_LT(((yp - ym) / (2 * h) - J.col(k)).cwiseAbs().maxCoeff(), 1e-5) << "dof " << k;
+  }
+}
+
+TEST(GraspTransferTest, PowerGraspTransfersToTheSdhWithMatchingWindings) {
+  const HumanGrasp g = LoadHumanGrasp(kAssets + "grasps/power_bottle.json");
+  const TransferSetup setup =
+      MakeTransferSetup(Human(), LwrSdh(), FindGraspObject(Objects(), "bottle"), g);
+  const TransferResult r = TransferGrasp(setup, TransferMethod::kWinding);
+  ASSERT_EQ(r.robot_winding.size(), 3);
+  EXPECT_LT(r.target_winding[0], -0.2);
+  EXPECT_GT(r.target_winding[1], 0.3);
+  EXPECT_GT(r.target_winding[2], 0.3);
+  EXPECT_LT((r.robot_winding - r.target_winding).cwiseAbs().maxCoeff(), 0.1)
+      << "robot " << r.robot_winding.transpose() << " target " << r.target_winding.transpose();
+  EXPECT_GE(r.min_clearance, -0.003);
+  // Identical inputs, identical numbers.
+  const TransferResult again = TransferGrasp(setup, TransferMethod::kWinding);
+  EXPECT_EQ((again.q - r.q).cwiseAbs().maxCoeff(), 0.0);
+  // Baseline: linear joint mapping keeps the human angles and ignores the object.
+  const TransferResult joint = TransferGrasp(setup, TransferMethod::kJointMapping);
+  EXPECT_EQ(joint.solver, "direct");
+  EXPECT_GT((joint.robot_winding - joint.target_winding).norm(),
+            (r.robot_winding - r.target_winding).norm());
+}
+
+TEST(GraspTransferTest, CorrespondenceAveragesFingerPairs) {
+  Eigen::VectorXd h(5);
+  h << -0.3, 0.4, 0.6, 0.2, 0.0;
+  const Eigen::Vector3d t = FingerCorrespondence() * h;
+  EXPECT_DOUBLE_EQ(t[0], -0.3);
+  EXPECT_DOUBLE_EQ(t[1], 0.1);
+  EXPECT_DOUBLE_EQ(t[2], 0.5);
+  EXPECT_EQ(ParseTransferMethod("fingertip"), TransferMethod::kFingertip);
+  EXPECT_THROW(ParseTransferMethod("magic"), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace planning
