@@ -8,25 +8,55 @@
 #include "planning/feature.h"
 #include "planning/kinematics.h"
 #include "planning/task.h"
+#include "topology/winding.h"
+#include "topology/writhe.h"
 
 namespace planning {
 namespace {
 
 // --- Grasp-specific features ---------------------------------------------------------------------
 
-// y = per-finger winding vector (EncodeGrasp), J = its Jacobian.
+// Buffers of GraspWindingFeature (sized on first use, then reused without allocation).
+struct WindingData : FeatureData {
+  Eigen::Matrix3Xd points, grad, grad_b;
+  Eigen::MatrixXd dP, w;
+  topology::WritheJacobian wj;
+  topology::WritheWorkspace ws;
+};
+
+// y = per-finger winding vector (as EncodeGrasp), J = its Jacobian ∂y/∂q (chains × n).
 class GraspWindingFeature : public Feature {
  public:
   GraspWindingFeature(std::vector<int> chains, ReferenceCurve reference)
       : chains_(std::move(chains)), reference_(std::move(reference)) {}
   int dim() const override { return static_cast<int>(chains_.size()); }
   std::string name() const override { return "grasp_winding"; }
-  void Eval(const Robot& robot, const KinematicsData& kin, FeatureData*,
+  std::unique_ptr<FeatureData> CreateData(const Robot&) const override {
+    return std::make_unique<WindingData>();
+  }
+  void Eval(const Robot& robot, const KinematicsData& kin, FeatureData* data,
             Eigen::Ref<Eigen::VectorXd> y, Eigen::MatrixXd* J) const override {
-    Eigen::MatrixXd jac;
-    const GraspEncoding enc = EncodeGrasp(robot, kin, chains_, reference_, J ? &jac : nullptr);
-    y = enc.finger;
-    if (J) *J = jac;
+    auto* d = static_cast<WindingData*>(data);
+    const int n = num_dofs(robot);
+    if (J) J->setZero();
+    for (size_t c = 0; c < chains_.size(); ++c) {
+      ChainPoints(robot, kin, chains_[c], &d->points);
+      const int np = static_cast<int>(d->points.cols());
+      if (reference_.kind == ReferenceCurve::Kind::kAxis) {
+        y[c] = topology::WindingNumber(d->points, reference_.axis, {}, J ? &d->grad : nullptr);
+      } else {
+        topology::WritheMatrixWithJacobian(d->points, reference_.loop, {}, &d->w, &d->wj, &d->ws);
+        y[c] = d->w.sum();
+        if (J) topology::WeightedWritheGradient(d->wj, Eigen::MatrixXd(), &d->grad, &d->grad_b);
+      }
+      if (J) {
+        if (d->dP.rows() != 3 * np || d->dP.cols() != n) d->dP.resize(3 * np, n);
+        ChainJacobian(robot, kin, chains_[c], d->dP);
+        for (int k = 0; k < np; ++k) {
+          J->row(c).noalias() += d->grad.col(k).transpose() * d->dP.middleRows(3 * k, 3);
+        }
+      }
+    }
   }
 
  private:
@@ -35,8 +65,10 @@ class GraspWindingFeature : public Feature {
 };
 
 struct PointJacobianData : FeatureData {
-  explicit PointJacobianData(int n) : jp(3, n) {}
+  PointJacobianData(int n, int groups) : jp(3, n), best(groups), best_k(groups) {}
   Eigen::MatrixXd jp;
+  std::vector<double> best;
+  std::vector<int> best_k;
 };
 
 // Clearance of every hand sphere to the object: d_k = sdf(c_k) − r_k (world), and
@@ -62,14 +94,16 @@ class ClearanceFeature : public Feature {
   }
   std::string name() const override { return mode_ == Mode::kHinge ? "clearance" : "contact"; }
   std::unique_ptr<FeatureData> CreateData(const Robot& robot) const override {
-    return std::make_unique<PointJacobianData>(num_dofs(robot));
+    return std::make_unique<PointJacobianData>(num_dofs(robot), num_groups_);
   }
   void Eval(const Robot& robot, const KinematicsData& kin, FeatureData* data,
             Eigen::Ref<Eigen::VectorXd> y, Eigen::MatrixXd* J) const override {
     auto* d = static_cast<PointJacobianData*>(data);
     if (J) J->setZero();
-    std::vector<double> best(num_groups_, std::numeric_limits<double>::infinity());
-    std::vector<int> best_k(num_groups_, -1);
+    std::vector<double>& best = d->best;
+    std::vector<int>& best_k = d->best_k;
+    std::fill(best.begin(), best.end(), std::numeric_limits<double>::infinity());
+    std::fill(best_k.begin(), best_k.end(), -1);
     if (mode_ == Mode::kHinge) y.setZero();
     for (size_t k = 0; k < spheres_.link.size(); ++k) {
       const int li = spheres_.link[k];
