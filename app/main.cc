@@ -15,6 +15,8 @@ int main(int argc, char** argv) {
   app::AddRenderCommands(&root, &commands);
   app::AddGraspCommands(&root, &commands);
   app::AddRobotCommands(&root, &commands);
+  app::AddPlanCommands(&root, &commands);
+  app::AddViewCommand(&root, &commands);
   try {
     root.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
