@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <limits>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "render/image.h"
@@ -22,6 +23,10 @@ namespace render {
 enum class Marker { kNone, kCircle, kSquare, kTriangle, kDiamond };
 
 struct PlotSeries {
+  // PlotSeries{"label", x, y}, or default construction and member-wise assignment.
+  PlotSeries(std::string label_ = {}, std::vector<double> x_ = {}, std::vector<double> y_ = {})
+      : label(std::move(label_)), x(std::move(x_)), y(std::move(y_)) {}
+
   std::string label;      // legend text; empty: not in the legend
   std::vector<double> x;  // same length as y; non-finite points (and y <= 0 on a log axis) are
   std::vector<double> y;  // skipped and break the line

@@ -2,7 +2,7 @@
 //
 // Per frame: 1. turn every shape, tube segment and bead into instances of four shared unit meshes
 // (or of a cached user mesh); 2. compute the scene's bounding sphere for clip planes and the
-// shadow frustum; 3. depth pass from light 0 into a 2048^2 shadow map; 4. lit pass: grid, opaque
+// shadow frustum; 3. depth pass from light 0 into a 1024^2 shadow map; 4. lit pass: grid, opaque
 // instance batches, translucent instances back to front, lines; 5. (Render only) resolve MSAA and
 // read back, flipping rows to top-down.
 #include "render/renderer.h"
@@ -24,7 +24,7 @@ namespace {
 
 using internal::GlApi;
 
-constexpr int kShadowMapSize = 2048;
+constexpr int kShadowMapSize = 1024;
 constexpr int kMaxSize = 8192;
 
 // One drawn copy of a unit mesh: model matrix, colour, material (specular, shininess, 0, 0).
@@ -32,8 +32,9 @@ struct Instance {
   std::array<float, 16> model;
   std::array<float, 4> color;
   std::array<float, 4> material;
+  std::array<float, 9> normal;  // column-major inverse transpose of the model's 3x3
 };
-static_assert(sizeof(Instance) == 24 * sizeof(float));
+static_assert(sizeof(Instance) == 33 * sizeof(float));
 
 struct GpuMesh {
   GLuint vao = 0, vertex_buffer = 0, index_buffer = 0, instance_buffer = 0;
@@ -76,6 +77,11 @@ Instance MakeInstance(const Eigen::Matrix4f& model, const std::array<float, 4>& 
   std::copy(model.data(), model.data() + 16, inst.model.begin());
   inst.color = rgba;
   inst.material = {material.specular, material.shininess, 0.0f, 0.0f};
+  const Eigen::Matrix3f linear = model.block<3, 3>(0, 0);
+  const float det = linear.determinant();
+  const Eigen::Matrix3f normal =
+      std::abs(det) > 0.0f ? Eigen::Matrix3f(linear.inverse().transpose()) : linear;
+  std::copy(normal.data(), normal.data() + 9, inst.normal.begin());
   return inst;
 }
 
@@ -103,9 +109,11 @@ struct Bounds {
   bool empty() const { return lo.x() > hi.x(); }
 };
 
-GLuint Compile(const GlApi& gl, GLenum type, const char* source, const char* what) {
+GLuint Compile(const GlApi& gl, GLenum type, const char* source, const char* what,
+               const char* prefix = "") {
   const GLuint shader = gl.CreateShader(type);
-  gl.ShaderSource(shader, 1, &source, nullptr);
+  const char* sources[] = {prefix, source};
+  gl.ShaderSource(shader, 2, sources, nullptr);
   gl.CompileShader(shader);
   GLint ok = 0;
   gl.GetShaderiv(shader, GL_COMPILE_STATUS, &ok);
@@ -118,9 +126,10 @@ GLuint Compile(const GlApi& gl, GLenum type, const char* source, const char* wha
   return shader;
 }
 
-GLuint Link(const GlApi& gl, const char* vs, const char* fs, const char* what) {
-  const GLuint v = Compile(gl, GL_VERTEX_SHADER, vs, what);
-  const GLuint f = Compile(gl, GL_FRAGMENT_SHADER, fs, what);
+GLuint Link(const GlApi& gl, const char* vs, const char* fs, const char* what,
+            const char* prefix = "") {
+  const GLuint v = Compile(gl, GL_VERTEX_SHADER, vs, what, prefix);
+  const GLuint f = Compile(gl, GL_FRAGMENT_SHADER, fs, what, prefix);
   const GLuint program = gl.CreateProgram();
   gl.AttachShader(program, v);
   gl.AttachShader(program, f);
@@ -189,12 +198,21 @@ class Renderer::Impl {
       throw ContextError(std::string("GL: need OpenGL >= 3.3 core, context reports '") +
                          (version ? version : "(none)") + "'");
     }
-    mesh_program_ = Link(gl_, internal::kMeshVertexShader, internal::kMeshFragmentShader, "mesh");
+    for (int shadows = 0; shadows < 2; ++shadows) {
+      for (int grid = 0; grid < 2; ++grid) {
+        const std::string prefix = "#version 330 core\n#define SHADOWS " + std::to_string(shadows) +
+                                   "\n#define GRID " + std::to_string(grid) + "\n";
+        mesh_programs_[shadows][grid] = Link(gl_, internal::kMeshVertexShader,
+                                             internal::kMeshFragmentShader, "mesh", prefix.c_str());
+      }
+    }
     depth_program_ =
         Link(gl_, internal::kDepthVertexShader, internal::kDepthFragmentShader, "depth");
     line_program_ = Link(gl_, internal::kLineVertexShader, internal::kLineFragmentShader, "line");
-    sphere_ = Upload(internal::UnitSphere());
-    cylinder_ = Upload(internal::UnitCylinder());
+    for (int lod = 0; lod < 3; ++lod) {
+      sphere_[lod] = Upload(internal::UnitSphere(internal::kLodSlices[lod]));
+      cylinder_[lod] = Upload(internal::UnitCylinder(internal::kLodSlices[lod]));
+    }
     box_ = Upload(internal::UnitBox());
     quad_ = Upload(internal::UnitQuad());
     gl_.GenVertexArrays(1, &line_vao_);
@@ -208,11 +226,18 @@ class Renderer::Impl {
   }
 
   ~Impl() {
-    for (GpuMesh* m : {&sphere_, &cylinder_, &box_, &quad_}) Release(m);
+    for (int lod = 0; lod < 3; ++lod) {
+      Release(&sphere_[lod]);
+      Release(&cylinder_[lod]);
+    }
+    Release(&box_);
+    Release(&quad_);
     for (auto& [key, entry] : mesh_cache_) Release(&entry.gpu);
     gl_.DeleteVertexArrays(1, &line_vao_);
     gl_.DeleteBuffers(1, &line_buffer_);
-    gl_.DeleteProgram(mesh_program_);
+    for (auto& row : mesh_programs_) {
+      for (GLuint program : row) gl_.DeleteProgram(program);
+    }
     gl_.DeleteProgram(depth_program_);
     gl_.DeleteProgram(line_program_);
     gl_.DeleteFramebuffers(1, &shadow_fbo_);
@@ -244,16 +269,20 @@ class Renderer::Impl {
     gl_.BindFramebuffer(GL_FRAMEBUFFER, fbo_);
     gl_.ReadBuffer(GL_COLOR_ATTACHMENT0);
     gl_.PixelStorei(GL_PACK_ALIGNMENT, 1);
-    Image bottom_up(width, height);
-    gl_.ReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, bottom_up.rgba.data());
+    Image out;
+    out.width = width;
+    out.height = height;
+    out.rgba.resize(4 * static_cast<size_t>(width) * height);
+    gl_.ReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, out.rgba.data());
     gl_.BindFramebuffer(GL_FRAMEBUFFER, 0);
-    // Flip to top-down rows; alpha is forced opaque (blending leaves partial alpha behind).
-    Image out(width, height);
+    // GL rows are bottom-up: swap them in place. Alpha is already 255 everywhere (cleared to 1,
+    // and blending keeps destination alpha 1).
     const size_t row = 4 * static_cast<size_t>(width);
-    for (int y = 0; y < height; ++y) {
-      std::copy_n(&bottom_up.rgba[row * (height - 1 - y)], row, &out.rgba[row * y]);
+    for (int y = 0; y < height / 2; ++y) {
+      std::swap_ranges(out.rgba.begin() + static_cast<std::ptrdiff_t>(row * y),
+                       out.rgba.begin() + static_cast<std::ptrdiff_t>(row * (y + 1)),
+                       out.rgba.begin() + static_cast<std::ptrdiff_t>(row * (height - 1 - y)));
     }
-    for (size_t i = 3; i < out.rgba.size(); i += 4) out.rgba[i] = 255;
     return out;
   }
 
@@ -261,6 +290,10 @@ class Renderer::Impl {
             const RenderOptions& options) {
     CheckSize(width, height);
     CheckCamera(camera);
+    focal_px_ = 0.5f * static_cast<float>(height) /
+                std::tan(0.5f * camera.fovy_deg * 3.14159265358979f / 180.0f);
+    lod_eye_ = camera.eye;
+    lod_forward_ = (camera.target - camera.eye).normalized();
     Collect(scene);
 
     // Bounds -> clip planes and the shadow frustum.
@@ -365,14 +398,6 @@ class Renderer::Impl {
     gl_.Disable(GL_CULL_FACE);
     gl_.Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
 
-    const GLuint p = mesh_program_;
-    gl_.UseProgram(p);
-    gl_.UniformMatrix4fv(Uniform(p, "u_view_proj"), 1, GL_FALSE, view_proj.data());
-    gl_.UniformMatrix4fv(Uniform(p, "u_light_view_proj"), 1, GL_FALSE, light_view_proj.data());
-    gl_.Uniform3f(Uniform(p, "u_eye"), camera.eye.x(), camera.eye.y(), camera.eye.z());
-    const Eigen::Vector3f up = camera.up.normalized();
-    gl_.Uniform3f(Uniform(p, "u_up"), up.x(), up.y(), up.z());
-    gl_.Uniform1i(Uniform(p, "u_num_lights"), static_cast<GLint>(lights.size()));
     std::array<float, 12> dirs{}, rgbs{};
     for (size_t k = 0; k < lights.size(); ++k) {
       for (int c = 0; c < 3; ++c) {
@@ -380,19 +405,29 @@ class Renderer::Impl {
         rgbs[3 * k + c] = lights[k].rgb[c];
       }
     }
-    gl_.Uniform3fv(Uniform(p, "u_light_dir"), 4, dirs.data());
-    gl_.Uniform3fv(Uniform(p, "u_light_rgb"), 4, rgbs.data());
-    gl_.Uniform3f(Uniform(p, "u_ambient"), scene.ambient[0], scene.ambient[1], scene.ambient[2]);
-    gl_.Uniform1i(Uniform(p, "u_shadows"), shadows ? 1 : 0);
+    const Eigen::Vector3f up = camera.up.normalized();
     gl_.ActiveTexture(GL_TEXTURE0);
     gl_.BindTexture(GL_TEXTURE_2D, shadow_texture_);
-    gl_.Uniform1i(Uniform(p, "u_shadow_map"), 0);
-    gl_.Uniform1f(Uniform(p, "u_shadow_texel"), 1.0f / kShadowMapSize);
-    gl_.Uniform1i(Uniform(p, "u_grid"), 0);
+    // Binds the lit program variant and sets the uniforms every variant shares.
+    auto use_lit = [&](bool grid) {
+      const GLuint p = mesh_programs_[shadows ? 1 : 0][grid ? 1 : 0];
+      gl_.UseProgram(p);
+      gl_.UniformMatrix4fv(Uniform(p, "u_view_proj"), 1, GL_FALSE, view_proj.data());
+      gl_.UniformMatrix4fv(Uniform(p, "u_light_view_proj"), 1, GL_FALSE, light_view_proj.data());
+      gl_.Uniform3f(Uniform(p, "u_eye"), camera.eye.x(), camera.eye.y(), camera.eye.z());
+      gl_.Uniform3f(Uniform(p, "u_up"), up.x(), up.y(), up.z());
+      gl_.Uniform1i(Uniform(p, "u_num_lights"), static_cast<GLint>(lights.size()));
+      gl_.Uniform3fv(Uniform(p, "u_light_dir"), 4, dirs.data());
+      gl_.Uniform3fv(Uniform(p, "u_light_rgb"), 4, rgbs.data());
+      gl_.Uniform3f(Uniform(p, "u_ambient"), scene.ambient[0], scene.ambient[1], scene.ambient[2]);
+      gl_.Uniform1i(Uniform(p, "u_shadow_map"), 0);
+      gl_.Uniform1f(Uniform(p, "u_shadow_texel"), 1.0f / kShadowMapSize);
+      return p;
+    };
 
     if (scene.grid.enabled && scene.grid.extent > 0.0f && scene.grid.spacing > 0.0f) {
       const Grid& g = scene.grid;
-      gl_.Uniform1i(Uniform(p, "u_grid"), 1);
+      const GLuint p = use_lit(true);
       gl_.Uniform2f(Uniform(p, "u_grid_center"), g.center.x(), g.center.y());
       gl_.Uniform1f(Uniform(p, "u_grid_spacing"), g.spacing);
       gl_.Uniform4f(Uniform(p, "u_grid_line"), g.line_rgba[0], g.line_rgba[1], g.line_rgba[2],
@@ -408,8 +443,8 @@ class Renderer::Impl {
       gl_.PolygonOffset(1.0f, 2.0f);
       DrawInstances(quad_, scratch_);
       gl_.Disable(GL_POLYGON_OFFSET_FILL);
-      gl_.Uniform1i(Uniform(p, "u_grid"), 0);
     }
+    use_lit(false);
     for (const auto& [mesh, items] : opaque_) DrawInstances(*mesh, items);
 
     if (!translucent_.empty()) {
@@ -426,7 +461,7 @@ class Renderer::Impl {
             return za < zb;
           });
       gl_.Enable(GL_BLEND);
-      gl_.BlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+      gl_.BlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
       gl_.DepthMask(GL_FALSE);
       for (const auto& [mesh, inst] : translucent_) {
         scratch_.assign(1, inst);
@@ -513,12 +548,15 @@ class Renderer::Impl {
                    static_cast<GLsizeiptr>(mesh.indices.size() * sizeof(std::uint32_t)),
                    mesh.indices.data(), GL_STATIC_DRAW);
     gl_.BindBuffer(GL_ARRAY_BUFFER, g.instance_buffer);
-    // Instance attributes: model columns (2..5), colour (6), material (7).
-    for (int k = 0; k < 6; ++k) {
-      gl_.EnableVertexAttribArray(static_cast<GLuint>(2 + k));
-      gl_.VertexAttribPointer(static_cast<GLuint>(2 + k), 4, GL_FLOAT, GL_FALSE, sizeof(Instance),
-                              reinterpret_cast<void*>(4 * k * sizeof(float)));
-      gl_.VertexAttribDivisor(static_cast<GLuint>(2 + k), 1);
+    // Instance attributes: model columns (2..5), colour (6), material (7), normal matrix
+    // columns (8..10).
+    for (int k = 0; k < 9; ++k) {
+      const auto location = static_cast<GLuint>(2 + k);
+      gl_.EnableVertexAttribArray(location);
+      gl_.VertexAttribPointer(
+          location, k < 6 ? 4 : 3, GL_FLOAT, GL_FALSE, sizeof(Instance),
+          reinterpret_cast<void*>((k < 6 ? 4 * k : 24 + 3 * (k - 6)) * sizeof(float)));
+      gl_.VertexAttribDivisor(location, 1);
     }
     gl_.BindVertexArray(0);
     return g;
@@ -567,6 +605,23 @@ class Renderer::Impl {
     opaque_.emplace_back(mesh, std::vector<Instance>{inst});
   }
 
+  // Level of detail for a round primitive of `radius` centred at `centre` (world frame): from
+  // its projected radius in pixels. Deterministic (depends on the geometry and camera only).
+  int Lod(const Eigen::Vector3f& centre, float radius) const {
+    const float depth = std::max((centre - lod_eye_).dot(lod_forward_), 1e-6f);
+    const float px = focal_px_ * radius / depth;
+    return px < internal::kLodMaxRadiusPx[0] ? 0 : (px < internal::kLodMaxRadiusPx[1] ? 1 : 2);
+  }
+  const GpuMesh* SphereAt(const Eigen::Matrix4f& model) const {
+    const float r = std::max({model.col(0).head<3>().norm(), model.col(1).head<3>().norm(),
+                              model.col(2).head<3>().norm()});
+    return &sphere_[Lod(model.block<3, 1>(0, 3), r)];
+  }
+  const GpuMesh* CylinderAt(const Eigen::Matrix4f& model) const {
+    const float r = std::max(model.col(0).head<3>().norm(), model.col(1).head<3>().norm());
+    return &cylinder_[Lod(model.block<3, 1>(0, 3), r)];
+  }
+
   // Scene -> instance batches (opaque_, in first-use order) and translucent_ instances.
   void Collect(const Scene& scene) {
     for (auto& batch : opaque_) batch.second.clear();
@@ -575,25 +630,27 @@ class Renderer::Impl {
       const Eigen::Matrix4f& w = s.world_from_shape;
       const std::array<float, 4>& rgba = s.material.rgba;
       switch (s.kind) {
-        case Shape::Kind::kSphere:
-          Add(&sphere_, w * Scale(Eigen::Vector3f::Constant(s.size.x())), rgba, s.material);
-          break;
+        case Shape::Kind::kSphere: {
+          const Eigen::Matrix4f m = w * Scale(Eigen::Vector3f::Constant(s.size.x()));
+          Add(SphereAt(m), m, rgba, s.material);
+        } break;
         case Shape::Kind::kCapsule: {
           const float r = s.size.x(), len = s.size.y();
           if (len > 0.0f) {
-            Add(&cylinder_, w * Scale(Eigen::Vector3f(r, r, len)), rgba, s.material);
+            const Eigen::Matrix4f m = w * Scale(Eigen::Vector3f(r, r, len));
+            Add(CylinderAt(m), m, rgba, s.material);
           }
           for (float z : {-0.5f * len, 0.5f * len}) {
-            Add(&sphere_,
-                w * Translate(Eigen::Vector3f(0, 0, z)) * Scale(Eigen::Vector3f::Constant(r)), rgba,
-                s.material);
+            const Eigen::Matrix4f m =
+                w * Translate(Eigen::Vector3f(0, 0, z)) * Scale(Eigen::Vector3f::Constant(r));
+            Add(SphereAt(m), m, rgba, s.material);
           }
           break;
         }
-        case Shape::Kind::kCylinder:
-          Add(&cylinder_, w * Scale(Eigen::Vector3f(s.size.x(), s.size.x(), s.size.y())), rgba,
-              s.material);
-          break;
+        case Shape::Kind::kCylinder: {
+          const Eigen::Matrix4f m = w * Scale(Eigen::Vector3f(s.size.x(), s.size.x(), s.size.y()));
+          Add(CylinderAt(m), m, rgba, s.material);
+        } break;
         case Shape::Kind::kBox:
           Add(&box_, w * Scale(s.size), rgba, s.material);
           break;
@@ -616,13 +673,14 @@ class Renderer::Impl {
         const Eigen::Vector3f& b = t.points[i + 1];
         const float len = (b - a).norm();
         if (!(len > 0.0f)) continue;
-        Add(&cylinder_, SegmentFrame(a, b) * Scale(Eigen::Vector3f(t.radius, t.radius, len)),
-            colour(i), t.material);
+        const Eigen::Matrix4f m =
+            SegmentFrame(a, b) * Scale(Eigen::Vector3f(t.radius, t.radius, len));
+        Add(CylinderAt(m), m, colour(i), t.material);
       }
       const float bead = t.bead_radius > 0.0f ? t.bead_radius : t.radius;
       for (size_t i = 0; i < n; ++i) {
-        Add(&sphere_, Translate(t.points[i]) * Scale(Eigen::Vector3f::Constant(bead)),
-            colour(i == 0 ? 0 : (i + 1 < n ? i : i - 1)), t.material);
+        const Eigen::Matrix4f m = Translate(t.points[i]) * Scale(Eigen::Vector3f::Constant(bead));
+        Add(SphereAt(m), m, colour(i == 0 ? 0 : (i + 1 < n ? i : i - 1)), t.material);
       }
     }
     // Batches unused this frame may point at meshes dropped from the cache: forget them.
@@ -714,8 +772,13 @@ class Renderer::Impl {
   }
 
   GlApi gl_;
-  GLuint mesh_program_ = 0, depth_program_ = 0, line_program_ = 0;
-  GpuMesh sphere_, cylinder_, box_, quad_;
+  GLuint mesh_programs_[2][2] = {{0, 0}, {0, 0}};  // [shadows][grid]
+  GLuint depth_program_ = 0, line_program_ = 0;
+  GpuMesh sphere_[3], cylinder_[3], box_, quad_;  // spheres and cylinders per level of detail
+  // Pixels per unit length at unit depth (f of the pinhole model) and the camera, for choosing
+  // levels of detail in Collect().
+  float focal_px_ = 1.0f;
+  Eigen::Vector3f lod_eye_ = Eigen::Vector3f::Zero(), lod_forward_ = Eigen::Vector3f::UnitZ();
   std::map<const TriangleMesh*, CachedMesh> mesh_cache_;
   GLuint line_vao_ = 0, line_buffer_ = 0;
   GLuint shadow_fbo_ = 0, shadow_texture_ = 0;

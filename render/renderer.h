@@ -2,10 +2,11 @@
 //
 // Requires a current GL context (OffscreenContext, or later a GLFW window) and does not create
 // one; it loads every GL entry point it uses through the GlProcLoader it is given. It draws:
-// shapes (tessellated once into shared unit meshes), tubes (cylinder per segment + bead spheres),
-// GL lines, and a ground grid (procedural, in the fragment shader) with Blinn-Phong lighting from
-// up to 4 directional lights plus hemispheric ambient, and a soft shadow (shadow map, 3x3 PCF)
-// from the first light onto everything. Renders are deterministic: the same Scene, Camera, size
+// shapes (instances of shared unit meshes; spheres and cylinders in 3 levels of detail chosen by
+// projected size: 12/20/32 slices below 6 px / 20 px / above), tubes (cylinder per segment +
+// bead spheres), GL lines, and a ground grid (procedural, in the fragment shader) with
+// Blinn-Phong lighting from up to 4 directional lights plus hemispheric ambient, and a soft
+// shadow (1024^2 shadow map, 4-tap bilinear PCF) from the first light onto everything. Renders are deterministic: the same Scene, Camera, size
 // and options give byte-identical pixels run to run (tessellation counts are fixed; no time).
 //
 // Cost on the 2-core reference machine (tests/bench/bench_render.cc): see the README.

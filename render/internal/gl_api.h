@@ -23,6 +23,7 @@ namespace render::internal {
   X(PFNGLDEPTHFUNCPROC, DepthFunc)                                           \
   X(PFNGLDEPTHMASKPROC, DepthMask)                                           \
   X(PFNGLBLENDFUNCPROC, BlendFunc)                                           \
+  X(PFNGLBLENDFUNCSEPARATEPROC, BlendFuncSeparate)                           \
   X(PFNGLCULLFACEPROC, CullFace)                                             \
   X(PFNGLLINEWIDTHPROC, LineWidth)                                           \
   X(PFNGLPOLYGONOFFSETPROC, PolygonOffset)                                   \

@@ -3,7 +3,7 @@
 
 namespace render::internal {
 
-const char* const kMeshVertexShader = R"(#version 330 core
+const char* const kMeshVertexShader = R"(
 layout(location = 0) in vec3 a_position;
 layout(location = 1) in vec3 a_normal;
 layout(location = 2) in vec4 i_model0;
@@ -12,6 +12,9 @@ layout(location = 4) in vec4 i_model2;
 layout(location = 5) in vec4 i_model3;
 layout(location = 6) in vec4 i_color;
 layout(location = 7) in vec4 i_material;
+layout(location = 8) in vec3 i_normal0;
+layout(location = 9) in vec3 i_normal1;
+layout(location = 10) in vec3 i_normal2;
 uniform mat4 u_view_proj;
 uniform mat4 u_light_view_proj;
 out vec3 v_world;
@@ -23,7 +26,7 @@ void main() {
   mat4 model = mat4(i_model0, i_model1, i_model2, i_model3);
   vec4 world = model * vec4(a_position, 1.0);
   v_world = world.xyz;
-  v_normal = transpose(inverse(mat3(model))) * a_normal;
+  v_normal = mat3(i_normal0, i_normal1, i_normal2) * a_normal;
   v_color = i_color;
   v_material = i_material.xy;
   v_light = u_light_view_proj * world;
@@ -31,7 +34,7 @@ void main() {
 }
 )";
 
-const char* const kMeshFragmentShader = R"(#version 330 core
+const char* const kMeshFragmentShader = R"(
 in vec3 v_world;
 in vec3 v_normal;
 in vec4 v_color;
@@ -43,49 +46,48 @@ uniform int u_num_lights;
 uniform vec3 u_light_dir[4];
 uniform vec3 u_light_rgb[4];
 uniform vec3 u_ambient;
-uniform int u_shadows;
 uniform sampler2DShadow u_shadow_map;
 uniform float u_shadow_texel;
-uniform int u_grid;
 uniform vec2 u_grid_center;
 uniform float u_grid_spacing;
 uniform vec4 u_grid_line;
 out vec4 frag_color;
 
-// Fraction of light 0 reaching this fragment: 3x3 percentage-closer filter over a bilinear
-// comparison sampler (soft edges about 3 shadow-map texels wide).
+// Fraction of light 0 reaching this fragment: 4 bilinear depth comparisons 1.5 texels apart
+// (percentage-closer filtering; soft edges about 3 shadow-map texels wide).
 float Shadow(vec3 n, vec3 l) {
-  if (u_shadows == 0) return 1.0;
+#if !SHADOWS
+  return 1.0;
+#else
   vec3 p = v_light.xyz / v_light.w * 0.5 + 0.5;
   if (p.x <= 0.0 || p.x >= 1.0 || p.y <= 0.0 || p.y >= 1.0 || p.z >= 1.0) return 1.0;
   float bias = 0.001 + 0.004 * (1.0 - clamp(dot(n, l), 0.0, 1.0));
-  float sum = 0.0;
-  for (int i = -1; i <= 1; ++i) {
-    for (int j = -1; j <= 1; ++j) {
-      sum += texture(u_shadow_map, vec3(p.xy + vec2(i, j) * u_shadow_texel, p.z - bias));
-    }
-  }
-  return sum / 9.0;
+  vec2 o = vec2(0.75 * u_shadow_texel, -0.75 * u_shadow_texel);
+  return 0.5 * (texture(u_shadow_map, vec3(p.xy + o.xx, p.z - bias)) +
+                texture(u_shadow_map, vec3(p.xy - o.xx, p.z - bias)));
+#endif
 }
 
+#if GRID
 // Grid line coverage (0..1) of lines every `spacing` world units, about `px` pixels wide.
 float GridLines(vec2 g, float px) {
   vec2 fw = max(fwidth(g), vec2(1e-6));
   vec2 d = abs(fract(g - 0.5) - 0.5) / fw;
   return 1.0 - clamp(min(d.x, d.y) / px, 0.0, 1.0);
 }
+#endif
 
 void main() {
   vec3 n = normalize(v_normal);
   if (!gl_FrontFacing) n = -n;
   vec3 v = normalize(u_eye - v_world);
   vec3 base = v_color.rgb;
-  if (u_grid == 1) {
-    vec2 g = (v_world.xy - u_grid_center) / u_grid_spacing;
-    float fade = clamp(1.5 - 3.0 * max(fwidth(g).x, fwidth(g).y), 0.0, 1.0);
-    base = mix(base, u_grid_line.rgb, 0.7 * fade * GridLines(g, 1.0));
-    base = mix(base, u_grid_line.rgb * 0.75, GridLines(g / 5.0, 1.2));
-  }
+#if GRID
+  vec2 g = (v_world.xy - u_grid_center) / u_grid_spacing;
+  float fade = clamp(1.5 - 3.0 * max(fwidth(g).x, fwidth(g).y), 0.0, 1.0);
+  base = mix(base, u_grid_line.rgb, 0.7 * fade * GridLines(g, 1.0));
+  base = mix(base, u_grid_line.rgb * 0.75, GridLines(g / 5.0, 1.2));
+#endif
   float hemi = 0.5 + 0.5 * dot(n, u_up);
   vec3 color = base * u_ambient * mix(0.6, 1.0, hemi);
   for (int k = 0; k < 4; ++k) {

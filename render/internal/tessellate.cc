@@ -13,29 +13,30 @@ void AddQuad(TriangleMesh* m, std::uint32_t a, std::uint32_t b, std::uint32_t c,
 
 }  // namespace
 
-TriangleMesh UnitSphere() {
+TriangleMesh UnitSphere(int slices) {
+  const int stacks = slices / 2;
   TriangleMesh m;
   const float pi = std::numbers::pi_v<float>;
-  // Rings of vertices from the north pole (stack 0) to the south pole (stack kSphereStacks); the
+  // Rings of vertices from the north pole (stack 0) to the south pole (stack stacks); the
   // seam column is duplicated so every quad has its own four corners.
-  for (int i = 0; i <= kSphereStacks; ++i) {
-    const float theta = pi * static_cast<float>(i) / kSphereStacks;
-    for (int j = 0; j <= kSphereSlices; ++j) {
-      const float phi = 2.0f * pi * static_cast<float>(j) / kSphereSlices;
+  for (int i = 0; i <= stacks; ++i) {
+    const float theta = pi * static_cast<float>(i) / stacks;
+    for (int j = 0; j <= slices; ++j) {
+      const float phi = 2.0f * pi * static_cast<float>(j) / slices;
       const Eigen::Vector3f p(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi),
                               std::cos(theta));
       m.positions.push_back(p);
       m.normals.push_back(p);
     }
   }
-  const int row = kSphereSlices + 1;
-  for (int i = 0; i < kSphereStacks; ++i) {
-    for (int j = 0; j < kSphereSlices; ++j) {
+  const int row = slices + 1;
+  for (int i = 0; i < stacks; ++i) {
+    for (int j = 0; j < slices; ++j) {
       const auto a = static_cast<std::uint32_t>(i * row + j);
       const auto b = static_cast<std::uint32_t>((i + 1) * row + j);
       if (i == 0) {
         m.indices.insert(m.indices.end(), {a, b, b + 1});
-      } else if (i == kSphereStacks - 1) {
+      } else if (i == stacks - 1) {
         m.indices.insert(m.indices.end(), {a, b, a + 1});
       } else {
         AddQuad(&m, a, b, b + 1, a + 1);
@@ -45,19 +46,19 @@ TriangleMesh UnitSphere() {
   return m;
 }
 
-TriangleMesh UnitCylinder() {
+TriangleMesh UnitCylinder(int slices) {
   TriangleMesh m;
   const float pi = std::numbers::pi_v<float>;
   // Side: two rings with radial normals.
-  for (int j = 0; j <= kCylinderSlices; ++j) {
-    const float phi = 2.0f * pi * static_cast<float>(j) / kCylinderSlices;
+  for (int j = 0; j <= slices; ++j) {
+    const float phi = 2.0f * pi * static_cast<float>(j) / slices;
     const Eigen::Vector3f n(std::cos(phi), std::sin(phi), 0.0f);
     m.positions.push_back(n + Eigen::Vector3f(0, 0, -0.5f));
     m.normals.push_back(n);
     m.positions.push_back(n + Eigen::Vector3f(0, 0, 0.5f));
     m.normals.push_back(n);
   }
-  for (int j = 0; j < kCylinderSlices; ++j) {
+  for (int j = 0; j < slices; ++j) {
     const auto a = static_cast<std::uint32_t>(2 * j);
     AddQuad(&m, a, a + 2, a + 3, a + 1);
   }
@@ -68,14 +69,14 @@ TriangleMesh UnitCylinder() {
     const auto centre = static_cast<std::uint32_t>(m.positions.size());
     m.positions.emplace_back(0, 0, z);
     m.normals.push_back(n);
-    for (int j = 0; j < kCylinderSlices; ++j) {
-      const float phi = 2.0f * pi * static_cast<float>(j) / kCylinderSlices;
+    for (int j = 0; j < slices; ++j) {
+      const float phi = 2.0f * pi * static_cast<float>(j) / slices;
       m.positions.emplace_back(std::cos(phi), std::sin(phi), z);
       m.normals.push_back(n);
     }
-    for (int j = 0; j < kCylinderSlices; ++j) {
+    for (int j = 0; j < slices; ++j) {
       const std::uint32_t a = centre + 1 + static_cast<std::uint32_t>(j);
-      const std::uint32_t b = centre + 1 + static_cast<std::uint32_t>((j + 1) % kCylinderSlices);
+      const std::uint32_t b = centre + 1 + static_cast<std::uint32_t>((j + 1) % slices);
       if (cap == 0) {
         m.indices.insert(m.indices.end(), {centre, b, a});
       } else {
