@@ -40,17 +40,19 @@ struct CheckArgs {
   double margin = 0.0;
 };
 
-std::string PairName(const RobotScene& s, const planning::ProximityPair& p) {
+std::string PairName(const RobotScene& s, const planning::Environment& env,
+                     const planning::ProximityPair& p) {
   const std::string a = s.robot.links[p.link_a].name;
-  if (p.object >= 0) return a + " vs object '" + s.env.objects[p.object].name + "'";
+  if (p.object >= 0) return a + " vs object '" + env.objects[p.object].name + "'";
   return a + " vs " + s.robot.links[p.link_b].name;
 }
 
-Json PairJson(const RobotScene& s, const planning::ProximityPair& p, bool with_geometry) {
+Json PairJson(const RobotScene& s, const planning::Environment& env,
+              const planning::ProximityPair& p, bool with_geometry) {
   Json j;
   j["link_a"] = s.robot.links[p.link_a].name;
   if (p.object >= 0) {
-    j["object"] = s.env.objects[p.object].name;
+    j["object"] = env.objects[p.object].name;
   } else {
     j["link_b"] = s.robot.links[p.link_b].name;
   }
@@ -152,7 +154,8 @@ void AddRobotCommands(CLI::App* root, CommandList* commands) {
          planning::CollisionOptions options;
          options.self_collision = !ca->no_self;
          planning::KinematicsData kin(scene.robot);
-         planning::CollisionData coll(scene.robot, scene.env, options);
+         const planning::Environment env = CollisionEnvironment(scene);
+         planning::CollisionData coll(scene.robot, env, options);
          planning::ForwardKinematics(scene.robot, scene.q, &kin);
          planning::ProximityPair hit, closest;
          const bool colliding = planning::InCollision(scene.robot, kin, &coll, &hit);
@@ -168,22 +171,23 @@ void AddRobotCommands(CLI::App* root, CommandList* commands) {
            out["in_collision"] = colliding;
            out["min_distance"] = std::isfinite(min_distance) ? Json(min_distance) : Json(nullptr);
            out["closest"] =
-               std::isfinite(min_distance) ? PairJson(scene, closest, true) : Json(nullptr);
+               std::isfinite(min_distance) ? PairJson(scene, env, closest, true) : Json(nullptr);
            Json list = Json::array();
-           for (const planning::ProximityPair& p : pairs) list.push_back(PairJson(scene, p, true));
+           for (const planning::ProximityPair& p : pairs)
+             list.push_back(PairJson(scene, env, p, true));
            out["pairs"] = std::move(list);
            out["narrow_phase_calls"] = coll.narrow_phase_calls;
            std::cout << out.dump() << "\n";
          } else {
            std::printf("%s: %s\n", scene.robot.name.c_str(),
-                       colliding ? ("IN COLLISION (" + PairName(scene, hit) + ")").c_str()
+                       colliding ? ("IN COLLISION (" + PairName(scene, env, hit) + ")").c_str()
                                  : "collision-free");
            if (std::isfinite(min_distance)) {
              std::printf("minimum distance %.6f m (%s)\n", min_distance,
-                         PairName(scene, closest).c_str());
+                         PairName(scene, env, closest).c_str());
            }
            for (const planning::ProximityPair& p : pairs) {
-             std::printf("  %-50s %+.6f m\n", PairName(scene, p).c_str(), p.distance);
+             std::printf("  %-50s %+.6f m\n", PairName(scene, env, p).c_str(), p.distance);
            }
            std::printf("narrow-phase calls: %lld\n",
                        static_cast<long long>(coll.narrow_phase_calls));

@@ -123,6 +123,16 @@ void AddObjectSpec(const std::string& spec, RobotScene* scene) {
     name = object.name + "_" + std::to_string(k);
   }
   planning::AddObject(object, Pose(xyz, rpy), name, &scene->env);
+  scene->collides.push_back(true);
+}
+
+planning::Environment CollisionEnvironment(const RobotScene& scene) {
+  planning::Environment env;
+  for (size_t i = 0; i < scene.env.objects.size(); ++i) {
+    if (i >= scene.collides.size() || scene.collides[i])
+      env.objects.push_back(scene.env.objects[i]);
+  }
+  return env;
 }
 
 RobotScene LoadRobotScene(const std::string& path, const std::vector<std::string>& package_paths) {
@@ -180,11 +190,16 @@ RobotScene LoadRobotScene(const std::string& path, const std::vector<std::string
           planning::LoadRobot(ResolveRelative(o["urdf"].get<std::string>(), base));
       const std::string name =
           o.contains("name") && o["name"].is_string() ? o["name"].get<std::string>() : object.name;
-      const Eigen::Vector3d xyz = o.contains("position")
-                                      ? Vec3(o["position"], path, jp + ".position")
-                                      : Eigen::Vector3d::Zero();
+      // "xyz" is the scenario files' spelling (planning/scenario.h), "position" ours.
+      const std::string pos_key = o.contains("xyz") ? "xyz" : "position";
+      const Eigen::Vector3d xyz = o.contains(pos_key) ? Vec3(o[pos_key], path, jp + "." + pos_key)
+                                                      : Eigen::Vector3d::Zero();
       const Eigen::Vector3d rpy =
           o.contains("rpy") ? Vec3(o["rpy"], path, jp + ".rpy") : Eigen::Vector3d::Zero();
+      if (o.contains("collide") && !o["collide"].is_boolean()) {
+        throw std::invalid_argument(path + ": " + jp + ".collide: expected true or false");
+      }
+      s.collides.push_back(!o.contains("collide") || o["collide"].get<bool>());
       try {
         planning::AddObject(object, Pose(xyz, rpy), name, &s.env);
       } catch (const std::invalid_argument& e) {

@@ -4,8 +4,9 @@
 // Scene JSON (also accepted: any scenario file with these keys; other keys are ignored):
 //   {"robot": "robots/lwr4_sdh.urdf",          // relative to the JSON file, else to assets/
 //    "q": [0, 0.5, ...],                        // optional, fk joint order; default zeros
-//    "objects": [{"name": "pole", "urdf": "objects/pole.urdf",
-//                 "position": [x, y, z], "rpy": [roll, pitch, yaw]}, ...],   // optional
+//    "objects": [{"name": "pole", "urdf": "objects/pole.urdf",      // optional
+//                 "position": [x, y, z] (or "xyz"), "rpy": [roll, pitch, yaw],
+//                 "collide": true}, ...],      // false: drawn, but not collision-checked
 //    "camera": {...}}                           // optional, used by `render` (scene_json format)
 // Errors name the file and JSON path (exit 2).
 #pragma once
@@ -23,9 +24,10 @@ namespace app {
 struct RobotScene {
   std::string source;  // file it was loaded from
   planning::Robot robot;
-  Eigen::VectorXd q;  // size num_dofs(robot)
-  planning::Environment env;
-  nlohmann::json document;  // the JSON document (null for a URDF input), for optional extras
+  Eigen::VectorXd q;           // size num_dofs(robot)
+  planning::Environment env;   // every object (drawn)
+  std::vector<bool> collides;  // per object of env: part of the collision environment
+  nlohmann::json document;     // the JSON document (null for a URDF input), for optional extras
 };
 
 // Package roots for package:// URIs: `extra` followed by the entries of $ROS_PACKAGE_PATH.
@@ -44,5 +46,8 @@ Eigen::VectorXd ParseQ(const planning::Robot& robot, const std::string& text);
 
 // Adds an object from "URDF[@x,y,z[,roll,pitch,yaw]]" (the `--object` flag).
 void AddObjectSpec(const std::string& spec, RobotScene* scene);
+
+// The objects of `scene` that take part in collision checks.
+planning::Environment CollisionEnvironment(const RobotScene& scene);
 
 }  // namespace app

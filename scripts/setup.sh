@@ -13,7 +13,7 @@ REQUIRED=(
   libpng-dev zlib1g-dev                           # fast PNG encoder for frame sequences
   libplplot-dev plplot-driver-cairo               # plots
   fonts-dejavu-core                               # font for labels
-  libassimp-dev liburdfdom-dev                    # meshes, URDF
+  libassimp-dev liburdfdom-dev libtinyxml-dev     # meshes, URDF (+ TinyXML, used directly)
   libfcl-dev libccd-dev                           # collision
   libode-dev                                      # physics
   libgtest-dev libgmock-dev libbenchmark-dev      # tests, benchmarks
