@@ -4,11 +4,28 @@
 
 #include <gtest/gtest.h>
 
+#include <atomic>
+#include <cstdlib>
+#include <new>
 #include <random>
 
 #include "planning/robot_io.h"
 #include "tests/planning/robot_test_util.h"
 #include "topology/winding.h"
+
+// Counts heap allocations in this test binary (to check the per-step path allocates nothing).
+// GCC flags malloc/free inside replacement operators as mismatched; they are matched here.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
+static std::atomic<long> g_allocations{0};
+void* operator new(std::size_t n) {
+  ++g_allocations;
+  if (void* p = std::malloc(n ? n : 1)) return p;
+  throw std::bad_alloc();
+}
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+#pragma GCC diagnostic pop
 
 namespace planning {
 namespace {
@@ -141,6 +158,26 @@ TEST_P(JacobianFd, PointFrameAndChainJacobiansMatchFiniteDifferences) {
 INSTANTIATE_TEST_SUITE_P(Robots, JacobianFd,
                          ::testing::Values("robots/lwr4_sdh.urdf", "robots/arm20_sdh.urdf",
                                            "robots/human_hand.urdf"));
+
+TEST(Kinematics, PerStepPathDoesNotAllocate) {
+  const Robot robot = LoadRobot(AssetFile("robots/arm20_sdh.urdf"));
+  const int n = num_dofs(robot);
+  KinematicsData kin(robot);
+  const int chain = FindChain(robot, "arm");
+  Eigen::MatrixXd J(3, n), F(6, n), dP(3 * ChainSize(robot, chain), n);
+  Eigen::Matrix3Xd P(3, ChainSize(robot, chain));
+  Eigen::VectorXd q = Eigen::VectorXd::Constant(n, 0.1);
+  const long before = g_allocations.load();
+  for (int step = 0; step < 10; ++step) {
+    q[step] += 0.01;
+    ForwardKinematics(robot, q, &kin);
+    PointJacobian(robot, kin, 5, Eigen::Vector3d(0, 0, 0.1), J);
+    FrameJacobian(robot, kin, 7, F);
+    ChainPoints(robot, kin, chain, &P);
+    ChainJacobian(robot, kin, chain, dP);
+  }
+  EXPECT_EQ(g_allocations.load() - before, 0);
+}
 
 TEST(Kinematics, SizeChecksThrow) {
   const Robot robot = LoadRobot(AssetFile("robots/lwr4_sdh.urdf"));
