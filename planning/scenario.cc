@@ -343,6 +343,27 @@ std::unique_ptr<Scenario> LoadScenario(const std::string& path,
       }
     }
   }
+  if (root.Has("robot_chains")) {
+    // Extra chains on the robot: {"name", "closed", "points": [{"link", "xyz"}, ...]}.
+    const Node rc = root.At("robot_chains");
+    for (size_t i = 0; i < rc.Size(); ++i) {
+      const Node cn = rc.At(i);
+      ChainSpec spec;
+      spec.name = cn.At("name").String();
+      spec.closed = cn.Bool("closed", false);
+      const Node pts = cn.At("points");
+      if (pts.Size() < 2) pts.Fail("a chain needs at least 2 points");
+      spec.point_local.resize(3, static_cast<Eigen::Index>(pts.Size()));
+      for (size_t k = 0; k < pts.Size(); ++k) {
+        const Node pn = pts.At(k);
+        const Node ln = pn.At("link");
+        spec.point_link.push_back(Located(ln, [&] { return FindLink(s->robot, ln.String()); }));
+        spec.point_local.col(static_cast<Eigen::Index>(k)) =
+            pn.Vec3("xyz", Eigen::Vector3d::Zero());
+      }
+      s->robot.chains.push_back(spec);
+    }
+  }
   if (root.Has("collision")) {
     const Node cn = root.At("collision");
     s->collision.self_collision = cn.Bool("self", true);
@@ -436,15 +457,22 @@ std::unique_ptr<Scenario> LoadScenario(const std::string& path,
   std::vector<std::string> fp_tasks;
   FinalPoseOptions fpo;
   std::string fp_init = "start";
+  Eigen::VectorXd fp_init_q;
   if (root.Has("final_pose")) {
     const Node fn = root.At("final_pose");
     const Node ln = fn.At("tasks");
     for (size_t i = 0; i < ln.Size(); ++i) fp_tasks.push_back(ln.At(i).String());
     fpo.alpha = fn.Number("alpha", fpo.alpha);
     fpo.prior_scale = fn.Number("prior_scale", fpo.prior_scale);
-    fp_init = fn.String("init", fp_init);
-    if (fp_init != "start" && fp_init != "unwrapped")
-      fn.At("init").Fail("expected start|unwrapped");
+    if (fn.Has("init") && fn.At("init").j.is_array()) {
+      fp_init = "q";
+      fp_init_q = fn.At("init").Vector(n);
+    } else {
+      fp_init = fn.String("init", fp_init);
+    }
+    if (fp_init != "start" && fp_init != "unwrapped" && fp_init != "q") {
+      fn.At("init").Fail("expected \"start\", \"unwrapped\" or a configuration");
+    }
     if (fp_init == "unwrapped" && unwrapped.size() == 0) {
       fn.At("init").Fail("\"unwrapped\" needs a coil start");
     }
@@ -469,7 +497,8 @@ std::unique_ptr<Scenario> LoadScenario(const std::string& path,
       if (!found) root.At("final_pose").At("tasks").Fail("no task named '" + name + "'");
     }
     TaskWorkspace ws(fp);
-    const Eigen::VectorXd init = fp_init == "unwrapped" ? unwrapped : p.q0;
+    const Eigen::VectorXd init =
+        fp_init == "unwrapped" ? unwrapped : (fp_init == "q" ? fp_init_q : p.q0);
     s->goal_q = EstimateFinalPose(fp, fpo, &ws, &init).q;
   }
 

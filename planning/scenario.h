@@ -9,6 +9,8 @@
 //                "collide": true, "capsules": {"chain": "loop", "radius": 0.012}}, ...],
 //     ("capsules": collide with capsules along that chain of the object instead of its own
 //      geometry; "collide": false: chains and rendering only),
+//   "robot_chains": [{"name": "hand", "points": [{"link": "l", "xyz": [0, 0, 0]}, ...]}],
+//     (extra chains on the robot, appended to the URDF's chains)
 //   "collision": {"self": true, "disabled_pairs": [["link_a", "link_b"], ...],
 //                 "disabled_groups": [["sdh_", "arm_link_20"], ...]},  (link-name prefixes: no
 //                 self-collision checks between any two links of a group)
