@@ -4,7 +4,7 @@
 // Layout of a finished sequence in `dir`:
 //   <prefix>00000.png, <prefix>00001.png, ...   every frame (libpng, fast settings)
 //   contact_sheet.png                           thumbnails in a grid, each labelled with its index
-//   <prefix>.mp4 (or .gif)                      when ffmpeg exists and video is enabled
+//   <prefix>video.mp4 (or .gif)                 when ffmpeg exists and video is enabled
 #pragma once
 
 #include <string>

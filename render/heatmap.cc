@@ -94,8 +94,9 @@ HeatmapLayout ComputeHeatmapLayout(int rows, int cols, const HeatmapOptions& o) 
   const float widest_row = font.Width(std::to_string(rows - 1), kTickPx);
   const int left =
       static_cast<int>(std::ceil(widest_row)) + kTickLen + 10 + static_cast<int>(kLabelPx) + 8;
-  const int bar_block = 14 + 14 + kTickLen + 4 + static_cast<int>(font.Width("−0.000", kTickPx)) +
-                        8 + static_cast<int>(kLabelPx) + 6;
+  const int bar_block = 14 + 14 + kTickLen + 4 +
+                        static_cast<int>(font.Width("\u22120.0000", kTickPx)) + 8 +
+                        static_cast<int>(kLabelPx) + 6;
   const int avail_w = std::max(1, o.width - left - bar_block - 6);
   const int avail_h = std::max(1, o.height - top - bottom);
 
@@ -116,6 +117,7 @@ HeatmapLayout ComputeHeatmapLayout(int rows, int cols, const HeatmapOptions& o) 
     L.plot_w = std::min(avail_w, cols * std::max(cell_w, 1));
     L.plot_h = std::min(avail_h, rows * std::max(cell_h, 1));
   }
+  // Centre the whole group (row labels, matrix, colour bar) horizontally.
   L.plot_x = left + (avail_w - L.plot_w) / 2;
   L.plot_y = top + (avail_h - L.plot_h) / 2;
   edges(cols, L.plot_x, L.plot_w, &L.col_edges);
