@@ -2,6 +2,7 @@
 
 #include <cstdlib>
 #include <filesystem>
+#include <stdexcept>
 
 #include "app/command.h"
 
@@ -19,6 +20,22 @@ std::string AssetPath(const std::string& relative) {
                            " (set TOPOPLAN_ASSETS to the repository's assets/ folder)");
   }
   return p.string();
+}
+
+}  // namespace app
+
+namespace app {
+
+std::string ResolveScenarioPath(const std::string& arg) {
+  namespace fs = std::filesystem;
+  if (fs::exists(arg)) return arg;
+  if (arg.find('/') == std::string::npos) {
+    const bool has_ext = arg.size() > 5 && arg.substr(arg.size() - 5) == ".json";
+    const fs::path p = fs::path(AssetRoot()) / "scenarios" / (has_ext ? arg : arg + ".json");
+    if (fs::exists(p)) return p.string();
+  }
+  throw std::invalid_argument("SCENARIO: no file '" + arg +
+                              "' and no scenario of that name in assets/scenarios/");
 }
 
 }  // namespace app

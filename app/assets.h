@@ -13,3 +13,11 @@ std::string AssetRoot();
 std::string AssetPath(const std::string& relative);
 
 }  // namespace app
+
+namespace app {
+
+// A scenario argument: an existing file path as given, or a bare name ("unwrap") looked up as
+// assets/scenarios/NAME.json. Throws std::invalid_argument naming the argument otherwise.
+std::string ResolveScenarioPath(const std::string& arg);
+
+}  // namespace app

@@ -35,6 +35,7 @@ void AddRenderCommands(CLI::App* root, CommandList* commands);    // render, hea
 void AddGraspCommands(CLI::App* root, CommandList* commands);     // grasp synthesize|transfer
 void AddRobotCommands(CLI::App* root, CommandList* commands);     // fk, check
 void AddPlanCommands(CLI::App* root, CommandList* commands);      // plan, bench unwrap
+void AddViewCommand(CLI::App* root, CommandList* commands);       // view (app/ui/cmd_view.cc)
 
 // Runs `run`, mapping exceptions to exit codes and printing "topoplan <name>: error: ..." to
 // stderr.

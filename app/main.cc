@@ -16,6 +16,7 @@ int main(int argc, char** argv) {
   app::AddGraspCommands(&root, &commands);
   app::AddRobotCommands(&root, &commands);
   app::AddPlanCommands(&root, &commands);
+  app::AddViewCommand(&root, &commands);
   try {
     root.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

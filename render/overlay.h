@@ -29,9 +29,9 @@ struct OverlayCommand {
   float clip_min_x = 0, clip_min_y = 0, clip_max_x = 0, clip_max_y = 0;
 };
 
-// Triangles (3 indices each) blended over the frame with premultiplied-free "source alpha" blending,
-// no depth test. `texture` is sampled with the vertices' u, v and multiplied by their colour; it
-// must stay alive while the overlay is drawn. The renderer uploads it again only when
+// Triangles (3 indices each) blended over the frame with premultiplied-free "source alpha"
+// blending, no depth test. `texture` is sampled with the vertices' u, v and multiplied by their
+// colour; it must stay alive while the overlay is drawn. The renderer uploads it again only when
 // `texture_revision` changes (or the pointer or size does).
 struct Overlay {
   std::vector<OverlayVertex> vertices;

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "render/internal/gl_api.h"
+#include "render/internal/overlay_pass.h"
 #include "render/internal/shaders.h"
 #include "render/internal/tessellate.h"
 
@@ -255,7 +256,7 @@ class Renderer::Impl {
   }
 
   Image Render(const Scene& scene, const Camera& camera, int width, int height,
-               const RenderOptions& options) {
+               const RenderOptions& options, const Overlay* overlay) {
     CheckSize(width, height);
     const int samples = options.msaa_samples > 1 ? options.msaa_samples : 0;
     EnsureTargets(width, height, samples);
@@ -266,6 +267,7 @@ class Renderer::Impl {
       gl_.BlitFramebuffer(0, 0, width, height, 0, 0, width, height, GL_COLOR_BUFFER_BIT,
                           GL_NEAREST);
     }
+    if (overlay != nullptr) DrawOverlay(*overlay, width, height, fbo_);
     gl_.BindFramebuffer(GL_FRAMEBUFFER, fbo_);
     gl_.ReadBuffer(GL_COLOR_ATTACHMENT0);
     gl_.PixelStorei(GL_PACK_ALIGNMENT, 1);
@@ -284,6 +286,14 @@ class Renderer::Impl {
                        out.rgba.begin() + static_cast<std::ptrdiff_t>(row * (height - 1 - y)));
     }
     return out;
+  }
+
+  void DrawOverlay(const Overlay& overlay, int width, int height, GLuint fbo) {
+    CheckSize(width, height);
+    if (!overlay_pass_) overlay_pass_ = std::make_unique<internal::OverlayPass>(gl_);
+    gl_.BindFramebuffer(GL_FRAMEBUFFER, fbo);
+    gl_.Viewport(0, 0, width, height);
+    overlay_pass_->Draw(overlay, width, height);
   }
 
   void Draw(const Scene& scene, const Camera& camera, int width, int height, GLuint fbo,
@@ -789,14 +799,19 @@ class Renderer::Impl {
   std::vector<std::pair<const GpuMesh*, std::vector<Instance>>> opaque_;
   std::vector<std::pair<const GpuMesh*, Instance>> translucent_;
   std::vector<Instance> scratch_;
+  std::unique_ptr<internal::OverlayPass> overlay_pass_;  // created on first use
 };
 
 Renderer::Renderer(const GlProcLoader& load) : impl_(std::make_unique<Impl>(load)) {}
 Renderer::~Renderer() = default;
 
 Image Renderer::Render(const Scene& scene, const Camera& camera, int width, int height,
-                       const RenderOptions& options) {
-  return impl_->Render(scene, camera, width, height, options);
+                       const RenderOptions& options, const Overlay* overlay) {
+  return impl_->Render(scene, camera, width, height, options, overlay);
+}
+
+void Renderer::DrawOverlay(const Overlay& overlay, int width, int height, unsigned fbo) {
+  impl_->DrawOverlay(overlay, width, height, fbo);
 }
 
 void Renderer::Draw(const Scene& scene, const Camera& camera, int width, int height, unsigned fbo,

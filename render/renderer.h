@@ -6,8 +6,9 @@
 // projected size: 12/20/32 slices below 6 px / 20 px / above), tubes (cylinder per segment +
 // bead spheres), GL lines, and a ground grid (procedural, in the fragment shader) with
 // Blinn-Phong lighting from up to 4 directional lights plus hemispheric ambient, and a soft
-// shadow (1024^2 shadow map, 4-tap bilinear PCF) from the first light onto everything. Renders are deterministic: the same Scene, Camera, size
-// and options give byte-identical pixels run to run (tessellation counts are fixed; no time).
+// shadow (1024^2 shadow map, 4-tap bilinear PCF) from the first light onto everything. Renders are
+// deterministic: the same Scene, Camera, size and options give byte-identical pixels run to run
+// (tessellation counts are fixed; no time).
 //
 // Cost on the 2-core reference machine (tests/bench/bench_render.cc): see the README.
 #pragma once
@@ -18,6 +19,7 @@
 
 #include "render/image.h"
 #include "render/offscreen_context.h"
+#include "render/overlay.h"
 #include "render/scene.h"
 
 namespace render {
@@ -46,13 +48,18 @@ class Renderer {
   // it back (rows top-down, alpha 255). Throws std::invalid_argument for sizes outside
   // [1, 8192] or a degenerate camera (eye == target, up parallel to the view direction, fovy
   // outside (0, 180)).
+  // If `overlay` is not null it is drawn over the scene (same pixels as DrawOverlay in a window).
   Image Render(const Scene& scene, const Camera& camera, int width, int height,
-               const RenderOptions& options = {});
+               const RenderOptions& options = {}, const Overlay* overlay = nullptr);
 
   // Draws into the framebuffer object `fbo` (0: the window's default framebuffer) of size
   // width x height without reading back; for the interactive viewer. Leaves the viewport set.
   void Draw(const Scene& scene, const Camera& camera, int width, int height, unsigned fbo,
             const RenderOptions& options = {});
+
+  // Draws a 2-D overlay (the viewer's ImGui panels) over the framebuffer `fbo` of size
+  // width x height, which already holds a frame; no depth test, source-alpha blending.
+  void DrawOverlay(const Overlay& overlay, int width, int height, unsigned fbo);
 
   GlInfo info() const;
 

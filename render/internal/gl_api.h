@@ -82,7 +82,8 @@ namespace render::internal {
   X(PFNGLENABLEVERTEXATTRIBARRAYPROC, EnableVertexAttribArray)               \
   X(PFNGLVERTEXATTRIBDIVISORPROC, VertexAttribDivisor)                       \
   X(PFNGLDRAWARRAYSPROC, DrawArrays)                                         \
-  X(PFNGLDRAWELEMENTSINSTANCEDPROC, DrawElementsInstanced)
+  X(PFNGLDRAWELEMENTSINSTANCEDPROC, DrawElementsInstanced)                   \
+  X(PFNGLSCISSORPROC, Scissor)
 
 struct GlApi {
 #define TOPOPLAN_GL_MEMBER(type, name) type name = nullptr;

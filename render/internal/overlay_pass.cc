@@ -127,9 +127,8 @@ void OverlayPass::Draw(const Overlay& overlay, int width, int height) {
   // in the entry points the renderer loads).
   absolute_indices_.resize(overlay.indices.size());
   for (const OverlayCommand& c : overlay.commands) {
-    const std::uint32_t end =
-        std::min<std::uint32_t>(c.index_offset + c.index_count,
-                                static_cast<std::uint32_t>(overlay.indices.size()));
+    const std::uint32_t end = std::min<std::uint32_t>(
+        c.index_offset + c.index_count, static_cast<std::uint32_t>(overlay.indices.size()));
     for (std::uint32_t i = c.index_offset; i < end; ++i) {
       absolute_indices_[i] = overlay.indices[i] + c.vertex_offset;
     }
@@ -164,10 +163,10 @@ void OverlayPass::Draw(const Overlay& overlay, int width, int height) {
     const int y1 = std::clamp(static_cast<int>(std::ceil(c.clip_max_y)), 0, height);
     if (x1 <= x0 || y1 <= y0) continue;
     gl_.Scissor(x0, height - y1, x1 - x0, y1 - y0);
-    gl_.DrawElementsInstanced(
-        GL_TRIANGLES, static_cast<GLsizei>(c.index_count), GL_UNSIGNED_INT,
-        reinterpret_cast<void*>(static_cast<std::uintptr_t>(c.index_offset) * sizeof(std::uint32_t)),
-        1);
+    gl_.DrawElementsInstanced(GL_TRIANGLES, static_cast<GLsizei>(c.index_count), GL_UNSIGNED_INT,
+                              reinterpret_cast<void*>(static_cast<std::uintptr_t>(c.index_offset) *
+                                                      sizeof(std::uint32_t)),
+                              1);
   }
   gl_.Disable(GL_SCISSOR_TEST);
   gl_.Disable(GL_BLEND);

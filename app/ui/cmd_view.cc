@@ -1,0 +1,53 @@
+// `topoplan view`: the interactive window, or its headless twin with --screenshot.
+#include <memory>
+
+#include "app/command.h"
+#include "app/io.h"
+#include "app/ui/viewer.h"
+#include "render/offscreen_context.h"
+
+namespace app {
+
+void AddViewCommand(CLI::App* root, CommandList* commands) {
+  auto o = std::make_shared<ui::ViewerOptions>();
+  auto size = std::make_shared<std::string>("1280x720");
+  CLI::App* view = root->add_subcommand(
+      "view", "Interactive viewer (GLFW + Dear ImGui); headless with --screenshot");
+  view->add_option("SCENARIO", o->scenario,
+                   "scenario name (assets/scenarios/NAME.json) or path, URDF or scene JSON");
+  view->add_option("--screenshot", o->screenshot,
+                   "run headless (OSMesa) and write the final frame, UI included, to this PNG");
+  view->add_option("--script", o->script,
+                   "command file: load, plan, step, play, pause, seek T, joint I A, reset, toggle "
+                   "NAME, planner P, seed N, camera YAW PITCH DIST, frames N, click WIDGET, "
+                   "screenshot PNG, quit");
+  view->add_flag("--headless", o->headless, "no window even without --screenshot");
+  view->add_flag("!--no-overlay", o->overlay, "headless frames without the UI panels");
+  view->add_option("--size", *size, "window / frame size WxH")->capture_default_str();
+  view->add_option("--exit-after", o->exit_after, "close the window after N frames (tests)");
+  view->add_flag("--print-widgets", o->print_widgets,
+                 "print the screen rectangles of the named widgets (for scripted clicks)");
+  view->footer(
+      "Mouse: left drag orbits, right drag pans, wheel zooms. Buttons: Plan, Step sweep (shows the "
+      "next AICO sweep), Play/Pause and the timeline scrubber; joint sliders move the robot.");
+  commands->push_back(
+      {view, [o, size]() {
+         const auto x = size->find('x');
+         const std::vector<double> wh =
+             x == std::string::npos
+                 ? std::vector<double>{}
+                 : ParseNumberList(size->substr(0, x) + "," + size->substr(x + 1), "--size", 2);
+         if (wh.size() != 2 || wh[0] < 64 || wh[1] < 64 || wh[0] > 8192 || wh[1] > 8192) {
+           throw std::invalid_argument("--size: expected WxH, 64..8192, got '" + *size + "'");
+         }
+         o->width = static_cast<int>(wh[0]);
+         o->height = static_cast<int>(wh[1]);
+         try {
+           return ui::RunViewer(*o);
+         } catch (const render::EnvironmentError& e) {
+           throw EnvironmentError(e.what());
+         }
+       }});
+}
+
+}  // namespace app

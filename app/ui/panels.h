@@ -1,0 +1,27 @@
+// Dear ImGui panels of the viewer. Panels edit Settings in place and push Commands; they never
+// call planners or the renderer themselves (house style §8.6).
+#pragma once
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "app/session.h"
+#include "app/settings.h"
+
+namespace app::ui {
+
+// Screen rectangles of the named widgets drawn in the last frame ("Plan", "Step sweep", "chains",
+// ...), in framebuffer pixels: what `--script` `click NAME` and the xvfb test aim at.
+struct WidgetRects {
+  struct Rect {
+    float x0, y0, x1, y1;
+  };
+  std::map<std::string, Rect> rects;
+};
+
+// Draws every panel for one frame. `scenarios` lists the choices of the scenario picker.
+void DrawPanels(const Session& session, const std::vector<std::string>& scenarios,
+                Settings* settings, std::vector<Command>* commands, WidgetRects* rects);
+
+}  // namespace app::ui
