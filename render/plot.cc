@@ -177,7 +177,12 @@ Image RenderPlot(const std::vector<PlotSeries>& series, const PlotOptions& o) {
   plcol0(kInkSlot);
   plwidth(1.0);
   plbox("bcnst", 0.0, 0, o.log_y ? "bcnstlv" : "bcnstv", 0.0, 0);
-  pllab(o.x_label.c_str(), o.y_label.c_str(), o.title.c_str());
+  pllab(o.x_label.c_str(), o.y_label.c_str(), "");
+  if (!o.title.empty()) {  // the title a little larger than the labels
+    plschr(0.0, 1.2 * text_scale);
+    plmtex("t", 1.2, 0.5, 0.5, o.title.c_str());
+    plschr(0.0, text_scale);
+  }
 
   // Series: lines broken at unplottable points, then markers, then failures.
   std::vector<double> xs, ys;
