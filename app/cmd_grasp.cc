@@ -14,6 +14,7 @@
 #include "app/assets.h"
 #include "app/command.h"
 #include "app/io.h"
+#include "app/scene_builder.h"
 #include "planning/grasp.h"
 #include "planning/grasp_object.h"
 #include "planning/grasp_transfer.h"
@@ -22,8 +23,12 @@
 #include "planning/physics/ode_runtime.h"
 #include "planning/physics/stability.h"
 #include "planning/robot_io.h"
+#include "render/frames.h"
 #include "render/image.h"
+#include "render/offscreen_context.h"
 #include "render/plot.h"
+#include "render/renderer.h"
+#include "render/scene.h"
 
 namespace app {
 namespace {
@@ -110,6 +115,159 @@ nlohmann::json VecJson(const Eigen::VectorXd& v) {
 
 double Round(double v, double scale = 1e6) { return std::round(v * scale) / scale; }
 
+// --- Frames ------------------------------------------------------------------------------------
+
+constexpr int kFrameWidth = 480;
+constexpr int kFrameHeight = 360;
+
+render::Material Mat(float r, float g, float b, float a = 1.0f) {
+  render::Material m;
+  m.rgba = {r, g, b, a};
+  return m;
+}
+
+render::Shape ToRenderShape(const planning::physics::SimShape& s, const Eigen::Isometry3d& world,
+                            const render::Material& material) {
+  render::Shape out;
+  switch (s.kind) {
+    case planning::physics::SimShape::Kind::kSphere:
+      out.kind = render::Shape::Kind::kSphere;
+      break;
+    case planning::physics::SimShape::Kind::kCapsule:
+      out.kind = render::Shape::Kind::kCapsule;
+      break;
+    case planning::physics::SimShape::Kind::kCylinder:
+      out.kind = render::Shape::Kind::kCylinder;
+      break;
+    case planning::physics::SimShape::Kind::kBox:
+    case planning::physics::SimShape::Kind::kTrimesh:
+      out.kind = render::Shape::Kind::kBox;
+      break;
+  }
+  out.world_from_shape = (world * s.body_from_shape).matrix().cast<float>();
+  out.size = s.size.cast<float>();
+  out.material = material;
+  return out;
+}
+
+// The ODE state as a render scene: hand links (grey-blue), object (orange), contact points (red),
+// gravity direction (black line from the object).
+render::Scene SimScene(const planning::physics::SimHand& hand,
+                       const planning::physics::SimObject& object,
+                       const planning::physics::SimState& state, const Eigen::Vector3d& gravity) {
+  render::Scene scene;
+  for (size_t i = 0; i < hand.links.size(); ++i) {
+    for (const auto& s : hand.links[i].shapes) {
+      scene.shapes.push_back(ToRenderShape(
+          s, state.world_from_link[i], i == 0 ? Mat(0.45f, 0.5f, 0.6f) : Mat(0.6f, 0.65f, 0.75f)));
+    }
+  }
+  for (const auto& s : object.shapes) {
+    scene.shapes.push_back(ToRenderShape(s, state.world_from_object, Mat(0.95f, 0.6f, 0.2f)));
+  }
+  for (const auto& c : state.contacts) {
+    scene.shapes.push_back(
+        render::MakeSphere(c.position.cast<float>(), 0.005f, Mat(0.9f, 0.05f, 0.05f)));
+  }
+  if (gravity.norm() > 0) {
+    render::Lines g;
+    const Eigen::Vector3d o = state.world_from_object.translation();
+    g.points = {o.cast<float>(), (o + 0.012 * gravity).cast<float>()};
+    g.width = 3.0f;
+    scene.lines.push_back(g);
+  }
+  return scene;
+}
+
+void AddObjectShapes(const planning::GraspObject& object, const Eigen::Isometry3d& pose,
+                     render::Scene* scene) {
+  const planning::physics::SimObject o = planning::physics::BuildSimObject(object, pose);
+  for (const auto& s : o.shapes) {
+    scene->shapes.push_back(ToRenderShape(s, pose, Mat(0.95f, 0.6f, 0.2f)));
+  }
+}
+
+// Renders the human grasp, the SDH approach (AICO slices) and the final SDH grasp, then the ODE
+// closing and the six gravity trials, into DIR/frames/<grasp>_<method>/.
+class GraspFrameWriter {
+ public:
+  GraspFrameWriter() : renderer_(context_.proc_loader()) {}
+
+  void Transfer(const std::string& dir, const planning::TransferSetup& setup,
+                const planning::TransferResult& t) {
+    render::FrameWriterOptions fo;
+    fo.prefix = "transfer_";
+    fo.video = false;
+    render::FrameWriter writer(dir, fo);
+    SceneBuildOptions opt;
+    opt.grid = false;
+    opt.chains = true;
+    // Human grasp.
+    planning::KinematicsData hk(setup.human);
+    planning::ForwardKinematics(setup.human, setup.human_q, &hk);
+    render::Scene human;
+    AddRobotShapes(setup.human, hk, Eigen::Isometry3d::Identity(), opt, &cache_, &human);
+    AddObjectShapes(setup.object, setup.grasp.world_from_object, &human);
+    // Look at the palm from the object's side: along the SDH placement's z (palm normal), offset
+    // sideways so fingers and object separate.
+    const Eigen::Matrix3d rs = setup.sdh_placement.linear();
+    view_ = (rs * Eigen::Vector3d(0.5, 0.6, 1.0)).cast<float>();
+    camera_ = FrameSceneCamera(human, view_, 40.0f);
+    writer.Add(renderer_.Render(human, camera_, kFrameWidth, kFrameHeight));
+    planning::KinematicsData sk(setup.sdh);
+    for (int c = 0; c < t.trajectory.q.cols(); ++c) {
+      planning::ForwardKinematics(setup.sdh, t.trajectory.q.col(c), &sk);
+      render::Scene scene;
+      AddRobotShapes(setup.sdh, sk, Eigen::Isometry3d::Identity(), opt, &cache_, &scene);
+      AddObjectShapes(setup.object, setup.grasp.world_from_object, &scene);
+      if (c == 0) camera_ = FrameSceneCamera(scene, view_, 40.0f);
+      writer.Add(renderer_.Render(scene, camera_, kFrameWidth, kFrameHeight));
+    }
+    writer.Finish();
+  }
+
+  // Callback for TestGraspStability: a frame every `every` steps of each phase.
+  planning::physics::StepCallback Stability(const std::string& dir,
+                                            const planning::physics::SimHand& hand,
+                                            const planning::physics::SimObject& object,
+                                            const planning::physics::StabilityOptions& stab) {
+    render::FrameWriterOptions fo;
+    fo.prefix = "stability_";
+    fo.video = true;
+    writer_ = std::make_unique<render::FrameWriter>(dir, fo);
+    camera_set_ = false;
+    return [this, &hand, &object, stab](int phase, const planning::physics::GraspSimulation& sim) {
+      const int every = phase == 0 ? 100 : 250;
+      const int step = sim.state().step;
+      if (step % every != 0) return;
+      Eigen::Vector3d g = Eigen::Vector3d::Zero();
+      if (phase > 0) {
+        g[(phase - 1) / 2] = ((phase - 1) % 2 == 0 ? 1.0 : -1.0) * stab.gravity;
+        g = sim.state().world_from_link[0].linear() * g;
+      }
+      const render::Scene scene = SimScene(hand, object, sim.state(), g);
+      if (!camera_set_) {
+        camera_ = FrameSceneCamera(scene, view_, 40.0f);
+        camera_set_ = true;
+      }
+      writer_->Add(renderer_.Render(scene, camera_, kFrameWidth, kFrameHeight));
+    };
+  }
+  void FinishStability() {
+    if (writer_) writer_->Finish();
+    writer_.reset();
+  }
+
+ private:
+  render::OffscreenContext context_;
+  render::Renderer renderer_;
+  SceneMeshCache cache_;
+  render::Camera camera_;
+  Eigen::Vector3f view_ = Eigen::Vector3f(1.0f, 1.3f, 0.8f);
+  bool camera_set_ = false;
+  std::unique_ptr<render::FrameWriter> writer_;
+};
+
 int RunTransfer(const TransferArgs& a) {
   if (!(a.mu >= 0) || !std::isfinite(a.mu)) {
     throw std::invalid_argument("--mu: must be a finite number >= 0");
@@ -142,6 +300,8 @@ int RunTransfer(const TransferArgs& a) {
   }
 
   planning::physics::OdeRuntime ode;
+  std::unique_ptr<GraspFrameWriter> frames;
+  if (a.frames) frames = std::make_unique<GraspFrameWriter>();
   planning::physics::StabilityOptions stab;
   stab.sim.mu = a.mu;
   nlohmann::json report;
@@ -172,8 +332,17 @@ int RunTransfer(const TransferArgs& a) {
           planning::physics::BuildSimHand(setup.sdh, t.q, "sdh_palm");
       const planning::physics::SimObject body =
           planning::physics::BuildSimObject(object, g.world_from_object);
+      planning::physics::StepCallback on_step;
+      const std::string frame_dir =
+          (std::filesystem::path(a.out_dir) / "frames" / (g.name + "_" + planning::ToString(m)))
+              .string();
+      if (frames) {
+        frames->Transfer(frame_dir + "/transfer", setup, t);
+        on_step = frames->Stability(frame_dir + "/stability", hand, body, stab);
+      }
       const planning::physics::StabilityResult r =
-          planning::physics::TestGraspStability(ode, hand, body, stab);
+          planning::physics::TestGraspStability(ode, hand, body, stab, on_step);
+      if (frames) frames->FinishStability();
       if (!gj.contains("human_winding")) gj["human_winding"] = VecJson(t.human_winding);
       nlohmann::json j;
       j["target_winding"] = VecJson(t.target_winding);
