@@ -446,12 +446,12 @@ int RunTransfer(const TransferArgs& a) {
     series.push_back(ps);
   }
   render::PlotOptions po;
-  po.width = 800;
-  po.height = 480;
+  po.width = 900;
+  po.height = 560;
   po.title =
       "SDH grasp transfer: gravity directions held (mu " + std::to_string(a.mu).substr(0, 4) + ")";
-  po.x_label = "grasp (order of summary.md)";
-  po.y_label = "directions passed of 6";
+  po.x_label = "grasp (row of summary.md)";
+  po.y_label = "directions held";
   po.x_min = 0.5;
   po.x_max = grasps.size() + 0.5;
   po.y_min = -0.5;
