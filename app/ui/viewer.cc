@@ -70,6 +70,8 @@ class ScriptRunner {
       --wait_;
       return;
     }
+    // The first frame lays out the widgets that `click` aims at.
+    if (rects.rects.empty()) return;
     while (next_ < lines_.size()) {
       const ScriptLine& l = lines_[next_++];
       const auto arg = [&](size_t i) { return l.args.at(i); };
