@@ -151,8 +151,8 @@ void AddRobotCommands(CLI::App* root, CommandList* commands) {
          RobotScene scene = LoadRobotScene(ca->input, PackagePaths(ca->package_paths));
          for (const std::string& spec : ca->objects) AddObjectSpec(spec, &scene);
          if (!ca->q.empty()) scene.q = ParseQ(scene.robot, ca->q);
-         planning::CollisionOptions options;
-         options.self_collision = !ca->no_self;
+         planning::CollisionOptions options = scene.collision_options;
+         options.self_collision = options.self_collision && !ca->no_self;
          planning::KinematicsData kin(scene.robot);
          const planning::Environment env = CollisionEnvironment(scene);
          planning::CollisionData coll(scene.robot, env, options);

@@ -6,12 +6,14 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <sstream>
 #include <stdexcept>
 
 #include "app/assets.h"
 #include "app/io.h"
 #include "planning/robot_io.h"
+#include "planning/scenario.h"
 
 namespace app {
 namespace {
@@ -124,9 +126,13 @@ void AddObjectSpec(const std::string& spec, RobotScene* scene) {
   }
   planning::AddObject(object, Pose(xyz, rpy), name, &scene->env);
   scene->collides.push_back(true);
+  if (scene->has_collision_env) {
+    planning::AddObject(object, Pose(xyz, rpy), name, &scene->collision_env);
+  }
 }
 
 planning::Environment CollisionEnvironment(const RobotScene& scene) {
+  if (scene.has_collision_env) return scene.collision_env;
   planning::Environment env;
   for (size_t i = 0; i < scene.env.objects.size(); ++i) {
     if (i >= scene.collides.size() || scene.collides[i])
@@ -158,6 +164,18 @@ RobotScene LoadRobotScene(const std::string& path, const std::vector<std::string
   }
   const nlohmann::json& doc = s.document;
   const fs::path base = fs::path(path).parent_path();
+  if (doc.is_object() && doc.contains("robot") && doc.contains("tasks")) {
+    // A planning scenario: its own loader decides the start configuration and the collision set.
+    const std::unique_ptr<planning::Scenario> sc = planning::LoadScenario(path);
+    s.robot = sc->robot;
+    s.q = sc->problem.q0;
+    s.env = sc->objects;
+    s.collides.assign(s.env.objects.size(), true);
+    s.has_collision_env = true;
+    s.collision_env = sc->env;
+    s.collision_options = sc->collision;
+    return s;
+  }
   if (!doc.is_object() || !doc.contains("robot") || !doc["robot"].is_string()) {
     throw std::invalid_argument(path + ": robot: expected a URDF path (string)");
   }

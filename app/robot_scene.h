@@ -1,7 +1,10 @@
 // A robot with a configuration and static objects, loaded from a URDF or a scene/scenario JSON:
 // what `topoplan fk/check/render` and the viewer work on.
 //
-// Scene JSON (also accepted: any scenario file with these keys; other keys are ignored):
+// Planning scenarios (a JSON with "robot" and "tasks", planning/scenario.h) are loaded with
+// planning::LoadScenario: robot, start configuration q0 (e.g. the start coil), objects, the
+// collision environment and options as the planners see them.
+// Scene JSON (other keys are ignored):
 //   {"robot": "robots/lwr4_sdh.urdf",          // relative to the JSON file, else to assets/
 //    "q": [0, 0.5, ...],                        // optional, fk joint order; default zeros
 //    "objects": [{"name": "pole", "urdf": "objects/pole.urdf",      // optional
@@ -27,7 +30,12 @@ struct RobotScene {
   Eigen::VectorXd q;           // size num_dofs(robot)
   planning::Environment env;   // every object (drawn)
   std::vector<bool> collides;  // per object of env: part of the collision environment
-  nlohmann::json document;     // the JSON document (null for a URDF input), for optional extras
+  // Set for planning scenarios: what the planners collide with (may replace objects by capsules)
+  // and their options (disabled pairs).
+  bool has_collision_env = false;
+  planning::Environment collision_env;
+  planning::CollisionOptions collision_options;
+  nlohmann::json document;  // the JSON document (null for a URDF input), for optional extras
 };
 
 // Package roots for package:// URIs: `extra` followed by the entries of $ROS_PACKAGE_PATH.
@@ -47,7 +55,8 @@ Eigen::VectorXd ParseQ(const planning::Robot& robot, const std::string& text);
 // Adds an object from "URDF[@x,y,z[,roll,pitch,yaw]]" (the `--object` flag).
 void AddObjectSpec(const std::string& spec, RobotScene* scene);
 
-// The objects of `scene` that take part in collision checks.
+// The objects of `scene` that take part in collision checks (a scenario's collision environment
+// when it has one).
 planning::Environment CollisionEnvironment(const RobotScene& scene);
 
 }  // namespace app

@@ -180,7 +180,7 @@ render::Scene BuildRobotScene(const planning::Robot& robot, const planning::Kine
 
 render::Camera FrameSceneCamera(const render::Scene& scene, const Eigen::Vector3f& view_dir,
                                 float fovy_deg) {
-  // Bounding sphere of the shapes, each shape bounded by a sphere of its largest size entry.
+  // World AABB of every shape and tube.
   Eigen::Vector3f lo = Eigen::Vector3f::Constant(std::numeric_limits<float>::max());
   Eigen::Vector3f hi = -lo;
   auto grow = [&](const Eigen::Vector3f& p, float r) {
@@ -188,29 +188,57 @@ render::Camera FrameSceneCamera(const render::Scene& scene, const Eigen::Vector3
     hi = hi.cwiseMax(p + Eigen::Vector3f::Constant(r));
   };
   for (const render::Shape& s : scene.shapes) {
-    float r = s.size.maxCoeff();
-    if (s.kind == render::Shape::Kind::kCapsule || s.kind == render::Shape::Kind::kCylinder) {
-      r = s.size.x() + 0.5f * s.size.y();
-    } else if (s.kind == render::Shape::Kind::kBox) {
-      r = 0.5f * s.size.norm();
-    } else if (s.kind == render::Shape::Kind::kMesh && s.mesh) {
-      r = 0;
-      for (const Eigen::Vector3f& v : s.mesh->positions)
-        r = std::max(r, v.cwiseProduct(s.size).norm());
+    const Eigen::Matrix3f R = s.world_from_shape.block<3, 3>(0, 0);
+    const Eigen::Vector3f t = s.world_from_shape.block<3, 1>(0, 3);
+    switch (s.kind) {
+      case render::Shape::Kind::kSphere:
+        grow(t, s.size.x());
+        break;
+      case render::Shape::Kind::kCapsule:
+      case render::Shape::Kind::kCylinder: {
+        const Eigen::Vector3f half = R.col(2) * (0.5f * s.size.y());
+        grow(t + half, s.size.x());
+        grow(t - half, s.size.x());
+        break;
+      }
+      case render::Shape::Kind::kBox:
+        for (int c = 0; c < 8; ++c) {
+          const Eigen::Vector3f corner(c & 1 ? 0.5f : -0.5f, c & 2 ? 0.5f : -0.5f,
+                                       c & 4 ? 0.5f : -0.5f);
+          grow(t + R * corner.cwiseProduct(s.size), 0.0f);
+        }
+        break;
+      case render::Shape::Kind::kMesh:
+        if (s.mesh) {
+          for (const Eigen::Vector3f& v : s.mesh->positions)
+            grow(t + R * v.cwiseProduct(s.size), 0);
+        }
+        break;
     }
-    grow(s.world_from_shape.block<3, 1>(0, 3), r);
   }
   for (const render::Tube& t : scene.tubes) {
     for (const Eigen::Vector3f& p : t.points) grow(p, t.radius);
   }
   render::Camera camera;
   if (!(lo.x() <= hi.x())) return camera;
+  // Distance at which every AABB corner fits the vertical and (4:3) horizontal field of view.
   const Eigen::Vector3f center = 0.5f * (lo + hi);
-  const float radius = std::max(0.5f * (hi - lo).norm(), 0.05f);
-  const float half = 0.5f * fovy_deg * static_cast<float>(M_PI) / 180.0f;
-  const float distance = 1.05f * radius / std::sin(half);
+  const Eigen::Vector3f back = view_dir.normalized();  // target → eye
+  const Eigen::Vector3f right = (-back).cross(Eigen::Vector3f::UnitZ()).normalized();
+  const Eigen::Vector3f up = right.cross(-back);
+  const float tan_v = std::tan(0.5f * fovy_deg * static_cast<float>(M_PI) / 180.0f);
+  const float tan_h = tan_v * 4.0f / 3.0f;
+  float distance = 0.1f;
+  for (int c = 0; c < 8; ++c) {
+    const Eigen::Vector3f corner((c & 1 ? hi : lo).x(), (c & 2 ? hi : lo).y(),
+                                 (c & 4 ? hi : lo).z());
+    const Eigen::Vector3f d = corner - center;
+    const float along = d.dot(back);  // towards the eye: closer to the camera
+    distance = std::max(distance, std::abs(d.dot(up)) / tan_v + along);
+    distance = std::max(distance, std::abs(d.dot(right)) / tan_h + along);
+  }
   camera.target = center;
-  camera.eye = center + distance * view_dir.normalized();
+  camera.eye = center + 1.05f * distance * back;
   camera.fovy_deg = fovy_deg;
   return camera;
 }
