@@ -51,6 +51,7 @@ nlohmann::json ReportJson(const planning::Scenario& s, const planning::PlanRepor
   j["collision_checks"] = r.collision_checks;
   j["narrow_phase_calls"] = r.narrow_phase_calls;
   j["iterations"] = r.iterations;
+  j["attempts"] = r.attempts;
   j["cost"] = r.cost;
   j["path_length"] = r.path_length;
   j["time_s"] = r.time_s;

@@ -25,7 +25,8 @@
 //   "success": {"writhe_total_below": 0.05, "position": {"task": "reach", "tolerance": 0.05},
 //               "inside_box": "box"},
 //   "aico": {"max_iterations": 40, "tolerance": 0.01, "damping": 1, "sweep_mode": "forwardly",
-//            "max_step": 0.3, "rollout_init": true, "rollout_prior": 100},
+//            "max_step": 0.3, "rollout_init": true, "rollout_prior": 100,
+//            "retry": {"precision_scale": {"qdot": 30, ...}, "max_iterations": 60}},
 //   "rrt": {"range": 0.5, "resolution": 0.02, "goal_bias": 0.1, "max_checks": 100000}
 // }
 // Feature types: position {link, offset}, axis_alignment {link, axis, direction}, joint_limits
@@ -84,6 +85,11 @@ struct Scenario {
   CollisionOptions collision;
   MotionProblem problem;  // q0, tasks (targets resolved), T, dt, process parameters
   AicoOptions aico;
+  // Optional second AICO attempt (scenario "aico.retry"): the same tasks with per-task precision
+  // multipliers, used only when the first attempt fails validation or the success criteria.
+  bool has_retry = false;
+  MotionProblem retry_problem;
+  AicoOptions retry_aico;
   RrtOptions rrt;
   double check_resolution = 0.02;  // edge resolution for validating any output path
   Eigen::VectorXd goal_q;          // q̂_T (final-pose estimate): the RRT goal
@@ -109,7 +115,8 @@ struct PlanReport {
   SolveStatus status = SolveStatus::kMaxIterations;
   long collision_checks = 0;    // configuration-level collision queries (thesis unit)
   long narrow_phase_calls = 0;  // FCL shape-pair calls behind them
-  long iterations = 0;          // AICO sweeps / RRT iterations
+  long iterations = 0;          // AICO sweeps (all attempts) / RRT iterations
+  int attempts = 1;             // AICO: 2 when the scenario's retry ran
   double cost = 0.0;            // AICO: final total cost; RRT: joint-space path length
   double path_length = 0.0;     // joint-space path length (rad)
   double time_s = 0.0;          // wall-clock planning time (the only non-deterministic field)
