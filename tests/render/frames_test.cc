@@ -2,7 +2,9 @@
 #include "render/frames.h"
 
 #include <gtest/gtest.h>
+#include <stdlib.h>
 
+#include <cstdlib>
 #include <filesystem>
 
 namespace render {
@@ -34,12 +36,31 @@ TEST(FramesTest, WritesNumberedFramesAndAContactSheet) {
 }
 
 TEST(FramesTest, VideoIsSkippedQuietlyWithoutFfmpeg) {
-  if (!FindExecutable("ffmpeg").empty()) GTEST_SKIP() << "ffmpeg is installed";
+  // Hide any ffmpeg by emptying PATH for the duration of Finish().
+  const std::string saved = std::getenv("PATH") ? std::getenv("PATH") : "";
+  setenv("PATH", "/nonexistent-topoplan", 1);
   const fs::path dir = fs::path(TOPOPLAN_BINARY_DIR) / "test-tmp" / "frames_video_test";
   fs::remove_all(dir);
   FrameWriter writer(dir.string());
   writer.Add(Image(32, 32, 0, 0, 0));
-  EXPECT_TRUE(writer.Finish().video.empty());
+  const FrameSequence seq = writer.Finish();
+  setenv("PATH", saved.c_str(), 1);
+  EXPECT_TRUE(seq.video.empty());
+  EXPECT_FALSE(seq.contact_sheet.empty());
+}
+
+TEST(FramesTest, WritesAnMp4WhenFfmpegExists) {
+  if (FindExecutable("ffmpeg").empty()) GTEST_SKIP() << "ffmpeg is not installed (optional)";
+  const fs::path dir = fs::path(TOPOPLAN_BINARY_DIR) / "test-tmp" / "frames_mp4_test";
+  fs::remove_all(dir);
+  FrameWriterOptions o;
+  o.contact_sheet = false;
+  FrameWriter writer(dir.string(), o);
+  for (int i = 0; i < 3; ++i) writer.Add(Image(63, 47, static_cast<std::uint8_t>(80 * i), 50, 90));
+  const FrameSequence seq = writer.Finish();
+  ASSERT_FALSE(seq.video.empty());
+  EXPECT_EQ(fs::path(seq.video).filename(), "frame_video.mp4");
+  EXPECT_GT(fs::file_size(seq.video), 100u);
 }
 
 TEST(FramesTest, FindExecutable) {
