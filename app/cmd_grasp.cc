@@ -96,6 +96,8 @@ std::vector<std::string> SelectGraspFiles(const std::string& which) {
     std::sort(files.begin(), files.end());
   } else if (fs::exists(which)) {
     files.push_back(which);
+  } else if (which.find('/') != std::string::npos || fs::path(which).extension() == ".json") {
+    throw std::invalid_argument("--grasp: " + which + ": cannot open grasp file");
   } else {
     const fs::path p = fs::path(AssetRoot()) / "grasps" / (which + ".json");
     if (!fs::exists(p)) {
@@ -343,7 +345,12 @@ int RunTransfer(const TransferArgs& a) {
       const planning::physics::StabilityResult r =
           planning::physics::TestGraspStability(ode, hand, body, stab, on_step);
       if (frames) frames->FinishStability();
-      if (!gj.contains("human_winding")) gj["human_winding"] = VecJson(t.human_winding);
+      if (!gj.contains("human_winding")) {
+        gj["human_winding"] = VecJson(t.human_winding);
+        nlohmann::json hp = nlohmann::json::array();
+        for (const Eigen::VectorXd& v : t.human_phalanx_winding) hp.push_back(VecJson(v));
+        gj["human_phalanx_winding"] = hp;
+      }
       nlohmann::json j;
       j["target_winding"] = VecJson(t.target_winding);
       j["robot_winding"] = VecJson(t.robot_winding);

@@ -397,7 +397,9 @@ TransferResult TransferGrasp(const TransferSetup& s, TransferMethod method,
   // Human encoding and the mapped target.
   KinematicsData hkin(s.human);
   ForwardKinematics(s.human, s.human_q, &hkin);
-  res.human_winding = EncodeGrasp(s.human, hkin, s.human_chains, s.reference).finger;
+  const GraspEncoding human_enc = EncodeGrasp(s.human, hkin, s.human_chains, s.reference);
+  res.human_winding = human_enc.finger;
+  res.human_phalanx_winding = human_enc.phalanx;
   res.target_winding = FingerCorrespondence() * res.human_winding;
 
   // Placement configuration: palm at the nominal pose, spread from the grasp type.

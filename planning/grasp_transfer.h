@@ -61,11 +61,12 @@ struct TransferOptions {
 // Result of one transfer.
 struct TransferResult {
   TransferMethod method = TransferMethod::kWinding;
-  Eigen::VectorXd q;               // final SDH configuration (floating hand robot)
-  Trajectory trajectory;           // approach motion (winding/fingertip: AICO; joint: 2 points)
-  Eigen::VectorXd human_winding;   // 5: thumb, index, middle, ring, little
-  Eigen::VectorXd target_winding;  // 3: M · human_winding
-  Eigen::VectorXd robot_winding;   // 3: SDH thumb, finger_1, finger_2 at q
+  Eigen::VectorXd q;              // final SDH configuration (floating hand robot)
+  Trajectory trajectory;          // approach motion (winding/fingertip: AICO; joint: 2 points)
+  Eigen::VectorXd human_winding;  // 5: thumb, index, middle, ring, little
+  std::vector<Eigen::VectorXd> human_phalanx_winding;  // per finger, per chain segment
+  Eigen::VectorXd target_winding;                      // 3: M · human_winding
+  Eigen::VectorXd robot_winding;                       // 3: SDH thumb, finger_1, finger_2 at q
   std::vector<Eigen::VectorXd> robot_phalanx_winding;
   double min_clearance = 0.0;  // hand vs object at q [m] (negative = penetration)
   std::string solver;          // "aico" or "direct"
