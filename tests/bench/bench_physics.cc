@@ -2,8 +2,11 @@
 // 6 gravity directions × 2 s at 1 kHz (12 500 steps) — in ≤ 2 s.
 #include <benchmark/benchmark.h>
 
+#include "planning/grasp_transfer.h"
+#include "planning/physics/hand_builder.h"
 #include "planning/physics/ode_runtime.h"
 #include "planning/physics/stability.h"
+#include "planning/robot_io.h"
 #include "tests/physics/test_hands.h"
 
 namespace {
@@ -46,5 +49,43 @@ void BM_SingleStep(benchmark::State& state) {
   state.counters["contacts"] = static_cast<double>(sim.state().contacts.size());
 }
 BENCHMARK(BM_SingleStep)->Unit(benchmark::kMicrosecond);
+
+// The SDH grasp transferred from the human power grasp of the bottle (9 bodies, ~6 contacts),
+// as `grasp transfer` tests it. Transfer (AICO) timed separately.
+void BM_StabilityTestSdhPowerGrasp(benchmark::State& state) {
+  const std::string assets = std::string(TOPOPLAN_SOURCE_DIR) + "/assets/";
+  const auto objects = planning::LoadGraspObjects(assets + "grasps/objects.json");
+  const planning::GraspObject& bottle = planning::FindGraspObject(objects, "bottle");
+  const planning::HumanGrasp g = planning::LoadHumanGrasp(assets + "grasps/power_bottle.json");
+  const planning::TransferSetup setup =
+      planning::MakeTransferSetup(planning::LoadRobot(assets + "robots/human_hand.urdf"),
+                                  planning::LoadRobot(assets + "robots/lwr4_sdh.urdf"), bottle, g);
+  const planning::TransferResult t =
+      planning::TransferGrasp(setup, planning::TransferMethod::kWinding);
+  const auto hand = planning::physics::BuildSimHand(setup.sdh, t.q, "sdh_palm");
+  const auto body = planning::physics::BuildSimObject(bottle, g.world_from_object);
+  int passed = 0;
+  for (auto _ : state) {
+    const auto r = planning::physics::TestGraspStability(Runtime(), hand, body, {});
+    passed = r.directions_passed;
+    benchmark::DoNotOptimize(r);
+  }
+  state.counters["directions_passed"] = passed;
+}
+BENCHMARK(BM_StabilityTestSdhPowerGrasp)->Unit(benchmark::kMillisecond);
+
+void BM_WindingTransferPowerGrasp(benchmark::State& state) {
+  const std::string assets = std::string(TOPOPLAN_SOURCE_DIR) + "/assets/";
+  const auto objects = planning::LoadGraspObjects(assets + "grasps/objects.json");
+  const planning::HumanGrasp g = planning::LoadHumanGrasp(assets + "grasps/power_bottle.json");
+  const planning::TransferSetup setup =
+      planning::MakeTransferSetup(planning::LoadRobot(assets + "robots/human_hand.urdf"),
+                                  planning::LoadRobot(assets + "robots/lwr4_sdh.urdf"),
+                                  planning::FindGraspObject(objects, "bottle"), g);
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(planning::TransferGrasp(setup, planning::TransferMethod::kWinding));
+  }
+}
+BENCHMARK(BM_WindingTransferPowerGrasp)->Unit(benchmark::kMillisecond);
 
 }  // namespace
