@@ -261,6 +261,8 @@ class Demo {
     const int rc =
         Sub({"bench", "unwrap", "--angles", args_.full ? "0:900:90" : "0:720:180", "--seeds",
              args_.full ? "5" : "1", "--planners", "aico,rrt,birrt", "-o", dir.string()});
+    // Planners that fail at large angles are the figure's point, not a demo failure.
+    const int stage_rc = rc == kExitFailed ? kExitOk : rc;
     // Table: per angle and planner, successes and mean collision checks.
     std::map<std::pair<int, std::string>, std::pair<int, std::vector<long>>> cells;
     std::ifstream csv(dir / "unwrap.csv");
