@@ -51,22 +51,20 @@ std::vector<int> DecodeUtf8(std::string_view text) {
   return out;
 }
 
-Font::Font(const std::string& path) : data_(new Data) {
+Font::Font(const std::string& path) : data_(std::make_unique<Data>()) {
   std::ifstream in(path, std::ios::binary);
   if (!in) {
-    delete data_;
     throw EnvironmentError(path +
                            ": font not found (install the Debian package fonts-dejavu-core)");
   }
   data_->bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
   const int offset = stbtt_GetFontOffsetForIndex(data_->bytes.data(), 0);
   if (offset < 0 || !stbtt_InitFont(&data_->info, data_->bytes.data(), offset)) {
-    delete data_;
     throw EnvironmentError(path + ": not a TrueType font");
   }
 }
 
-Font::~Font() { delete data_; }
+Font::~Font() = default;
 
 const Font& Font::Regular() {
   static const Font font("/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf");

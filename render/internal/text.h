@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -42,7 +43,7 @@ class Font {
 
  private:
   struct Data;
-  Data* data_;
+  std::unique_ptr<Data> data_;
 };
 
 // Decodes UTF-8 into code points (invalid bytes become U+FFFD).
