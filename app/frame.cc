@@ -36,7 +36,7 @@ void FrameOrbit(const render::Scene& scene, OrbitCamera* orbit) {
       FrameSceneCamera(scene, Eigen::Vector3f(1.0f, -1.3f, 0.8f), orbit->fovy_deg);
   const Eigen::Vector3f d = framed.eye - framed.target;
   orbit->target = framed.target;
-  orbit->distance = 0.8f * d.norm();  // the framing is conservative (bounding spheres)
+  orbit->distance = 1.1f * d.norm();  // margin: planned motions leave the start pose
   orbit->yaw_deg = std::atan2(d.y(), d.x()) / kDegToRad;
   orbit->pitch_deg =
       std::asin(std::clamp(d.z() / std::max(d.norm(), 1e-6f), -1.0f, 1.0f)) / kDegToRad;

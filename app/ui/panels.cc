@@ -131,14 +131,14 @@ void ScenarioPanel(const Session& session, const std::vector<std::string>& scena
 void HeatmapPanel(const Session& session, const Settings& s) {
   const Eigen::MatrixXd w = session.WritheAt(session.ShownQ(s));
   if (w.size() == 0) return;
-  ImGui::SetNextWindowPos(ImVec2(static_cast<float>(s.width) - 290.0f, 10), ImGuiCond_Always);
-  ImGui::SetNextWindowSize(ImVec2(280, 0), ImGuiCond_Always);
+  ImGui::SetNextWindowPos(ImVec2(static_cast<float>(s.width) - 230.0f, 10), ImGuiCond_Always);
+  ImGui::SetNextWindowSize(ImVec2(220, 0), ImGuiCond_Always);
   ImGui::Begin("writhe matrix", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize);
-  ImGui::Text("%ldx%ld, total %+.3f (%.0f deg)", static_cast<long>(w.rows()),
+  ImGui::Text("%ldx%ld  total %+.3f (%.0f deg)", static_cast<long>(w.rows()),
               static_cast<long>(w.cols()), w.sum(), 360.0 * std::abs(w.sum()));
   // Cells snapped to whole pixels (deterministic across rasterisers), limits symmetric about 0.
   const double limit = std::max(1e-9, w.cwiseAbs().maxCoeff());
-  const int max_side = 256;
+  const int max_side = 200;
   const int cell_w = std::max(1, max_side / static_cast<int>(w.cols()));
   const int cell_h = std::max(1, std::min(cell_w * 4, max_side / static_cast<int>(w.rows())));
   ImVec2 p = ImGui::GetCursorScreenPos();
@@ -155,7 +155,7 @@ void HeatmapPanel(const Session& session, const Settings& s) {
   }
   ImGui::Dummy(
       ImVec2(static_cast<float>(cell_w * w.cols()), static_cast<float>(cell_h * w.rows())));
-  ImGui::Text("rows: robot segments  |max| %.3g", limit);
+  ImGui::Text("rows: robot, |max| %.3g", limit);
   ImGui::End();
 }
 

@@ -24,8 +24,8 @@ render::Image RunScript(const std::string& name, const std::string& script_text)
   o.scenario = "unwrap";
   o.script = script;
   o.screenshot = Tmp(name + ".png");
-  o.width = 800;
-  o.height = 500;
+  o.width = 1024;
+  o.height = 640;
   EXPECT_EQ(RunViewer(o), 0);
   return render::ReadPng(o.screenshot);
 }
