@@ -17,6 +17,7 @@
 #include "app/io.h"
 #include "app/scene_builder.h"
 #include "planning/scenario.h"
+#include "render/frames.h"
 #include "render/image.h"
 #include "render/offscreen_context.h"
 #include "render/plot.h"
@@ -111,25 +112,31 @@ void WriteFrames(const planning::Scenario& s, const planning::Trajectory& tr,
     planning::EvaluateTasks(s.problem, slice, frames.q.col(t), true, &ws);
     cost.push_back(planning::TaskCost(s.problem, slice, Eigen::VectorXd(), ws));
   }
+  // Numbered PNGs plus a contact sheet each, and an MP4 of the frames when ffmpeg exists.
+  render::FrameWriterOptions frame_options;
+  frame_options.prefix = "frame_";
+  render::FrameWriter frame_writer((fs::path(dir) / "frames").string(), frame_options);
+  render::FrameWriterOptions heatmap_options;
+  heatmap_options.prefix = "heatmap_";
+  heatmap_options.video = false;
+  render::FrameWriter heatmap_writer((fs::path(dir) / "heatmaps").string(), heatmap_options);
   for (int t = 0; t < frames.num_points(); ++t) {
     planning::ForwardKinematics(s.robot, frames.q.col(t), &kin);
     const render::Scene scene = BuildRobotScene(s.robot, kin, s.objects, options, &cache);
     if (t == 0) camera = FrameSceneCamera(scene);
-    char name[64];
-    std::snprintf(name, sizeof(name), "frame_%05d.png", t);
-    render::WritePng((fs::path(dir) / "frames" / name).string(),
-                     renderer.Render(scene, camera, 640, 480, {}));
+    frame_writer.Add(renderer.Render(scene, camera, 640, 480, {}));
     if (matrices[t].size() > 0) {
-      std::snprintf(name, sizeof(name), "heatmap_%05d.png", t);
       char title[128];
       std::snprintf(title, sizeof(title), "Writhe matrix, frame %d (total %+.3f)", t, writhe[t]);
-      render::WritePng(
-          (fs::path(dir) / "heatmaps" / name).string(),
+      heatmap_writer.Add(
           WritheHeatmapFigure(matrices[t], "robot chain", "object chain", 480, 480, title));
     }
     std::fprintf(stderr, "\rframes %d/%d", t + 1, frames.num_points());
   }
   std::fprintf(stderr, "\n");
+  const render::FrameSequence seq = frame_writer.Finish();
+  heatmap_writer.Finish();
+  if (!seq.video.empty()) std::fprintf(stderr, "wrote %s\n", seq.video.c_str());
   const double max_cost = std::max(1e-12, *std::max_element(cost.begin(), cost.end()));
   std::vector<double> cost_norm;
   for (double c : cost) cost_norm.push_back(c / max_cost);

@@ -143,8 +143,9 @@ void AddRenderCommands(CLI::App* root, CommandList* commands) {
            topology::WritheOptions options;
            if (ha->unsigned_variant) options.variant = topology::WritheVariant::kUnsignedSolidAngle;
            const Eigen::MatrixXd w = topology::WritheMatrix(a, b, options);
-           render::WritePng(ha->output, WritheHeatmapFigure(w, Stem(ha->a_path), Stem(ha->b_path),
-                                                            width, height, ha->title));
+           render::WritePng(
+               ha->output, WritheHeatmapFigure(w, Stem(ha->a_path), Stem(ha->b_path), width, height,
+                                               ha->title, !ha->unsigned_variant));
            std::printf("wrote %s (%ldx%ld writhe matrix, total %.6f)\n", ha->output.c_str(),
                        static_cast<long>(w.rows()), static_cast<long>(w.cols()), w.sum());
            return kExitOk;

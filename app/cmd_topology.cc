@@ -1,5 +1,6 @@
 // `topoplan writhe` and `topoplan winding`: topology features of chain CSV files.
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -75,30 +76,43 @@ void AddTopologyCommands(CLI::App* root, CommandList* commands) {
   writhe->footer(
       "Entry (i,j) = 1/(4pi) * double integral over segment i of A and segment j of B of\n"
       "(a-b).(da x db)/|a-b|^3. For two closed polygons the total is their linking number.");
-  commands->push_back({writhe, [wa]() {
-                         const topology::Chain a = topology::ReadChainCsv(wa->a_path);
-                         const topology::Chain b = topology::ReadChainCsv(wa->b_path);
-                         topology::WritheOptions options;
-                         if (wa->unsigned_variant)
-                           options.variant = topology::WritheVariant::kUnsignedSolidAngle;
-                         const Eigen::MatrixXd w = topology::WritheMatrix(a, b, options);
-                         const double total = w.sum();
-                         if (wa->json) {
-                           nlohmann::ordered_json j;
-                           j["rows"] = w.rows();
-                           j["cols"] = w.cols();
-                           j["total"] = total;
-                           if (!wa->total_only) j["matrix"] = MatrixToJson(w);
-                           std::cout << j.dump() << "\n";
-                         } else if (wa->total_only) {
-                           std::printf("rows %ld cols %ld total %.17g\n",
-                                       static_cast<long>(w.rows()), static_cast<long>(w.cols()),
-                                       total);
-                         } else {
-                           PrintTable(w, total, wa->unsigned_variant);
-                         }
-                         return kExitOk;
-                       }});
+  commands->push_back(
+      {writhe, [wa]() {
+         const topology::Chain a = topology::ReadChainCsv(wa->a_path);
+         const topology::Chain b = topology::ReadChainCsv(wa->b_path);
+         topology::WritheOptions options;
+         if (wa->unsigned_variant) options.variant = topology::WritheVariant::kUnsignedSolidAngle;
+         const Eigen::MatrixXd w = topology::WritheMatrix(a, b, options);
+         const double total = w.sum();
+         if (wa->json) {
+           nlohmann::ordered_json j;
+           j["rows"] = w.rows();
+           j["cols"] = w.cols();
+           j["total"] = total;
+           if (!wa->total_only) j["matrix"] = MatrixToJson(w);
+           std::cout << j.dump() << "\n";
+         } else if (wa->total_only) {
+           std::printf("rows %ld cols %ld total %.17g\n", static_cast<long>(w.rows()),
+                       static_cast<long>(w.cols()), total);
+         } else {
+           PrintTable(w, total, wa->unsigned_variant);
+         }
+         if (!wa->heatmap_path.empty()) {
+           int width = 0, height = 0;
+           ParseImageSize(wa->heatmap_size, "--heatmap-size", &width, &height);
+           const auto stem = [](const std::string& p) {
+             return std::filesystem::path(p).stem().string();
+           };
+           WithRenderErrors([&] {
+             render::WritePng(wa->heatmap_path,
+                              WritheHeatmapFigure(w, stem(wa->a_path), stem(wa->b_path), width,
+                                                  height, "", !wa->unsigned_variant));
+             return 0;
+           });
+           std::fprintf(stderr, "wrote %s\n", wa->heatmap_path.c_str());
+         }
+         return kExitOk;
+       }});
 
   // winding --------------------------------------------------------------------------------------
   auto na = std::make_shared<WindingArgs>();

@@ -27,8 +27,9 @@ void ParseImageSize(const std::string& text, const std::string& flag, int* width
 
 render::Image WritheHeatmapFigure(const Eigen::MatrixXd& w, const std::string& a_name,
                                   const std::string& b_name, int width, int height,
-                                  const std::string& title) {
+                                  const std::string& title, bool signed_values) {
   render::HeatmapOptions o;
+  o.scale = signed_values ? render::ColorScale::kDiverging : render::ColorScale::kSequential;
   o.width = width;
   o.height = height;
   if (title.empty()) {
@@ -42,7 +43,7 @@ render::Image WritheHeatmapFigure(const Eigen::MatrixXd& w, const std::string& a
   }
   o.row_label = "segment of " + a_name;
   o.col_label = "segment of " + b_name;
-  o.value_label = "writhe";
+  o.value_label = signed_values ? "writhe" : "solid angle (rad)";
   return render::RenderHeatmap(w, o);
 }
 

@@ -15,13 +15,13 @@ namespace app {
 // std::invalid_argument naming `flag` otherwise.
 void ParseImageSize(const std::string& text, const std::string& flag, int* width, int* height);
 
-// The writhe-matrix heatmap figure: diverging colours symmetric about 0 (sequential for an
-// all-non-negative matrix such as the unsigned variant), rows = segments of chain A named
-// `a_name`, columns = segments of B. An empty title becomes
-// "Writhe matrix <a_name> × <b_name> (total <sum>)".
+// The writhe-matrix heatmap figure: diverging colours symmetric about 0 for the signed writhe
+// (whatever the signs present), sequential viridis for the unsigned solid-angle variant
+// (`signed_values` false), rows = segments of chain A named `a_name`, columns = segments of B.
+// An empty title becomes "Writhe matrix <a_name> × <b_name> (total <sum>)".
 render::Image WritheHeatmapFigure(const Eigen::MatrixXd& w, const std::string& a_name,
                                   const std::string& b_name, int width, int height,
-                                  const std::string& title = "");
+                                  const std::string& title = "", bool signed_values = true);
 
 // Runs `run`, rethrowing render::EnvironmentError (no GL context, no font) as
 // app::EnvironmentError so that RunGuarded exits with code 3.

@@ -110,9 +110,13 @@ HeatmapLayout ComputeHeatmapLayout(int rows, int cols, const HeatmapOptions& o) 
   };
   const int cell_w = avail_w / cols, cell_h = avail_h / rows;
   if (cell_w >= 1 && cell_h >= 1) {
-    const int cell = std::min(cell_w, cell_h);  // square cells
-    L.plot_w = cell * cols;
-    L.plot_h = cell * rows;
+    // Square cells, except that a long thin matrix (20x1 arm against a pole, 3x24 hand against a
+    // ring) whose square cells would fill < 40% of one side gets cells up to 4:1 there.
+    const int cell = std::min(cell_w, cell_h);
+    const int cw = cell * cols < avail_w * 2 / 5 ? std::min(cell_w, 4 * cell) : cell;
+    const int ch = cell * rows < avail_h * 2 / 5 ? std::min(cell_h, 4 * cell) : cell;
+    L.plot_w = cw * cols;
+    L.plot_h = ch * rows;
   } else {
     L.plot_w = std::min(avail_w, cols * std::max(cell_w, 1));
     L.plot_h = std::min(avail_h, rows * std::max(cell_h, 1));
@@ -124,8 +128,9 @@ HeatmapLayout ComputeHeatmapLayout(int rows, int cols, const HeatmapOptions& o) 
   edges(rows, L.plot_y, L.plot_h, &L.row_edges);
   L.bar_x = L.plot_x + L.plot_w + 14;
   L.bar_w = 14;
-  L.bar_y = L.plot_y;
-  L.bar_h = L.plot_h;
+  // The colour bar keeps a readable height even next to a flat matrix, centred on it.
+  L.bar_h = L.plot_h >= 80 ? L.plot_h : std::min(avail_h, 120);
+  L.bar_y = L.plot_y + (L.plot_h - L.bar_h) / 2;
   return L;
 }
 
