@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "app/grasp_scene.h"
+
 namespace app {
 namespace {
 constexpr float kDegToRad = 3.14159265358979f / 180.0f;
@@ -10,6 +12,15 @@ constexpr float kDegToRad = 3.14159265358979f / 180.0f;
 
 render::Scene BuildFrameScene(const Session& session, const Settings& settings,
                               SceneMeshCache* cache) {
+  if (settings.grasp.active && session.grasp() && !session.grasp()->frames.empty()) {
+    const GraspReplay& g = *session.grasp();
+    const int f = std::clamp(settings.grasp.frame, 0, static_cast<int>(g.frames.size()) - 1);
+    planning::physics::SimState state = g.frames[f].state;
+    if (!settings.view.contacts) state.contacts.clear();
+    render::Scene scene = GraspSimScene(g.hand, g.object, state, session.GraspGravity(f));
+    scene.grid.enabled = false;
+    return scene;
+  }
   const planning::Robot& robot = session.robot();
   planning::KinematicsData kin(robot);
   planning::ForwardKinematics(robot, session.ShownQ(settings), &kin);

@@ -7,6 +7,12 @@
 #include <stdexcept>
 
 #include "app/assets.h"
+#include "planning/grasp.h"
+#include "planning/grasp_object.h"
+#include "planning/grasp_transfer.h"
+#include "planning/physics/hand_builder.h"
+#include "planning/physics/ode_runtime.h"
+#include "planning/robot_io.h"
 
 namespace app {
 namespace {
@@ -82,9 +88,69 @@ void Session::Plan(Settings* settings, bool record_sweeps) {
   settings->frame = 0;
 }
 
+void Session::RunGrasp(Settings* settings) {
+  const std::string name = settings->grasp.grasp;
+  const planning::TransferMethod method = planning::ParseTransferMethod(settings->grasp.method);
+  const std::vector<planning::GraspObject> objects =
+      planning::LoadGraspObjects(AssetPath("grasps/objects.json"));
+  const planning::Robot human = planning::LoadRobot(AssetPath("robots/human_hand.urdf"));
+  const planning::Robot lwr_sdh = planning::LoadRobot(AssetPath("robots/lwr4_sdh.urdf"));
+  const planning::HumanGrasp g = planning::LoadHumanGrasp(AssetPath("grasps/" + name + ".json"));
+  const planning::GraspObject& object = planning::FindGraspObject(objects, g.object);
+  const planning::TransferSetup setup = planning::MakeTransferSetup(human, lwr_sdh, object, g);
+  const planning::TransferResult t = planning::TransferGrasp(setup, method);
+
+  GraspReplay replay;
+  replay.grasp = name;
+  replay.method = settings->grasp.method;
+  replay.hand = planning::physics::BuildSimHand(setup.sdh, t.q, "sdh_palm");
+  replay.object = planning::physics::BuildSimObject(object, g.world_from_object);
+  replay.winding_error = (t.robot_winding - t.target_winding).norm();
+  planning::physics::OdeRuntime ode;
+  planning::physics::StabilityOptions options;
+  int step = 0;
+  replay.result = planning::physics::TestGraspStability(
+      ode, replay.hand, replay.object, options,
+      [&](int phase, const planning::physics::GraspSimulation& sim) {
+        if (step++ % replay.stride == 0) replay.frames.push_back({phase, sim.state()});
+      });
+  std::ostringstream msg;
+  msg << name << " (" << replay.method << "): " << replay.result.directions_passed
+      << "/6 gravity directions held, "
+      << (replay.result.stable ? "stable" : planning::physics::ToString(replay.result.status))
+      << ", " << replay.frames.size() << " frames";
+  status_ = msg.str();
+  grasp_ = std::move(replay);
+  settings->grasp.active = true;
+  settings->grasp.frame = 0;
+  settings->camera_initialised = false;
+}
+
+Eigen::Vector3d Session::GraspGravity(int frame) const {
+  if (!grasp_ || grasp_->frames.empty()) return Eigen::Vector3d::Zero();
+  const GraspReplay::Frame& f =
+      grasp_->frames[std::clamp<size_t>(frame, 0, grasp_->frames.size() - 1)];
+  if (f.phase < 1 || f.phase > static_cast<int>(grasp_->result.directions.size())) {
+    return Eigen::Vector3d::Zero();
+  }
+  const Eigen::Matrix3d world_from_palm = f.state.world_from_link.at(0).linear();
+  return world_from_palm * grasp_->result.directions[f.phase - 1].gravity_palm;
+}
+
 void Session::Apply(const Command& c, Settings* settings) {
   using K = Command::Kind;
   switch (c.kind) {
+    case K::kGraspRun:
+      RunGrasp(settings);
+      return;
+    case K::kGraspStep: {
+      if (!grasp_) RunGrasp(settings);
+      const int n = static_cast<int>(grasp_->frames.size());
+      settings->grasp.active = true;
+      settings->grasp.frame =
+          std::clamp(settings->grasp.frame + static_cast<int>(c.value), 0, std::max(0, n - 1));
+      return;
+    }
     case K::kLoad:
       Load(c.text, *settings);
       settings->scenario_path = c.text;
@@ -194,9 +260,10 @@ std::vector<ScriptLine> ParseScript(const std::string& path) {
   std::ifstream in(path);
   if (!in) throw std::invalid_argument(path + ": cannot open script file");
   static const std::vector<std::pair<std::string, int>> kVerbs = {
-      {"load", 1},   {"plan", 0},       {"step", 0},   {"play", 0},    {"pause", 0}, {"seek", 1},
-      {"joint", 2},  {"reset", 0},      {"toggle", 1}, {"planner", 1}, {"seed", 1},  {"camera", 3},
-      {"frames", 1}, {"screenshot", 1}, {"click", 1},  {"quit", 0}};
+      {"load", 1}, {"plan", 0},   {"step", 0},      {"play", 0},       {"pause", 0},
+      {"seek", 1}, {"joint", 2},  {"reset", 0},     {"toggle", 1},     {"planner", 1},
+      {"seed", 1}, {"camera", 3}, {"frames", 1},    {"screenshot", 1}, {"click", 1},
+      {"quit", 0}, {"grasp", 2},  {"grasp_step", 1}};
   std::vector<ScriptLine> lines;
   std::string raw;
   int n = 0;

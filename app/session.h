@@ -13,6 +13,8 @@
 #include "app/robot_scene.h"
 #include "app/settings.h"
 #include "planning/kinematics.h"
+#include "planning/physics/grasp_simulation.h"
+#include "planning/physics/stability.h"
 #include "planning/scenario.h"
 
 namespace app {
@@ -20,14 +22,16 @@ namespace app {
 // One action. `text` and `value` carry the argument where the kind needs one.
 struct Command {
   enum class Kind {
-    kLoad,      // text = scenario / URDF / scene JSON path
-    kPlan,      // run settings.planner on the scenario; shows the final trajectory
-    kStep,      // show the next AICO sweep (plans first, recording every sweep, if needed)
-    kPlay,      // start playback of the shown trajectory
-    kPause,     // stop playback
-    kSeek,      // value = time slice to show
-    kSetJoint,  // value = angle [rad] of joint index `index` (clears the trajectory)
-    kReset,     // back to the start configuration, no trajectory
+    kLoad,       // text = scenario / URDF / scene JSON path
+    kPlan,       // run settings.planner on the scenario; shows the final trajectory
+    kStep,       // show the next AICO sweep (plans first, recording every sweep, if needed)
+    kPlay,       // start playback of the shown trajectory
+    kPause,      // stop playback
+    kSeek,       // value = time slice to show
+    kSetJoint,   // value = angle [rad] of joint index `index` (clears the trajectory)
+    kReset,      // back to the start configuration, no trajectory
+    kGraspRun,   // transfer settings.grasp to the SDH and run the ODE stability test, recording it
+    kGraspStep,  // value = recorded simulation frames to advance (negative: back)
   };
   Command() = default;
   explicit Command(Kind k, std::string t = "", int i = 0, double v = 0.0)
@@ -45,6 +49,22 @@ struct SweepRecord {
   double cost = 0.0;
   bool accepted = false;
   Eigen::MatrixXd q;  // trajectory after the sweep (n × (T+1))
+};
+
+// A recorded ODE stability test of one transferred grasp: the simulation description and its state
+// every `stride` steps (closing phase 0, then gravity directions 1..6).
+struct GraspReplay {
+  std::string grasp, method;
+  planning::physics::SimHand hand;
+  planning::physics::SimObject object;
+  struct Frame {
+    int phase = 0;
+    planning::physics::SimState state;
+  };
+  std::vector<Frame> frames;
+  int stride = 20;  // steps between recorded frames (20 ms at 1 kHz)
+  planning::physics::StabilityResult result;
+  double winding_error = 0.0;  // |robot winding − target| of the transfer
 };
 
 class Session {
@@ -76,6 +96,9 @@ class Session {
   const std::vector<SweepRecord>& sweeps() const { return sweeps_; }
   const std::optional<planning::PlanResult>& result() const { return result_; }
   const Eigen::VectorXd& joint_q() const { return joint_q_; }
+  const std::optional<GraspReplay>& grasp() const { return grasp_; }
+  // World-frame gravity [m/s²] during recorded grasp frame `frame` (zero while closing).
+  Eigen::Vector3d GraspGravity(int frame) const;
   // One line describing the last action, for the status bar and logs.
   const std::string& status() const { return status_; }
   void set_status(const std::string& status) { status_ = status; }
@@ -83,12 +106,14 @@ class Session {
  private:
   void Load(const std::string& path, const Settings& settings);
   void Plan(Settings* settings, bool record_sweeps);
+  void RunGrasp(Settings* settings);
 
   std::unique_ptr<planning::Scenario> scenario_;
   std::optional<RobotScene> robot_scene_;
   Eigen::VectorXd joint_q_;  // slider configuration
   std::optional<planning::PlanResult> result_;
   std::vector<SweepRecord> sweeps_;
+  std::optional<GraspReplay> grasp_;
   std::string status_;
 };
 

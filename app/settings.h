@@ -36,6 +36,14 @@ struct PlannerSettings {
   double start_wrap_deg = -1;  // < 0: the scenario's own start coil
 };
 
+// The grasp panel: which human grasp and transfer method the ODE stability test replays.
+struct GraspSettings {
+  std::string grasp = "power_bottle";  // assets/grasps/NAME.json
+  std::string method = "winding";      // winding | joint | fingertip
+  bool active = false;                 // show the grasp simulation instead of the scenario
+  int frame = 0;                       // recorded simulation frame shown
+};
+
 struct Settings {
   std::string scenario_path;
   PlannerSettings planner;
@@ -49,6 +57,7 @@ struct Settings {
   int frame = 0;
   bool playing = false;
   int play_stride = 1;  // slices advanced per rendered frame while playing
+  GraspSettings grasp;
 };
 
 }  // namespace app

@@ -128,6 +128,47 @@ void ScenarioPanel(const Session& session, const std::vector<std::string>& scena
   ImGui::End();
 }
 
+void GraspPanel(const Session& session, const std::vector<std::string>& grasps, Settings* s,
+                std::vector<Command>* commands, WidgetRects* rects) {
+  ImGui::SetNextWindowPos(ImVec2(10, static_cast<float>(s->height) - 200.0f), ImGuiCond_Always);
+  ImGui::SetNextWindowSize(ImVec2(330, 0), ImGuiCond_Always);
+  ImGui::Begin("grasp stability (ODE)", nullptr,
+               ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize);
+  if (ImGui::BeginCombo("grasp", s->grasp.grasp.c_str())) {
+    for (const std::string& g : grasps) {
+      if (ImGui::Selectable(g.c_str(), g == s->grasp.grasp)) s->grasp.grasp = g;
+    }
+    ImGui::EndCombo();
+  }
+  const char* methods[] = {"winding", "joint", "fingertip"};
+  int m = 0;
+  for (int i = 0; i < 3; ++i) {
+    if (s->grasp.method == methods[i]) m = i;
+  }
+  if (ImGui::Combo("method", &m, methods, 3)) s->grasp.method = methods[m];
+  if (ImGui::Button("Transfer + test")) commands->emplace_back(Command::Kind::kGraspRun);
+  Remember("Transfer + test", rects);
+  ImGui::SameLine();
+  if (ImGui::Button("Step")) commands->emplace_back(Command::Kind::kGraspStep, "", 0, 1.0);
+  Remember("Grasp step", rects);
+  ImGui::SameLine();
+  ImGui::Checkbox("show", &s->grasp.active);
+  if (const auto& g = session.grasp(); g && !g->frames.empty()) {
+    int f = s->grasp.frame;
+    if (ImGui::SliderInt("frame", &f, 0, static_cast<int>(g->frames.size()) - 1)) {
+      s->grasp.frame = f;
+      s->grasp.active = true;
+    }
+    const GraspReplay::Frame& fr = g->frames[std::clamp<size_t>(f, 0, g->frames.size() - 1)];
+    static const char* kPhase[] = {"closing", "+x", "-x", "+y", "-y", "+z", "-z"};
+    ImGui::Text("t %.2f s, gravity %s, %zu contacts", fr.state.time,
+                kPhase[std::clamp(fr.phase, 0, 6)], fr.state.contacts.size());
+    ImGui::Text("%s/%s: %d/6 held%s", g->grasp.c_str(), g->method.c_str(),
+                g->result.directions_passed, g->result.stable ? ", stable" : "");
+  }
+  ImGui::End();
+}
+
 void HeatmapPanel(const Session& session, const Settings& s) {
   const Eigen::MatrixXd w = session.WritheAt(session.ShownQ(s));
   if (w.size() == 0) return;
@@ -181,8 +222,11 @@ void CostPanel(const Session& session, const Settings& s) {
 }  // namespace
 
 void DrawPanels(const Session& session, const std::vector<std::string>& scenarios,
-                Settings* settings, std::vector<Command>* commands, WidgetRects* rects) {
+                const std::vector<std::string>& grasps, Settings* settings,
+                std::vector<Command>* commands, WidgetRects* rects) {
   ScenarioPanel(session, scenarios, settings, commands, rects);
+  if (!grasps.empty()) GraspPanel(session, grasps, settings, commands, rects);
+  if (settings->grasp.active) return;  // the grasp view has no writhe or cost to show
   if (settings->view.heatmap_panel) HeatmapPanel(session, *settings);
   if (settings->view.cost_panel) CostPanel(session, *settings);
 }

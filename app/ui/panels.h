@@ -20,8 +20,9 @@ struct WidgetRects {
   std::map<std::string, Rect> rects;
 };
 
-// Draws every panel for one frame. `scenarios` lists the choices of the scenario picker.
+// Draws every panel for one frame. `scenarios` and `grasps` list the pickers' choices.
 void DrawPanels(const Session& session, const std::vector<std::string>& scenarios,
-                Settings* settings, std::vector<Command>* commands, WidgetRects* rects);
+                const std::vector<std::string>& grasps, Settings* settings,
+                std::vector<Command>* commands, WidgetRects* rects);
 
 }  // namespace app::ui

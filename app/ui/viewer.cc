@@ -26,6 +26,19 @@
 namespace app::ui {
 namespace {
 
+std::vector<std::string> ListGrasps() {
+  std::vector<std::string> names;
+  std::error_code ec;
+  for (const auto& e :
+       std::filesystem::directory_iterator(std::filesystem::path(AssetRoot()) / "grasps", ec)) {
+    if (e.path().extension() == ".json" && e.path().filename() != "objects.json") {
+      names.push_back(e.path().stem().string());
+    }
+  }
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
 std::vector<std::string> ListScenarios() {
   std::vector<std::string> names;
   std::error_code ec;
@@ -138,6 +151,12 @@ class ScriptRunner {
         if (l.verb == "reset") c = Command(K::kReset);
         if (l.verb == "seek") c = Command(K::kSeek, "", 0, num(0));
         if (l.verb == "joint") c = Command(K::kSetJoint, "", static_cast<int>(num(0)), num(1));
+        if (l.verb == "grasp") {
+          settings->grasp.grasp = arg(0);
+          settings->grasp.method = arg(1);
+          c = Command(K::kGraspRun);
+        }
+        if (l.verb == "grasp_step") c = Command(K::kGraspStep, "", 0, num(0));
         session->Apply(c, settings);
       }
     }
@@ -157,6 +176,7 @@ struct Viewer {
   Session session;
   Settings settings;
   std::vector<std::string> scenarios = ListScenarios();
+  std::vector<std::string> grasps = ListGrasps();
   WidgetRects rects;
   SceneMeshCache cache;
   render::Image atlas;
@@ -167,7 +187,7 @@ struct Viewer {
   void UiAndUpdate(render::Scene* scene, render::Camera* camera) {
     commands.clear();
     ImGui::NewFrame();
-    DrawPanels(session, scenarios, &settings, &commands, &rects);
+    DrawPanels(session, scenarios, grasps, &settings, &commands, &rects);
     ImGui::Render();
     for (const Command& c : commands) {
       try {
@@ -177,12 +197,12 @@ struct Viewer {
       }
     }
     session.Tick(&settings);
-    if (session.loaded()) {
+    if (session.loaded() || (settings.grasp.active && session.grasp())) {
       *scene = BuildFrameScene(session, settings, &cache);
     } else {
       scene->grid.enabled = true;
     }
-    if (!settings.camera_initialised && session.loaded()) {
+    if (!settings.camera_initialised && (session.loaded() || session.grasp())) {
       FrameOrbit(*scene, &settings.camera);
       settings.camera_initialised = true;
     }

@@ -104,3 +104,31 @@ TEST(ScriptTest, ParsesCommandsAndRejectsBadLinesWithFileAndLine) {
 
 }  // namespace
 }  // namespace app
+
+namespace app {
+namespace {
+
+TEST(GraspReplayTest, TransfersRecordsAndStepsTheStabilityTest) {
+  setenv("TOPOPLAN_ASSETS", TOPOPLAN_SOURCE_DIR "/assets", 1);
+  Session session;
+  Settings settings;
+  settings.grasp.grasp = "power_bottle";
+  settings.grasp.method = "winding";
+  session.Apply(Command(Command::Kind::kGraspRun), &settings);
+  ASSERT_TRUE(session.grasp().has_value());
+  const GraspReplay& g = *session.grasp();
+  // 0.5 s closing + 6 × 2 s at 1 kHz, one frame every 20 steps (trials may stop early).
+  EXPECT_GT(g.frames.size(), 100u);
+  EXPECT_TRUE(g.result.stable);
+  EXPECT_EQ(g.frames.front().phase, 0);
+  EXPECT_TRUE(settings.grasp.active);
+  EXPECT_EQ(session.GraspGravity(0).norm(), 0.0);  // gravity off while closing
+  session.Apply(Command(Command::Kind::kGraspStep, "", 0, 60.0), &settings);
+  EXPECT_EQ(settings.grasp.frame, 60);
+  EXPECT_NEAR(session.GraspGravity(settings.grasp.frame).norm(), 9.81, 1e-9);
+  session.Apply(Command(Command::Kind::kGraspStep, "", 0, 1e6), &settings);
+  EXPECT_EQ(settings.grasp.frame, static_cast<int>(g.frames.size()) - 1);
+}
+
+}  // namespace
+}  // namespace app

@@ -55,5 +55,11 @@ TEST_F(ViewerSnapshotTest, ClickingPlanThenSeekingShowsTheUnwoundArm) {
   EXPECT_FALSE(render::CompareImages(planned, no_chains).passed);
 }
 
+TEST_F(ViewerSnapshotTest, GraspPanelReplaysTheOdeTestStepByStep) {
+  // Transfer the power grasp to the SDH, run the stability test, show 1.2 s into it (+x gravity).
+  ExpectGolden(RunScript("grasp", "grasp power_bottle winding\ngrasp_step 60\nframes 2\n"),
+               "grasp_power_bottle");
+}
+
 }  // namespace
 }  // namespace app::ui
