@@ -168,7 +168,7 @@ Image RenderPlot(const std::vector<PlotSeries>& series, const PlotOptions& o) {
   const double text_scale = 0.9 * std::pow(480.0 / o.height, 0.7);
   const double text_px = 11.0 * (text_scale / 0.9) * o.height / 480.0;
   plschr(0.0, text_scale);
-  plvpor(5.2 * text_px / o.width, 1.0 - 1.6 * text_px / o.width, 3.6 * text_px / o.height,
+  plvpor(6.4 * text_px / o.width, 1.0 - 1.6 * text_px / o.width, 4.6 * text_px / o.height,
          1.0 - (o.title.empty() ? 1.2 : 2.6) * text_px / o.height);
   plwind(x_lo - x_pad, x_hi + x_pad, y_lo, y_hi);
   plcol0(kGridSlot);
