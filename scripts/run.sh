@@ -20,9 +20,11 @@ case "$cmd" in
 esac
 
 bash scripts/setup.sh
-werror=OFF
-[[ "${CI:-}" == "true" ]] && werror=ON
-cmake -S "$ROOT" -B "$BUILD_DIR" -DCMAKE_BUILD_TYPE=Release -DTOPOPLAN_WERROR=$werror >/dev/null
+# Warnings are errors in CI; elsewhere the cached setting is kept (so that `demo` after `test`
+# does not rebuild everything with other flags).
+werror=()
+[[ "${CI:-}" == "true" ]] && werror=(-DTOPOPLAN_WERROR=ON)
+cmake -S "$ROOT" -B "$BUILD_DIR" -DCMAKE_BUILD_TYPE=Release "${werror[@]}" >/dev/null
 cmake --build "$BUILD_DIR" -j "$JOBS"
 
 case "$cmd" in
