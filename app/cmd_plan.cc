@@ -223,8 +223,10 @@ void AddPlanCommands(CLI::App* root, CommandList* commands) {
                    "scenario JSON file, or a name in assets/scenarios/ (unwrap, "
                    "reach_through_ring)")
       ->required();
-  plan->add_option("--planner", pa->planner, "aico | rrt | birrt")
-      ->check(CLI::IsMember({"aico", "rrt", "birrt"}));
+  plan->add_option("--planner", pa->planner,
+                   "aico | rrt | birrt | ompl-rrt | ompl-rrtconnect (the OMPL peers need a build "
+                   "with libompl-dev)")
+      ->check(CLI::IsMember({"aico", "rrt", "birrt", "ompl-rrt", "ompl-rrtconnect"}));
   plan->add_option("--seed", pa->seed, "seed of the RRTs' random generator (default 0)");
   plan->add_option("--start-wrap", pa->start_wrap,
                    "start coil of a coil-start scenario (unwrap): angle to unwrap in degrees");
@@ -291,7 +293,8 @@ void AddPlanCommands(CLI::App* root, CommandList* commands) {
   unwrap->add_option("--angles", ba->angles, "start wraps a:b:step in degrees (default 0:900:90)");
   unwrap->add_option("--seeds", ba->seeds, "runs per angle and planner, seeds 0..N-1 (default 3)")
       ->check(CLI::Range(1, 1000));
-  unwrap->add_option("--planners", ba->planners, "comma-separated subset of aico,rrt,birrt");
+  unwrap->add_option("--planners", ba->planners,
+                     "comma-separated subset of aico,rrt,birrt,ompl-rrt,ompl-rrtconnect");
   unwrap->add_option("--budget", ba->budget,
                      "collision-check budget of the RRTs (default: the scenario's, 100000)");
   unwrap->add_option("-o,--output", ba->output, "output folder")->required();

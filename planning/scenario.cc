@@ -9,6 +9,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "planning/internal/ompl_planners.h"
 #include "planning/robot_io.h"
 #include "topology/writhe.h"
 
@@ -581,7 +582,24 @@ Planner ParsePlanner(const std::string& name) {
   if (name == "aico") return Planner::kAico;
   if (name == "rrt") return Planner::kRrt;
   if (name == "birrt") return Planner::kBiRrt;
-  throw std::invalid_argument("unknown planner '" + name + "' (aico, rrt, birrt)");
+  if (name == "ompl-rrt" || name == "ompl-rrtconnect") {
+    if (!OmplAvailable()) {
+      throw std::invalid_argument("planner '" + name +
+                                  "': topoplan was built without OMPL (apt-get install "
+                                  "libompl-dev, then re-run cmake)");
+    }
+    return name == "ompl-rrt" ? Planner::kOmplRrt : Planner::kOmplRrtConnect;
+  }
+  throw std::invalid_argument("unknown planner '" + name +
+                              "' (aico, rrt, birrt, ompl-rrt, ompl-rrtconnect)");
+}
+
+bool OmplAvailable() {
+#ifdef TOPOPLAN_HAVE_OMPL
+  return true;
+#else
+  return false;
+#endif
 }
 
 const char* PlannerName(Planner planner) {
@@ -592,6 +610,10 @@ const char* PlannerName(Planner planner) {
       return "rrt";
     case Planner::kBiRrt:
       return "birrt";
+    case Planner::kOmplRrt:
+      return "ompl-rrt";
+    case Planner::kOmplRrtConnect:
+      return "ompl-rrtconnect";
   }
   return "?";
 }
@@ -675,8 +697,28 @@ PlanResult RunPlanner(const Scenario& s, Planner planner, unsigned seed,
     rp.start = s.problem.q0;
     rp.goal = s.goal_q;
     std::mt19937 rng(seed);
-    const RrtResult r = planner == Planner::kRrt ? PlanRrt(rp, s.rrt, valid, &rng)
-                                                 : PlanBiRrt(rp, s.rrt, valid, &rng);
+    RrtResult r;
+    switch (planner) {
+      case Planner::kRrt:
+        r = PlanRrt(rp, s.rrt, valid, &rng);
+        break;
+      case Planner::kBiRrt:
+        r = PlanBiRrt(rp, s.rrt, valid, &rng);
+        break;
+      case Planner::kOmplRrt:
+      case Planner::kOmplRrtConnect:
+#ifdef TOPOPLAN_HAVE_OMPL
+        r = internal::PlanOmpl(planner == Planner::kOmplRrt ? internal::OmplPlanner::kRrt
+                                                            : internal::OmplPlanner::kRrtConnect,
+                               rp, s.rrt, valid, seed);
+        break;
+#else
+        throw std::invalid_argument(std::string("planner '") + PlannerName(planner) +
+                                    "': topoplan was built without OMPL");
+#endif
+      case Planner::kAico:
+        break;
+    }
     rep.status = r.status;
     rep.iterations = r.iterations;
     rep.collision_checks = coll.queries;

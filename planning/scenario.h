@@ -104,9 +104,15 @@ struct Scenario {
 std::unique_ptr<Scenario> LoadScenario(const std::string& path,
                                        const ScenarioOverrides& overrides = {});
 
-enum class Planner { kAico, kRrt, kBiRrt };
-// "aico" | "rrt" | "birrt"; throws std::invalid_argument otherwise.
+// kOmplRrt / kOmplRrtConnect: OMPL's geometric RRT (goal bias from the scenario, 0.1) and
+// RRTConnect as a peer check of the project's RRTs, on the same checker, counter, budget, goal and
+// edge resolution (only when built with OMPL, see OmplAvailable).
+enum class Planner { kAico, kRrt, kBiRrt, kOmplRrt, kOmplRrtConnect };
+// "aico" | "rrt" | "birrt" | "ompl-rrt" | "ompl-rrtconnect"; throws std::invalid_argument for an
+// unknown name, and for the OMPL names when built without OMPL ("... built without OMPL ...").
 Planner ParsePlanner(const std::string& name);
+// True when this build includes OMPL (libompl-dev was found by CMake).
+bool OmplAvailable();
 const char* PlannerName(Planner planner);
 
 struct PlanReport {
@@ -135,8 +141,10 @@ struct PlanResult {
 // Runs one planner on the scenario. AICO: SolveAico on the problem (its collision feature's
 // queries are counted) plus the validation of the result at check_resolution; RRT/BiRRT: PlanRrt
 // / PlanBiRrt from q0 to goal_q with a validity checker (joint limits + InCollision, one counted
-// query per state) inside the joint-limit box. `seed` seeds the RRTs' std::mt19937. The AICO
-// callback, if given, is forwarded.
+// query per state) inside the joint-limit box. `seed` seeds the RRTs' std::mt19937. OMPL
+// planners: the same checker, box, goal, scenario.rrt options (range, resolution, goal_bias,
+// max_checks) and seed, through OMPL (no path simplification). The AICO callback, if given, is
+// forwarded.
 PlanResult RunPlanner(const Scenario& scenario, Planner planner, unsigned seed,
                       const AicoCallback& callback = {});
 
