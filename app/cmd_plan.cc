@@ -368,6 +368,16 @@ void AddPlanCommands(CLI::App* root, CommandList* commands) {
              for (double y : ser.y) any_finite |= std::isfinite(y);
              any_finite |= !ser.failure_y.empty();
            }
+           // Headroom above the largest value so failure markers (drawn at the budget) are not
+           // cut by the top of the frame.
+           double y_top = 0.0;
+           for (const auto& ser : plot) {
+             for (double y : ser.y) {
+               if (std::isfinite(y)) y_top = std::max(y_top, y);
+             }
+             for (double y : ser.failure_y) y_top = std::max(y_top, y);
+           }
+           if (y_top > 0.0) po.y_max = 2.5 * y_top;
            if (any_finite) {
              render::WritePng((fs::path(ba->output) / "unwrap.png").string(),
                               render::RenderPlot(plot, po));
