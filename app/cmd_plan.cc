@@ -28,19 +28,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// A scenario argument: an existing file, or a name under assets/scenarios/ ("unwrap").
-std::string ScenarioPath(const std::string& arg) {
-  if (fs::exists(arg)) return arg;
-  if (arg.find('/') == std::string::npos) {
-    const std::string name =
-        arg.size() > 5 && arg.substr(arg.size() - 5) == ".json" ? arg : arg + ".json";
-    const fs::path p = fs::path(AssetRoot()) / "scenarios" / name;
-    if (fs::exists(p)) return p.string();
-  }
-  throw std::invalid_argument("SCENARIO: no file '" + arg +
-                              "' and no scenario of that name in assets/scenarios/");
-}
-
 nlohmann::json ReportJson(const planning::Scenario& s, const planning::PlanReport& r,
                           unsigned seed) {
   nlohmann::json j;
@@ -250,7 +237,7 @@ void AddPlanCommands(CLI::App* root, CommandList* commands) {
              }
              overrides.start_wrap_deg = pa->start_wrap;
            }
-           const auto scenario = planning::LoadScenario(ScenarioPath(pa->scenario), overrides);
+           const auto scenario = planning::LoadScenario(ResolveScenarioPath(pa->scenario), overrides);
            const planning::Planner planner = planning::ParsePlanner(pa->planner);
            const planning::PlanResult result = planning::RunPlanner(
                *scenario, planner, pa->seed,
@@ -308,7 +295,7 @@ void AddPlanCommands(CLI::App* root, CommandList* commands) {
          return WithRenderErrors([&]() {
            const std::vector<double> angles = ParseRange(ba->angles, "--angles");
            const std::vector<planning::Planner> planners = ParsePlanners(ba->planners);
-           const std::string path = ScenarioPath("unwrap");
+           const std::string path = ResolveScenarioPath("unwrap");
            std::ostringstream csv;
            csv << "angle_deg,planner,seed,success,collision_checks,time_s\n";
            std::map<planning::Planner, render::PlotSeries> series;
