@@ -107,24 +107,39 @@ Trajectory ToTrajectory(const std::vector<const RrtNode*>& nodes, int n) {
   return path;
 }
 
+// What both planners set up first: argument checks, the default range (20 % of the joint box's
+// diagonal) and edge resolution (1 %), the counting checker, and the start and goal validity
+// checks. Returns false (result filled with kInvalidInput) when start or goal is invalid.
+struct Setup {
+  int n;
+  double range, resolution;
+  Checker check;
+};
+
+bool Prepare(const RrtProblem& problem, const RrtOptions& options, Setup* s, RrtResult* result) {
+  CheckProblem(problem);
+  const double diag = Diagonal(problem);
+  s->n = static_cast<int>(problem.start.size());
+  s->range = options.range > 0 ? options.range : 0.2 * diag;
+  s->resolution = options.resolution > 0 ? options.resolution : 0.01 * diag;
+  if (!s->check(problem.start) || !s->check(problem.goal)) {
+    result->status = SolveStatus::kInvalidInput;
+    result->checks = s->check.count;
+    return false;
+  }
+  return true;
+}
+
 }  // namespace
 
 RrtResult PlanRrt(const RrtProblem& problem, const RrtOptions& options, const ValidityFn& valid,
                   std::mt19937* rng) {
-  CheckProblem(problem);
-  const int n = static_cast<int>(problem.start.size());
-  const double diag = Diagonal(problem);
-  const double range = options.range > 0 ? options.range : 0.2 * diag;
-  const double resolution = options.resolution > 0 ? options.resolution : 0.01 * diag;
-  Checker check{valid, options.max_checks};
   RrtResult result;
-
-  // Start and goal must be valid.
-  if (!check(problem.start) || !check(problem.goal)) {
-    result.status = SolveStatus::kInvalidInput;
-    result.checks = check.count;
-    return result;
-  }
+  Setup setup{0, 0.0, 0.0, Checker{valid, options.max_checks}};
+  if (!Prepare(problem, options, &setup, &result)) return result;
+  const int n = setup.n;
+  const double range = setup.range, resolution = setup.resolution;
+  Checker& check = setup.check;
 
   std::vector<RrtNode> tree;
   tree.push_back({problem.start, -1});
@@ -162,19 +177,12 @@ RrtResult PlanRrt(const RrtProblem& problem, const RrtOptions& options, const Va
 
 RrtResult PlanBiRrt(const RrtProblem& problem, const RrtOptions& options, const ValidityFn& valid,
                     std::mt19937* rng) {
-  CheckProblem(problem);
-  const int n = static_cast<int>(problem.start.size());
-  const double diag = Diagonal(problem);
-  const double range = options.range > 0 ? options.range : 0.2 * diag;
-  const double resolution = options.resolution > 0 ? options.resolution : 0.01 * diag;
-  Checker check{valid, options.max_checks};
   RrtResult result;
-
-  if (!check(problem.start) || !check(problem.goal)) {
-    result.status = SolveStatus::kInvalidInput;
-    result.checks = check.count;
-    return result;
-  }
+  Setup setup{0, 0.0, 0.0, Checker{valid, options.max_checks}};
+  if (!Prepare(problem, options, &setup, &result)) return result;
+  const int n = setup.n;
+  const double range = setup.range, resolution = setup.resolution;
+  Checker& check = setup.check;
 
   std::vector<RrtNode> trees[2];
   trees[0].push_back({problem.start, -1});
