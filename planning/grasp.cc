@@ -9,6 +9,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "planning/internal/json_read.h"
 #include "topology/winding.h"
 #include "topology/writhe.h"
 
@@ -18,14 +19,7 @@ namespace {
 using Json = nlohmann::json;
 
 Eigen::Vector3d ReadVec3(const Json& j, const std::string& where) {
-  if (!j.is_array() || j.size() != 3) throw std::invalid_argument(where + ": expected [x, y, z]");
-  Eigen::Vector3d v;
-  for (int i = 0; i < 3; ++i) {
-    if (!j[i].is_number()) throw std::invalid_argument(where + ": expected numbers");
-    v[i] = j[i].get<double>();
-    if (!std::isfinite(v[i])) throw std::invalid_argument(where + ": non-finite number");
-  }
-  return v;
+  return internal::ReadJsonVec3(j, where);
 }
 
 Eigen::Isometry3d ReadPose(const Json& j, const std::string& where) {

@@ -6,6 +6,8 @@
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
+#include "planning/internal/json_read.h"
+
 namespace planning {
 namespace {
 
@@ -42,14 +44,7 @@ double LocalDistance(const GraspPrimitive& prim, const Eigen::Vector3d& p) {
 }
 
 Eigen::Vector3d ReadVec3(const Json& j, const std::string& where) {
-  if (!j.is_array() || j.size() != 3) throw std::invalid_argument(where + ": expected [x, y, z]");
-  Eigen::Vector3d v;
-  for (int i = 0; i < 3; ++i) {
-    if (!j[i].is_number()) throw std::invalid_argument(where + ": expected numbers");
-    v[i] = j[i].get<double>();
-    if (!std::isfinite(v[i])) throw std::invalid_argument(where + ": non-finite number");
-  }
-  return v;
+  return internal::ReadJsonVec3(j, where);
 }
 
 }  // namespace
@@ -254,3 +249,18 @@ const GraspObject& FindGraspObject(const std::vector<GraspObject>& objects,
 }
 
 }  // namespace planning
+
+namespace planning::internal {
+
+Eigen::Vector3d ReadJsonVec3(const nlohmann::json& j, const std::string& where) {
+  if (!j.is_array() || j.size() != 3) throw std::invalid_argument(where + ": expected [x, y, z]");
+  Eigen::Vector3d v;
+  for (int i = 0; i < 3; ++i) {
+    if (!j[i].is_number()) throw std::invalid_argument(where + ": expected numbers");
+    v[i] = j[i].get<double>();
+    if (!std::isfinite(v[i])) throw std::invalid_argument(where + ": non-finite number");
+  }
+  return v;
+}
+
+}  // namespace planning::internal
