@@ -9,7 +9,7 @@
 
 namespace app {
 
-// Exit codes (DESIGN.md): 0 success; 1 ran but the task failed (no path, not converged, unstable
+// Exit codes: 0 success; 1 ran but the task failed (no path, not converged, unstable
 // grasp, images differ); 2 bad input or usage; 3 environment error (no GL context, missing asset).
 enum ExitCode : int { kExitOk = 0, kExitFailed = 1, kExitBadInput = 2, kExitEnvironment = 3 };
 

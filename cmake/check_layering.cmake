@@ -1,5 +1,5 @@
 # Layering check, run by CTest as `cmake -DROOT=<repo> -P check_layering.cmake`.
-# Fails when a file includes a header of a module above it (DESIGN.md, "Layers"):
+# Fails when a file includes a header of a module above it (docs/architecture.md §1):
 #   topology/  -> Eigen and the standard library only
 #   render/    -> render/ only; no planning, topology, app, ImGui
 #   planning/  -> planning/, topology/; no render, app, GL, ImGui, ODE (ODE only in planning/physics/)

@@ -1,5 +1,5 @@
 // AICO: approximate inference control (Toussaint, ICML 2009), kinematic and pseudo-dynamic
-// (double-integrator) variants, with Levenberg-style damping (seed-methods.md §3.1–3.3).
+// (double-integrator) variants, with Levenberg-style damping (docs/methods.md §5).
 //
 // Model: x_{t+1} = A x_t + B u_t + ξ, ξ ~ N(0, Q), u ~ N(0, H⁻¹); task factors exp(−c_t(x_t)).
 //   kinematic: x = q, A = I, transition covariance W⁻¹.
@@ -44,7 +44,7 @@ struct AicoOptions {
   SweepMode sweep_mode = SweepMode::kForwardly;
   double max_step = 1.0;    // cap on one relocation move |x̂_new − x̂| (2-norm)
   int max_backtracks = 10;  // consecutive rejected sweeps before giving up (kDiverged)
-  // Accept the first sweep whatever its cost (the reference implementation's rule: the initial
+  // Accept the first sweep whatever its cost (Toussaint's implementation's rule: the initial
   // trajectory is only a linearisation point). If false, the first sweep must beat the cost of
   // the initial trajectory too.
   bool accept_first_sweep = true;
@@ -53,7 +53,7 @@ struct AicoOptions {
   // Gauss–Newton from q_{t−1} on  rollout_prior·||q − q_{t−1}||² + Σ_i ρ_{i,t}||y*_{i,t} −
   // φ_i(q)||² (order-0 tasks), with steps capped at max_step. It tracks interpolated targets (e.g.
   // a writhe target moving from y(q_0) to y_T) in small steps, so the initial trajectory does not
-  // jump through obstacles between time slices. false: q_0 repeated (the reference's cold start).
+  // jump through obstacles between time slices. false: q_0 repeated (Toussaint's cold start).
   bool rollout_init = false;
   double rollout_prior = 100.0;  // precision of the step to the previous slice
   int rollout_iterations = 10;   // Gauss–Newton iterations per slice

@@ -1,4 +1,4 @@
-// Final-pose estimation (thesis §4.2.2; seed-methods.md §3.6): the most likely end state x_T under
+// Final-pose estimation (thesis §4.2.2; docs/methods.md §6): the most likely end state x_T under
 // the T-step process prior and the task costs active at t = T only.
 //
 // Prior: x_T ~ N(μ_T, Σ_T) with μ_T = A^T x_0 and Σ_T from Σ ← A Σ Aᵀ + Q̄ (T times, Σ = 0 at

@@ -1,7 +1,7 @@
 // Human grasps (files in assets/grasps/) and their winding-number encoding.
 //
 // A grasp is the human hand's joint angles, palm pose and object pose. The encoding measures how
-// far each finger chain winds about the object's reference curve (seed-methods.md §2.2):
+// far each finger chain winds about the object's reference curve (docs/methods.md §9):
 //   - finger chain f: palm centre → finger base → ... → fingertip (robot chains "grasp_<finger>"
 //     added by AddGraspChains);
 //   - axis reference: w_f = topology::WindingNumber(chain_f, axis) (signed, in turns), and per

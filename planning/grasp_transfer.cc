@@ -410,7 +410,7 @@ TransferResult TransferGrasp(const TransferSetup& s, TransferMethod method,
   const char* fingers[3] = {"sdh_thumb", "sdh_finger_1", "sdh_finger_2"};
 
   if (method == TransferMethod::kJointMapping) {
-    // Linear joint mapping (robots-hands-physics.md §4.1 with the finger correspondence above).
+    // Linear joint mapping (Rohling et al. 1993) with the finger correspondence above.
     const HumanGrasp& g = s.grasp;
     auto mean = [](std::initializer_list<double> v) {
       double sum = 0;

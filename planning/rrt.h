@@ -1,7 +1,7 @@
 // Sampling-based baselines of thesis Fig. 4.5: uni-directional RRT with goal bias and a
 // bi-directional RRT, both on a box-bounded joint space with a user validity checker.
 //
-// Shape follows OMPL (solvers-and-baselines.md §3): the planner sees the world only through
+// Shape follows OMPL (Sucan et al. 2012): the planner sees the world only through
 // `ValidityFn(q) -> bool`; every call is one "collision check" and is counted. Edges are checked
 // at a fixed resolution: an edge of length d is valid when its end state and the ⌈d/res⌉ − 1
 // interior states (at i/⌈d/res⌉, i = 1..) are valid, the end state checked first. A run stops as

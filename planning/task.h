@@ -4,7 +4,7 @@
 //   C = Σ_t Σ_i ρ_{i,t} ||y*_{i,t} − φ_i(q_t)||²          (order-0 tasks)
 //     + Σ_t Σ_i ν_{i,t} ||y*_{i,t} − J_i(q_t) q̇_t||²      (order-1 tasks, dynamic variant only)
 //     + control cost: kinematic Σ_t ||q_{t+1} − q_t||²_W, dynamic Σ_t (h/τ) ||q̇_{t+1} − q̇_t||²_W
-// with τ = duration / T and W = w_rate·diag(metric) (seed-methods.md §3.1).
+// with τ = duration / T and W = w_rate·diag(metric) (docs/methods.md §4).
 #pragma once
 
 #include <Eigen/Core>
@@ -30,7 +30,7 @@ struct Task {
 void SetConstantTarget(Task* task, const Eigen::VectorXd& y, double precision, int num_steps);
 
 // Linearly interpolated target y*_t = (1 − t/T)·y0 + (t/T)·yT; precision `mid` for t < T and
-// `final` at t = T (the reference's setInterpolatedTargetsEndPrecisions).
+// `final` at t = T (as in Toussaint's AICO code).
 void SetInterpolatedTarget(Task* task, const Eigen::VectorXd& y0, const Eigen::VectorXd& yT,
                            double mid, double final, int num_steps);
 

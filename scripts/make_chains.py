@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Regenerates the example chains in assets/chains/ (pure Python, no dependencies).
 
-Each file is a chain CSV (DESIGN.md): one point per line `x,y,z`, `#` comment lines.
+Each file is a chain CSV (topology/polyline.h): one point per line `x,y,z`, `#` comment lines.
 Run from the repository root: python3 scripts/make_chains.py
 """
 import math

@@ -1,8 +1,10 @@
 #!/usr/bin/env python3
 """Regenerates the robot and object models in assets/ (pure Python, no dependencies).
 
-Every number comes from the project's reference notes (robots-hands-physics.md, seed-methods.md
-section 4); nothing is copied from third-party model files. Outputs:
+Every number comes from public data (the KUKA LWR 4 and Schunk SDH joint tables of their public
+URDF models, Schunk's SDH constants, Buchholz et al. 1992 hand proportions, the unwrapping scene of
+the thesis, section 4.3.1) or is a stated choice; nothing is copied from third-party model files.
+Outputs:
   assets/robots/{lwr4_sdh,arm20_sdh,human_hand}.urdf (+ .chains.json sidecars)
   assets/objects/{pole,ring,torus,cylinder,bottle,ball,box,mug}.urdf (+ .chains.json)
   assets/meshes/{torus_ring,torus_small,mug,sdh_palm}.obj
@@ -147,7 +149,7 @@ def chain(name, points, closed=False):
             "points": [{"link": l, "xyz": [round(c, 9) + 0.0 for c in p]} for l, p in points]}
 
 
-# ---- Schunk SDH (robots-hands-physics.md section 2) ------------------------------------------------
+# ---- Schunk SDH (joint table of Schunk's public SDH URDF, SDHLibrary constants) --------------------
 SDH_PROX, SDH_DIST_TIP = 0.0865, 0.0685
 
 
@@ -157,13 +159,13 @@ def add_sdh(u, parent, xyz, rpy=(0, 0, 0)):
     u.material("sdh_grey", (0.62, 0.63, 0.66, 1))
     u.material("sdh_pad", (0.08, 0.08, 0.08, 1))
     u.joint("sdh_mount_joint", "fixed", parent, "sdh_palm", xyz, rpy,
-            comment="SDH mounting (adapter thickness is an assumption, reference 2.7)")
+            comment="SDH mounting (adapter thickness 0.02 m is an assumption)")
     palm_box = dict(dims=(0.113, 0.122, 0.077), xyz=(-0.0095, 0, 0.0357))
     u.link("sdh_palm",
            [prim("cylinder", (0.062, 0.071), (0, 0, 0.0355), material="sdh_dark"),
             prim("box", (0.05, 0.1, 0.06), (-0.035, 0, 0.035), material="sdh_dark")],
            [prim("box", **palm_box)],
-           comment="palm: bounding box of the public mesh (reference 2.5); thumb on -x")
+           comment="palm: bounding box of Schunk's public palm mesh; thumb on -x")
     vel, eff = 1.4, 2.1
     fingers = [("finger_1", (0.01905, 0.033, 0.0745), (0, 0, PI), "knuckle", (0, 0, 1)),
                ("finger_2", (0.01905, -0.033, 0.0745), (0, 0, PI), "mimic", (0, 0, -1)),
@@ -209,9 +211,9 @@ def sdh_chains():
     return out
 
 
-# ---- KUKA LWR 4 (reference 1.1-1.3) --------------------------------------------------------------
+# ---- KUKA LWR 4 (joint chain of the public kuka_lwr URDF models) ----------------------------------
 def make_lwr4_sdh():
-    u = Urdf("lwr4_sdh", "KUKA LWR 4 (7 DOF, reference 1.1) with a Schunk SDH (7 DOF, reference 2). "
+    u = Urdf("lwr4_sdh", "KUKA LWR 4 (7 DOF) with a Schunk SDH (7 DOF). "
              "Zero configuration = arm straight up, flange at (0, 0, 1.1785).")
     u.material("kuka_orange", (1.0, 0.45, 0.05, 1))
     u.material("kuka_grey", (0.55, 0.56, 0.58, 1))
@@ -229,7 +231,7 @@ def make_lwr4_sdh():
                 (0, 0, offsets[i]), axis=axes[i],
                 limit=(-math.radians(lim[i]), math.radians(lim[i]), vel[i], eff[i]))
         name = "lwr_link_%d" % (i + 1)
-        if i < 5:  # capsules between consecutive joint centres (reference 1.3, simpler set)
+        if i < 5:  # capsules between consecutive joint centres (simpler than the public meshes)
             # Link 5 stops 0.065 below the wrist centre (the wrist sphere covers the joint) so
             # that it does not overlap the flange, which is not adjacent to it.
             length = offsets[i + 1] if i < 4 else offsets[i + 1] - 0.065
@@ -255,9 +257,9 @@ def make_lwr4_sdh():
     write_chains(os.path.join(ROOT, "assets/robots/lwr4_sdh.chains.json"), chains + sdh_chains())
 
 
-# ---- The 20-link unwrapping arm (seed-methods 4.1) ------------------------------------------------
+# ---- The 20-link unwrapping arm (thesis section 4.3.1) --------------------------------------------
 def make_arm20_sdh():
-    u = Urdf("arm20_sdh", "Hyper-redundant unwrapping arm of the thesis (seed-methods 4.1): a stem "
+    u = Urdf("arm20_sdh", "Hyper-redundant unwrapping arm of the thesis (section 4.3.1): a stem "
              "capsule (2 m, r 0.1) and 20 capsule links (0.2 m, r 0.05) with hinges about local x; "
              "each joint frame is twisted 45 deg about (1,0,1), so q = 0 is a coil. SDH at the tip.")
     u.material("stem_grey", (0.5, 0.5, 0.52, 1))
@@ -288,12 +290,12 @@ def make_arm20_sdh():
                  [chain("arm", pts)] + sdh_chains())
 
 
-# ---- Human hand (reference 3.2-3.5) ----------------------------------------------------------------
+# ---- Human hand (segment proportions of Buchholz, Armstrong & Goldstein 1992) ----------------------
 HL, HB = 0.19, 0.085
 
 
 def make_human_hand():
-    u = Urdf("human_hand", "Right human hand, HL 0.19 m, HB 0.085 m (reference 3.2-3.5): 6 palm-pose "
+    u = Urdf("human_hand", "Right human hand, HL 0.19 m, HB 0.085 m (Buchholz et al. 1992): 6 palm-pose "
              "joints + 20 finger joints. Palm frame: origin at the wrist crease, +z towards the "
              "fingers, +x radial (thumb side), palm facing -y. Flexion = positive rotation about "
              "+x (towards the palm); MCP abduction = positive about +y (towards the thumb).")
@@ -319,7 +321,7 @@ def make_human_hand():
            [prim("box", (HB, 0.028, palm_len), (0, 0, palm_len / 2))],
            comment="palm: box HB x 0.028 x 0.45 HL from the wrist crease to the MCP line; thenar pad")
     # Fingers: MCP position (axial x HL, radio-ulnar x HB), segment lengths (x HL), radii, abd limit.
-    # Visual radii from reference 3.5; collision capsules are 1-1.5 mm thinner so that
+    # Visual radii are estimates; collision capsules are 1-1.5 mm thinner so that
     # neighbouring fingers at rest (MCPs 16.7-21.3 mm apart) do not touch. Fixed splay (deg) about
     # the palm normal fans the fingers slightly, as in a relaxed hand.
     fingers = [("index", 0.447, 0.251, (0.265, 0.143, 0.097), (0.010, 0.009, 0.008),
@@ -359,7 +361,7 @@ def make_human_hand():
         chains.append(chain(name, [("%s_proximal" % name, (0, 0, 0)), ("%s_middle" % name, (0, 0, 0)),
                                    ("%s_distal" % name, (0, 0, 0)), ("%s_distal" % name, (0, 0, dp))]))
     # Thumb: CMC (2 DOF) at (0.196 HB, -, 0.073 HL), metacarpal abducted ~44 deg and turned -60 deg
-    # about its long axis (reference 3.3) so that flexion moves it across the palm.
+    # about its long axis so that flexion moves it across the palm.
     mc, pp, dp = 0.251 * HL, 0.196 * HL, 0.158 * HL
     # The CMC sits 8 mm further radial than 0.196 HB and 10 mm palmar, and the metacarpal is
     # tilted 10 deg towards the palm side, so that the resting thumb clears the palm box (which
@@ -463,7 +465,7 @@ def make_objects():
     write_obj(os.path.join(M, "torus_ring.obj"), *torus(0.22, 0.012, 64, 12),
               "torus R 0.22 r 0.012 about z (the reach-through ring)")
     write_obj(os.path.join(M, "torus_small.obj"), *torus(0.045, 0.012),
-              "torus R 0.045 r 0.012 about z (graspable ring, reference 6)")
+              "torus R 0.045 r 0.012 about z (graspable ring)")
     write_obj(os.path.join(M, "mug.obj"), *mug(), "mug, outer diameter 0.08, height 0.082, handle on +x")
 
     def obj(name, comment, visuals, collisions, chains):
@@ -478,7 +480,7 @@ def make_objects():
               "cyl": (0.2, 0.65, 0.3, 1), "bottle": (0.3, 0.55, 0.85, 0.9), "ball": (0.85, 0.9, 0.2, 1),
               "box": (0.8, 0.6, 0.3, 1), "mug": (0.92, 0.92, 0.88, 1)}
     obj("pole", "Pole / rope of the unwrapping scene: capsule length 3 m, radius 0.03, along local z, "
-        "centred at the origin (seed-methods 4.1).",
+        "centred at the origin (thesis section 4.3.1).",
         [cap(0.03, 2.94, material="pole")], [cap(0.03, 2.94)],
         [chain("axis", [("pole", (0, 0, -1.5)), ("pole", (0, 0, 1.5))])])
     n = 24
@@ -488,7 +490,7 @@ def make_objects():
         [prim("mesh", "../meshes/torus_ring.obj")], [chain("loop", ring, closed=True)])
     small = [("torus", (0.045 * math.cos(2 * PI * k / n), 0.045 * math.sin(2 * PI * k / n), 0))
              for k in range(n)]
-    obj("torus", "Graspable ring: torus R 0.045 m, tube r 0.012 m, about local z (reference 6).",
+    obj("torus", "Graspable ring: torus R 0.045 m, tube r 0.012 m, about local z.",
         [prim("mesh", "../meshes/torus_small.obj", material="ring")],
         [prim("mesh", "../meshes/torus_small.obj")], [chain("loop", small, closed=True)])
     obj("cylinder", "Goal cylinder 'cyl1' of the unwrapping scene: radius 0.0375, length 0.208.",
@@ -503,7 +505,7 @@ def make_objects():
           for k in range(16)]
     obj("ball", "Tennis ball: sphere radius 0.0335.", [prim("sphere", (0.0335,), material="ball")],
         [prim("sphere", (0.0335,))], [chain("equator", eq, closed=True)])
-    obj("box", "Small box 0.05 x 0.05 x 0.10 (reference 6).", [prim("box", (0.05, 0.05, 0.1), material="box")],
+    obj("box", "Small box 0.05 x 0.05 x 0.10.", [prim("box", (0.05, 0.05, 0.1), material="box")],
         [prim("box", (0.05, 0.05, 0.1))],
         [chain("axis", [("box", (0, 0, -0.05)), ("box", (0, 0, 0.05))])])
     handle = [("mug", (0.034 + 0.026 * math.cos(-PI / 2 + PI * k / 8), 0, 0.041 + 0.026 * math.sin(-PI / 2 + PI * k / 8)))

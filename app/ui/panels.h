@@ -1,5 +1,5 @@
 // Dear ImGui panels of the viewer. Panels edit Settings in place and push Commands; they never
-// call planners or the renderer themselves (house style §8.6).
+// call planners or the renderer themselves (docs/architecture.md §2.3).
 #pragma once
 
 #include <map>

@@ -73,7 +73,7 @@ struct SimObject {
 enum class HandMode { kMotorized, kKinematic };
 enum class Stepper { kWorldStep, kQuickStep };
 
-// Solver and contact parameters (robots-hands-physics.md §5.3-5.5).
+// Solver and contact parameters (docs/methods.md §10).
 struct SimOptions {
   double dt = 1e-3;  // step [s]
   HandMode hand_mode = HandMode::kMotorized;

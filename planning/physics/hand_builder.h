@@ -1,5 +1,5 @@
 // Building the ODE descriptions (SimHand, SimObject) from planning's robot model and grasp
-// objects, following the closing protocol of robots-hands-physics.md §5.5.
+// objects, following the closing protocol of docs/methods.md §10.
 #pragma once
 
 #include <Eigen/Core>
@@ -23,7 +23,7 @@ struct HandBuildOptions {
   // coupled spread axis).
   std::vector<std::string> hold_joints = {"knuckle"};
   // Link masses by name substring (first match), else default_mass [kg]. SDH values from the
-  // reference URDF (§2.4).
+  // public Schunk SDH URDF.
   std::vector<std::pair<std::string, double>> link_masses = {
       {"palm", 1.0288}, {"knuckle", 0.047}, {"proximal", 0.167}, {"distal", 0.0929}};
   double default_mass = 0.05;

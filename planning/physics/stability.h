@@ -11,7 +11,7 @@
 
 namespace planning::physics {
 
-// Protocol (robots-hands-physics.md §5.5). Pass criteria per direction, at the end of the trial:
+// Protocol (docs/methods.md §10). Pass criteria per direction, at the end of the trial:
 // object translation relative to the palm < max_slip, rotation < max_rotation_deg, and at least
 // min_contact_links distinct hand links touching the object.
 struct StabilityOptions {

@@ -20,7 +20,7 @@ const planning::Robot& Arm20() {
   return robot;
 }
 
-// The unwrapping scene: the rope of seed-methods §4.1 (along y, x = −0.1, z = 1.85), shifted 0.2 m
+// The unwrapping scene: the rope of thesis §4.3.1 (along y, x = −0.1, z = 1.85), shifted 0.2 m
 // so that it clears the stem.
 planning::Environment RopeScene() {
   planning::Environment env;

@@ -1,4 +1,4 @@
-// ODE grasp-stability test timing. Target (DESIGN.md): one grasp's full test — 0.5 s closing plus
+// ODE grasp-stability test timing. Target (README): one grasp's full test — 0.5 s closing plus
 // 6 gravity directions × 2 s at 1 kHz (12 500 steps) — in ≤ 2 s.
 #include <benchmark/benchmark.h>
 

@@ -1,4 +1,4 @@
-// Rendering benchmarks (DESIGN.md target: a 1280x720 frame of arm + hand + chains <= 40 ms with
+// Rendering benchmarks (README target: a 1280x720 frame of arm + hand + chains <= 40 ms with
 // readback; PNG write <= 30 ms). Run: build/tests/bench/bench_render
 //
 // The scene imitates the robot scenes: an 8-link arm of capsules, a 5-finger hand of 10 capsules,

@@ -1,4 +1,4 @@
-// Writhe matrix and winding throughput. Reports ns per segment pair (the DESIGN.md targets:
+// Writhe matrix and winding throughput. Reports ns per segment pair (the README targets:
 // ≤ 20 ns per pair for values, ≤ 100 ns with the gradient, per core).
 #include <benchmark/benchmark.h>
 

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Reference: a vectorised numpy writhe matrix (Klenin-Langowski asin form), for the throughput
-comparison in DESIGN.md ("≥ 20x numpy"). Not part of the build; needs Debian's python3-numpy.
+comparison in the README ("≥ 20x numpy"). Not part of the build; needs Debian's python3-numpy.
 
 Usage: /usr/bin/python3 tests/bench/numpy_writhe.py [N]   (N segments per chain, default 1000)
 Prints seconds per matrix and ns per segment pair, and the total of the pinned Hopf link (-1).

@@ -227,7 +227,7 @@ TEST(Collision, Arm20CoilIsFreeAroundTheRope) {
   const Robot robot = LoadRobot(AssetFile("robots/arm20_sdh.urdf"));
   const Robot pole = LoadRobot(AssetFile("objects/pole.urdf"));
   Environment env;
-  // The rope of seed-methods §4.1: along world y, x = −0.1, z = 1.85, from y = −3 to 0. Its end
+  // The rope of thesis §4.3.1: along world y, x = −0.1, z = 1.85, from y = −3 to 0. Its end
   // at y = 0 would pierce the stem (r 0.1 about the z axis), so it is shifted 0.2 m along −y here.
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
   pose.translate(Eigen::Vector3d(-0.1, -1.7, 1.85));

@@ -30,7 +30,7 @@ void operator delete(void* p, std::size_t) noexcept { std::free(p); }
 namespace planning {
 namespace {
 
-// Standard DH: T_i = Rz(θ_i) Tz(d_i) Tx(a_i) Rx(α_i) (robots-hands-physics.md §1.2).
+// Standard DH: T_i = Rz(θ_i) Tz(d_i) Tx(a_i) Rx(α_i).
 Eigen::Isometry3d LwrDh(const Eigen::VectorXd& q) {
   const double d[7] = {0.3105, 0, 0.40, 0, 0.39, 0, 0.078};
   const double alpha[7] = {M_PI / 2, -M_PI / 2, -M_PI / 2, M_PI / 2, M_PI / 2, -M_PI / 2, 0};
@@ -49,7 +49,7 @@ TEST(Kinematics, LwrFlangeAtZero) {
   const Eigen::Isometry3d& flange = kin.world_from_link[FindLink(robot, "lwr_link_7")];
   EXPECT_TRUE(flange.translation().isApprox(Eigen::Vector3d(0, 0, 1.1785), 1e-12));
   EXPECT_TRUE(flange.linear().isIdentity(1e-12));
-  // SDH tip frames of straight fingers: 0.246 m above the mounting face (reference §2.2).
+  // SDH tip frames of straight fingers: 0.246 m above the mounting face (Schunk SDH URDF).
   const double palm_z = kin.world_from_link[FindLink(robot, "sdh_palm")].translation().z();
   EXPECT_NEAR(palm_z, 1.1985, 1e-12);
   EXPECT_NEAR(kin.world_from_link[FindLink(robot, "sdh_thumb_tip")].translation().z() - palm_z,
@@ -224,7 +224,7 @@ TEST(Kinematics, Arm20ZeroPoseIsACoilAroundTheRope) {
   ForwardKinematics(robot, Eigen::VectorXd::Zero(num_dofs(robot)), &kin);
   Eigen::Matrix3Xd arm;
   ChainPoints(robot, kin, FindChain(robot, "arm"), &arm);
-  // The rope of seed-methods §4.1: along world y at x = −0.1, z = 1.85. The reference's
+  // The rope of the unwrapping scene (thesis §4.3.1): along world y at x = −0.1, z = 1.85. An
   // independent check winds the far ends of links 1..20 (≈ 872° at q = 0, ≈ 97° with q_i = −0.5
   // for i ≥ 2); our chain adds the near end of link 1 as point 0.
   topology::Axis rope;

@@ -70,7 +70,7 @@ TEST(RobotSnapshot, SdhCloseUp) {
   ExpectSnapshot(scene, Look(0.30, -0.36, 1.50, 0, 0, 1.30, 38), "sdh_closeup");
 }
 
-// The 20-link arm coiled around the rope (seed-methods §4.1) at q = 0, with its chain.
+// The 20-link arm coiled around the rope (thesis §4.3.1) at q = 0, with its chain.
 TEST(RobotSnapshot, Arm20CoilAroundRope) {
   const Robot robot = LoadRobot(AssetFile("robots/arm20_sdh.urdf"));
   Environment env;

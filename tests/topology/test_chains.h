@@ -17,7 +17,7 @@ Chain ClosedCurve(F f, int n) {
   return c;
 }
 
-// The pinned Hopf link of DESIGN.md: A(t) = (cos t, sin t, 0), B(s) = (1 + cos s, 0, sin s).
+// The Hopf link (docs/methods.md §2.1): A(t) = (cos t, sin t, 0), B(s) = (1 + cos s, 0, sin s).
 Chain HopfA(int n);
 Chain HopfB(int n);
 // Component j ∈ {0, 1} of the (2, 2k) torus link (major radius R, minor r); linking number k.
