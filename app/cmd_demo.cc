@@ -1,11 +1,11 @@
-// `topoplan demo`: the main job. Runs every result the project produces — the same commands a
-// user would type, in-process — and writes them with an index.html into one folder.
+// `topoplan demo`: the main job. Runs every result the project produces — the same library calls
+// and output formatters as the commands — and writes them with an index.html into one folder.
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <map>
+#include <functional>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -13,7 +13,13 @@
 #include "app/assets.h"
 #include "app/cli.h"
 #include "app/command.h"
+#include "app/grasp_frames.h"
+#include "app/grasp_inputs.h"
 #include "app/io.h"
+#include "app/reports.h"
+#include "planning/physics/grasp_trials.h"
+#include "planning/scenario.h"
+#include "planning/unwrap_benchmark.h"
 #include "render/frames.h"
 #include "render/image.h"
 #include "topology/polyline.h"
@@ -44,26 +50,6 @@ constexpr ChainPair kPairs[] = {
     {"helix_pole", "helix_3turns.csv", "pole.csv", "about 3 (3-turn helix around a pole)"},
     {"ring_arm", "ring.csv", "arm_through_ring.csv", "about -0.9 (open arm through a ring)"},
 };
-
-std::string Html(const std::string& s) {
-  std::string out;
-  for (char c : s) {
-    if (c == '<')
-      out += "&lt;";
-    else if (c == '>')
-      out += "&gt;";
-    else if (c == '&')
-      out += "&amp;";
-    else
-      out += c;
-  }
-  return out;
-}
-
-nlohmann::json ReadJson(const fs::path& p) {
-  std::ifstream in(p);
-  return nlohmann::json::parse(in, nullptr, /*allow_exceptions=*/false);
-}
 
 std::vector<fs::path> SortedPngs(const fs::path& dir, const std::string& prefix) {
   std::vector<fs::path> out;
@@ -122,13 +108,8 @@ class Demo {
     std::printf("\n[%d] %s\n", stage_, title.c_str());
     std::fflush(stdout);
     const auto t0 = std::chrono::steady_clock::now();
-    int rc = kExitOk;
-    try {
-      rc = body();
-    } catch (const std::exception& e) {
-      std::fprintf(stderr, "demo: %s: %s\n", title.c_str(), e.what());
-      rc = kExitBadInput;
-    }
+    // Exceptions become exit codes as for any command (EnvironmentError: 3, others: 2).
+    const int rc = RunGuarded("demo: " + title, body);
     const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     std::printf("[%d] %s (%.1f s)\n", stage_, rc == 0 ? "done" : "FAILED", s);
     if (rc > worst_) worst_ = rc;
@@ -172,7 +153,7 @@ class Demo {
                     "<td>%s</td><td><a href=\"%s\"><img src=\"%s\" width=\"240\"></a>"
                     "<br><a href=\"writhe/%s.json\">json</a></td></tr>\n",
                     p.name, p.a, p.b, static_cast<long>(w.rows()), static_cast<long>(w.cols()),
-                    w.sum(), Html(p.expected).c_str(), png.c_str(), png.c_str(), p.name);
+                    w.sum(), HtmlEscape(p.expected).c_str(), png.c_str(), png.c_str(), p.name);
       rows << line;
     }
     html_ << "<h2>1. Writhe matrices of example chains</h2>\n"
@@ -184,36 +165,37 @@ class Demo {
     return rc;
   }
 
-  // Plan report as an HTML table row set.
-  std::string ReportTable(const fs::path& report_path) {
-    const nlohmann::json r = ReadJson(report_path);
-    if (!r.is_object()) return "<p><em>no report</em></p>";
-    std::ostringstream t;
-    t << "<table>";
-    for (const char* key :
-         {"planner", "success", "status", "collision_checks", "iterations", "cost",
-          "start_wrap_deg", "start_writhe_total", "final_writhe_total", "min_clearance_m"}) {
-      if (r.contains(key))
-        t << "<tr><th>" << key << "</th><td>" << Html(r[key].dump()) << "</td></tr>";
+  // `topoplan plan NAME --planner aico -o DIR --frames` as library calls: the same files, and the
+  // report for the page. `on_frame` sees every rendered frame with its writhe heatmap.
+  int PlanAico(
+      const std::string& name, const fs::path& dir, nlohmann::json* report, PlanFrames* frames,
+      const std::function<void(const render::Image&, const render::Image*)>& on_frame = {}) {
+    std::printf("  plan %s with aico -> %s\n", name.c_str(), dir.string().c_str());
+    std::fflush(stdout);
+    const auto scenario = planning::LoadScenario(ResolveScenarioPath(name));
+    const planning::PlanResult result =
+        planning::RunPlanner(*scenario, planning::Planner::kAico, /*seed=*/0);
+    *report = WritePlanOutputs(*scenario, result, /*seed=*/0, dir.string());
+    if (result.trajectory.num_points() > 0) {
+      *frames = WritePlanFrames(*scenario, result.trajectory, dir.string(), on_frame);
     }
-    t << "</table>\n";
-    return t.str();
+    std::printf("  %s\n", PlanSummaryLine(*scenario, result.report).c_str());
+    return result.report.success ? kExitOk : kExitFailed;
   }
 
   int Unwrap() {
     const fs::path dir = out_ / "unwrap";
-    const int rc = Sub({"plan", "unwrap", "--planner", "aico", "-o", dir.string(), "--frames"});
     // One movie frame per time slice: the scene next to its writhe heatmap.
-    const auto frames = SortedPngs(dir / "frames", "frame_");
-    const auto heatmaps = SortedPngs(dir / "heatmaps", "heatmap_");
     render::FrameWriterOptions fo;
     fo.prefix = "unwrap_";
     fo.fps = 12;
     render::FrameWriter writer((dir / "movie").string(), fo);
-    for (size_t i = 0; i < frames.size() && i < heatmaps.size(); ++i) {
-      writer.Add(
-          SideBySide(render::ReadPng(frames[i].string()), render::ReadPng(heatmaps[i].string())));
-    }
+    nlohmann::json report;
+    PlanFrames frames;
+    const int rc = PlanAico("unwrap", dir, &report, &frames,
+                            [&](const render::Image& frame, const render::Image* heatmap) {
+                              if (heatmap) writer.Add(SideBySide(frame, *heatmap));
+                            });
     const render::FrameSequence seq = writer.Finish();
     std::printf("  movie: %zu frames%s\n", seq.frames.size(),
                 seq.video.empty() ? " (no ffmpeg: no video)" : (", " + seq.video).c_str());
@@ -222,7 +204,7 @@ class Demo {
              "total writhe of 0 (linearly interpolated over T = 50 steps) plus reaching the "
              "cylinder, with collision and joint-limit tasks. Left: the arm; right: its writhe "
              "matrix against the pole at the same time step.</p>\n"
-          << ReportTable(dir / "report.json");
+          << PlanReportHtml(report);
     if (!seq.video.empty()) {
       html_ << "<p><video controls width=\"960\" src=\"unwrap/movie/"
             << fs::path(seq.video).filename().string() << "\"></video></p>\n";
@@ -236,19 +218,20 @@ class Demo {
 
   int Ring() {
     const fs::path dir = out_ / "ring";
-    const int rc =
-        Sub({"plan", "reach_through_ring", "--planner", "aico", "-o", dir.string(), "--frames"});
-    const auto frames = SortedPngs(dir / "frames", "frame_");
-    const auto heatmaps = SortedPngs(dir / "heatmaps", "heatmap_");
+    nlohmann::json report;
+    PlanFrames frames;
+    const int rc = PlanAico("reach_through_ring", dir, &report, &frames);
     html_ << "<h2>3. Reaching through a ring with a writhe target (Fig. 4.4)</h2>\n"
              "<p>KUKA LWR 4 with the Schunk SDH; tasks: the writhe matrix of the hand chain "
              "against the ring chain (target from the final-pose estimate) and an end-effector "
              "box. Final pose and its writhe matrix: the peak is at the link through the ring."
              "</p>\n"
-          << ReportTable(dir / "report.json");
-    if (!frames.empty() && !heatmaps.empty()) {
-      const std::string f = "ring/frames/" + frames.back().filename().string();
-      const std::string h = "ring/heatmaps/" + heatmaps.back().filename().string();
+          << PlanReportHtml(report);
+    if (!frames.frames.frames.empty() && !frames.heatmaps.frames.empty()) {
+      const std::string f =
+          "ring/frames/" + fs::path(frames.frames.frames.back()).filename().string();
+      const std::string h =
+          "ring/heatmaps/" + fs::path(frames.heatmaps.frames.back()).filename().string();
       html_ << "<p><img src=\"" << f << "\" width=\"560\"> <img src=\"" << h
             << "\" width=\"420\"></p>\n";
     }
@@ -258,102 +241,65 @@ class Demo {
 
   int Bench() {
     const fs::path dir = out_ / "bench";
-    const int rc =
-        Sub({"bench", "unwrap", "--angles", args_.full ? "0:900:90" : "0:720:180", "--seeds",
-             args_.full ? "5" : "1", "--planners", "aico,rrt,birrt", "-o", dir.string()});
+    planning::UnwrapBenchmarkOptions options;
+    options.scenario_path = ResolveScenarioPath("unwrap");
+    const double max_angle = args_.full ? 900.0 : 720.0, step = args_.full ? 90.0 : 180.0;
+    for (double a = 0.0; a <= max_angle + 1e-9; a += step) options.angles_deg.push_back(a);
+    options.planners = {planning::Planner::kAico, planning::Planner::kRrt,
+                        planning::Planner::kBiRrt};
+    options.seeds = args_.full ? 5 : 1;
+    options.progress = [](int done, int total, const planning::UnwrapRun& run) {
+      std::fprintf(stderr, "\r  %d/%d runs (%s @ %.0f deg seed %d)   ", done, total,
+                   planning::PlannerName(run.planner), run.angle_deg, run.seed);
+      if (done == total) std::fprintf(stderr, "\n");
+    };
+    const planning::UnwrapBenchmarkResult result = planning::RunUnwrapBenchmark(options);
+    WriteFileAtomic((dir / "unwrap.csv").string(), UnwrapCsv(result));
+    if (const auto figure = UnwrapFigure(result)) {
+      render::WritePng((dir / "unwrap.png").string(), *figure);
+    }
     // Planners that fail at large angles are the figure's point, not a demo failure.
-    const int stage_rc = rc == kExitFailed ? kExitOk : rc;
-    // Table: per angle and planner, successes and mean collision checks.
-    std::map<std::pair<int, std::string>, std::pair<int, std::vector<long>>> cells;
-    std::ifstream csv(dir / "unwrap.csv");
-    std::string line;
-    std::getline(csv, line);  // header
-    std::vector<std::string> planners;
-    while (std::getline(csv, line)) {
-      std::stringstream ss(line);
-      std::string angle, planner, seed, success, checks;
-      std::getline(ss, angle, ',');
-      std::getline(ss, planner, ',');
-      std::getline(ss, seed, ',');
-      std::getline(ss, success, ',');
-      std::getline(ss, checks, ',');
-      if (std::find(planners.begin(), planners.end(), planner) == planners.end()) {
-        planners.push_back(planner);
-      }
-      auto& cell = cells[{std::stoi(angle), planner}];
-      cell.first += success == "1";
-      cell.second.push_back(std::stol(checks));
-    }
-    std::ostringstream t;
-    t << "<table><tr><th>angle to unwrap</th>";
-    for (const std::string& p : planners) t << "<th>" << p << ": solved, mean checks</th>";
-    t << "</tr>\n";
-    int last_angle = -1;
-    for (const auto& [key, cell] : cells) {
-      if (key.first != last_angle) {
-        if (last_angle >= 0) t << "</tr>\n";
-        t << "<tr><td>" << key.first << "&deg;</td>";
-        last_angle = key.first;
-      }
-      double mean = 0;
-      for (long c : cell.second) mean += static_cast<double>(c) / cell.second.size();
-      char buf[96];
-      std::snprintf(buf, sizeof buf, "<td>%d/%zu, %.0f</td>", cell.first, cell.second.size(), mean);
-      t << buf;
-    }
-    t << "</tr></table>\n";
     html_ << "<h2>4. Collision checks vs angle to unwrap (Fig. 4.5)</h2>\n"
              "<p>AICO with the writhe task against uni-directional RRT (10% goal bias) and "
              "bi-directional RRT, both given the final-pose estimate as their goal; a run that "
-             "exhausts its budget of collision checks counts as failed (marked). "
+             "exhausts its budget of collision checks counts as failed (marked). Mean checks are "
+             "over the solved runs, as in the figure. "
           << (args_.full ? "Full sweep."
                          : "Reduced sweep; <code>topoplan demo --full</code> runs "
                            "0&ndash;900&deg; with 5 seeds.")
           << "</p>\n<p><img src=\"bench/unwrap.png\" width=\"720\"></p>\n"
-          << t.str() << "<p><a href=\"bench/unwrap.csv\">unwrap.csv</a></p>\n";
-    return stage_rc;
+          << UnwrapHtmlTable(result) << "<p><a href=\"bench/unwrap.csv\">unwrap.csv</a></p>\n";
+    return kExitOk;
   }
 
   int Grasp() {
     const fs::path dir = out_ / "grasp";
-    int rc = Sub(
-        {"grasp", "transfer", "--grasp", "all", "--method", "all", "-o", dir.string(), "--frames"});
-    if (rc == kExitFailed) rc = kExitOk;  // unstable baseline grasps are results, not errors
+    namespace phys = planning::physics;
+    const GraspInputs in = LoadGraspInputs(SelectGraspFiles("all"));
+    const std::vector<planning::TransferMethod> methods = {planning::TransferMethod::kWinding,
+                                                           planning::TransferMethod::kJointMapping,
+                                                           planning::TransferMethod::kFingertip};
+    phys::OdeRuntime ode;
+    GraspFrameWriter frames;
+    const phys::GraspTrialsResult result =
+        phys::RunGraspTrials(ode, in.human, in.lwr_sdh, in.objects, in.grasps, methods,
+                             phys::StabilityOptions{}.sim.mu, GraspTransferHooks(dir, &frames));
+    WriteGraspOutputs(result, dir.string());
+    // Unstable baseline grasps are results, not errors.
     html_ << "<h2>5. Grasp transfer: human hand &rarr; Schunk SDH, tested in ODE</h2>\n"
              "<p>Each human grasp is encoded as winding numbers of the finger chains about the "
              "object; AICO finds an SDH posture with the mapped winding target. Baselines: linear "
              "joint mapping and fingertip mapping. Stability: gravity along &plusmn;x, &plusmn;y, "
-             "&plusmn;z for 2 s each at 1 kHz.</p>\n"
-             "<p><img src=\"grasp/summary.png\" width=\"640\"></p>\n";
-    // The success table of summary.md as HTML.
-    std::ifstream md(dir / "summary.md");
-    std::string line;
-    html_ << "<table>";
-    bool header = true;
-    while (std::getline(md, line)) {
-      if (line.rfind("|", 0) != 0 || line.rfind("|---", 0) == 0) continue;
-      std::stringstream ss(line.substr(1));
-      std::string cell;
-      html_ << "<tr>";
-      while (std::getline(ss, cell, '|')) {
-        html_ << (header ? "<th>" : "<td>") << Html(cell) << (header ? "</th>" : "</td>");
-      }
-      html_ << "</tr>\n";
-      header = false;
-    }
-    html_ << "</table>\n<h3>Transferred grasps (winding method) and their stability tests</h3>\n";
-    std::error_code ec;
-    std::vector<fs::path> runs;
-    for (const auto& e : fs::directory_iterator(dir / "frames", ec)) {
-      if (e.is_directory() && e.path().filename().string().ends_with("_winding")) {
-        runs.push_back(e.path());
-      }
-    }
-    std::sort(runs.begin(), runs.end());
-    for (const fs::path& run : runs) {
-      const std::string name = run.filename().string();
+             "&plusmn;z for 2 s each at 1 kHz; cells are gravity directions held out of 6.</p>\n"
+             "<p><img src=\"grasp/summary.png\" width=\"640\"></p>\n"
+          << GraspHtmlTable(result)
+          << "<p><a href=\"grasp/report.json\">report.json</a></p>\n"
+             "<h3>Transferred grasps (winding method) and their stability tests</h3>\n";
+    for (const planning::HumanGrasp& g : result.grasps) {
+      const std::string name = g.name + "_winding";
+      const fs::path run = dir / "frames" / name;
       const auto transfer = SortedPngs(run / "transfer", "transfer_");
-      html_ << "<p><b>" << Html(name.substr(0, name.size() - 8)) << "</b><br>";
+      html_ << "<p><b>" << HtmlEscape(g.name) << "</b><br>";
       if (!transfer.empty()) {
         html_ << "<img src=\"grasp/frames/" << name << "/transfer/"
               << transfer.back().filename().string() << "\" width=\"320\"> ";
@@ -364,7 +310,7 @@ class Demo {
       }
       html_ << "</p>\n";
     }
-    return rc;
+    return kExitOk;
   }
 
   int Viewer() {
@@ -391,7 +337,7 @@ class Demo {
             "transfer after Zarubin's thesis. Every figure below was produced by "
             "<code>topoplan demo</code>.</p>\n<ul>";
     for (const auto& [title, rc] : stage_status_) {
-      page << "<li>" << Html(title) << ": "
+      page << "<li>" << HtmlEscape(title) << ": "
            << (rc == 0   ? "ok"
                : rc == 1 ? "task failed"
                          : "error")

@@ -8,7 +8,7 @@ namespace app {
 int RunGuarded(const std::string& name, const std::function<int()>& run) {
   try {
     return run();
-  } catch (const EnvironmentError& e) {
+  } catch (const EnvironmentError& e) {  // render::EnvironmentError and its ContextError
     std::fprintf(stderr, "topoplan %s: environment error: %s\n", name.c_str(), e.what());
     return kExitEnvironment;
   } catch (const std::exception& e) {

@@ -7,19 +7,19 @@
 #include <string>
 #include <vector>
 
+#include "render/offscreen_context.h"
+
 namespace app {
 
 // Exit codes: 0 success; 1 ran but the task failed (no path, not converged, unstable
 // grasp, images differ); 2 bad input or usage; 3 environment error (no GL context, missing asset).
 enum ExitCode : int { kExitOk = 0, kExitFailed = 1, kExitBadInput = 2, kExitEnvironment = 3 };
 
-// Thrown for environment problems (no GL context, a missing installed asset): exit code 3.
-// Every other exception that reaches main (std::invalid_argument from loaders, ...) is bad input:
-// exit code 2.
-class EnvironmentError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
+// Environment problems (no GL context, no system font, a missing installed asset): exit code 3.
+// The one class is render's (where a GL context fails); app code throws and RunGuarded catches it
+// under this name. Every other exception that reaches RunGuarded (std::invalid_argument from
+// loaders, ...) is bad input: exit code 2.
+using render::EnvironmentError;
 
 // A registered subcommand: `run` is called when `sub` was parsed and returns the exit code.
 struct Command {

@@ -5,9 +5,7 @@
 #include <regex>
 #include <stdexcept>
 
-#include "app/command.h"
 #include "render/heatmap.h"
-#include "render/offscreen_context.h"
 
 namespace app {
 
@@ -45,14 +43,6 @@ render::Image WritheHeatmapFigure(const Eigen::MatrixXd& w, const std::string& a
   o.col_label = "segment of " + b_name;
   o.value_label = signed_values ? "writhe" : "solid angle (rad)";
   return render::RenderHeatmap(w, o);
-}
-
-int WithRenderErrors(const std::function<int()>& run) {
-  try {
-    return run();
-  } catch (const render::EnvironmentError& e) {
-    throw EnvironmentError(e.what());
-  }
 }
 
 }  // namespace app

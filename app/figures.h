@@ -1,6 +1,5 @@
 // Figure helpers shared by commands that draw (render, heatmap, writhe --heatmap, later plan and
-// bench): image-size flags, the writhe heatmap figure, and mapping render's environment errors
-// to exit code 3.
+// bench): image-size flags and the writhe heatmap figure.
 #pragma once
 
 #include <Eigen/Core>
@@ -23,8 +22,8 @@ render::Image WritheHeatmapFigure(const Eigen::MatrixXd& w, const std::string& a
                                   const std::string& b_name, int width, int height,
                                   const std::string& title = "", bool signed_values = true);
 
-// Runs `run`, rethrowing render::EnvironmentError (no GL context, no font) as
-// app::EnvironmentError so that RunGuarded exits with code 3.
-int WithRenderErrors(const std::function<int()>& run);
+// Obsolete: returns run(). render::EnvironmentError is app::EnvironmentError and RunGuarded maps
+// it to exit code 3 directly; kept only until the remaining callers drop the wrapper.
+inline int WithRenderErrors(const std::function<int()>& run) { return run(); }
 
 }  // namespace app

@@ -7,12 +7,10 @@
 #include <stdexcept>
 
 #include "app/assets.h"
-#include "planning/grasp.h"
-#include "planning/grasp_object.h"
+#include "app/grasp_inputs.h"
 #include "planning/grasp_transfer.h"
-#include "planning/physics/hand_builder.h"
+#include "planning/physics/grasp_trials.h"
 #include "planning/physics/ode_runtime.h"
-#include "planning/robot_io.h"
 
 namespace app {
 namespace {
@@ -89,36 +87,36 @@ void Session::Plan(Settings* settings, bool record_sweeps) {
 }
 
 void Session::RunGrasp(Settings* settings) {
+  namespace phys = planning::physics;
   const std::string name = settings->grasp.grasp;
   const planning::TransferMethod method = planning::ParseTransferMethod(settings->grasp.method);
-  const std::vector<planning::GraspObject> objects =
-      planning::LoadGraspObjects(AssetPath("grasps/objects.json"));
-  const planning::Robot human = planning::LoadRobot(AssetPath("robots/human_hand.urdf"));
-  const planning::Robot lwr_sdh = planning::LoadRobot(AssetPath("robots/lwr4_sdh.urdf"));
-  const planning::HumanGrasp g = planning::LoadHumanGrasp(AssetPath("grasps/" + name + ".json"));
-  const planning::GraspObject& object = planning::FindGraspObject(objects, g.object);
-  const planning::TransferSetup setup = planning::MakeTransferSetup(human, lwr_sdh, object, g);
-  const planning::TransferResult t = planning::TransferGrasp(setup, method);
+  const GraspInputs in = LoadGraspInputs({AssetPath("grasps/" + name + ".json")});
 
   GraspReplay replay;
   replay.grasp = name;
   replay.method = settings->grasp.method;
-  replay.hand = planning::physics::BuildSimHand(setup.sdh, t.q, "sdh_palm");
-  replay.object = planning::physics::BuildSimObject(object, g.world_from_object);
-  replay.winding_error = (t.robot_winding - t.target_winding).norm();
-  planning::physics::OdeRuntime ode;
-  planning::physics::StabilityOptions options;
+  phys::GraspTrialHooks hooks;
   int step = 0;
-  replay.result = planning::physics::TestGraspStability(
-      ode, replay.hand, replay.object, options,
-      [&](int phase, const planning::physics::GraspSimulation& sim) {
-        if (step++ % replay.stride == 0) replay.frames.push_back({phase, sim.state()});
-      });
+  hooks.on_start = [&](const planning::TransferSetup&, const planning::TransferResult&,
+                       const phys::SimHand&, const phys::SimObject&) -> phys::StepCallback {
+    return [&](int phase, const phys::GraspSimulation& sim) {
+      if (step++ % replay.stride == 0) replay.frames.push_back({phase, sim.state()});
+    };
+  };
+  phys::OdeRuntime ode;
+  phys::GraspTrialsResult trials =
+      phys::RunGraspTrials(ode, in.human, in.lwr_sdh, in.objects, in.grasps, {method},
+                           phys::StabilityOptions{}.sim.mu, hooks);
+  phys::GraspTrial& trial = trials.trials.at(0).at(0);
+  replay.hand = std::move(trial.hand);
+  replay.object = std::move(trial.object);
+  replay.result = std::move(trial.stability);
+  replay.winding_error = trial.winding_error;
   std::ostringstream msg;
   msg << name << " (" << replay.method << "): " << replay.result.directions_passed
       << "/6 gravity directions held, "
-      << (replay.result.stable ? "stable" : planning::physics::ToString(replay.result.status))
-      << ", " << replay.frames.size() << " frames";
+      << (replay.result.stable ? "stable" : phys::ToString(replay.result.status)) << ", "
+      << replay.frames.size() << " frames";
   status_ = msg.str();
   grasp_ = std::move(replay);
   settings->grasp.active = true;
@@ -137,8 +135,8 @@ Eigen::Vector3d Session::GraspGravity(int frame) const {
   return world_from_palm * grasp_->result.directions[f.phase - 1].gravity_palm;
 }
 
-void Session::Apply(const Command& c, Settings* settings) {
-  using K = Command::Kind;
+void Session::Apply(const SessionCommand& c, Settings* settings) {
+  using K = SessionCommand::Kind;
   switch (c.kind) {
     case K::kGraspRun:
       RunGrasp(settings);

@@ -1,6 +1,7 @@
 // app::Session: the state behind the interactive window and its headless twin — the loaded
 // scenario or robot scene, the latest plan with every AICO sweep, and the commands that change
-// them. UI buttons and `--script` lines both become Commands; nothing else mutates a Session.
+// them. UI buttons and `--script` lines both become SessionCommands; nothing else mutates a
+// Session.
 #pragma once
 
 #include <Eigen/Core>
@@ -20,7 +21,7 @@
 namespace app {
 
 // One action. `text` and `value` carry the argument where the kind needs one.
-struct Command {
+struct SessionCommand {
   enum class Kind {
     kLoad,       // text = scenario / URDF / scene JSON path
     kPlan,       // run settings.planner on the scenario; shows the final trajectory
@@ -33,8 +34,8 @@ struct Command {
     kGraspRun,   // transfer settings.grasp to the SDH and run the ODE stability test, recording it
     kGraspStep,  // value = recorded simulation frames to advance (negative: back)
   };
-  Command() = default;
-  explicit Command(Kind k, std::string t = "", int i = 0, double v = 0.0)
+  SessionCommand() = default;
+  explicit SessionCommand(Kind k, std::string t = "", int i = 0, double v = 0.0)
       : kind(k), text(std::move(t)), index(i), value(v) {}
 
   Kind kind = Kind::kReset;
@@ -73,7 +74,7 @@ class Session {
 
   // Applies one command; may update `settings` (shown sweep, frame, playback). Throws
   // std::invalid_argument for bad arguments (unknown file, joint index out of range).
-  void Apply(const Command& command, Settings* settings);
+  void Apply(const SessionCommand& command, Settings* settings);
 
   // Advances playback by settings->play_stride slices when playing (stops at the end).
   void Tick(Settings* settings) const;

@@ -4,7 +4,6 @@
 #include "app/command.h"
 #include "app/io.h"
 #include "app/ui/viewer.h"
-#include "render/offscreen_context.h"
 
 namespace app {
 
@@ -42,11 +41,7 @@ void AddViewCommand(CLI::App* root, CommandList* commands) {
          }
          o->width = static_cast<int>(wh[0]);
          o->height = static_cast<int>(wh[1]);
-         try {
-           return ui::RunViewer(*o);
-         } catch (const render::EnvironmentError& e) {
-           throw EnvironmentError(e.what());
-         }
+         return ui::RunViewer(*o);
        }});
 }
 

@@ -26,14 +26,14 @@ ImU32 Diverging(float v) {
 }
 
 void ScenarioPanel(const Session& session, const std::vector<std::string>& scenarios, Settings* s,
-                   std::vector<Command>* commands, WidgetRects* rects) {
+                   std::vector<SessionCommand>* commands, WidgetRects* rects) {
   ImGui::SetNextWindowPos(ImVec2(10, 10), ImGuiCond_Always);
   ImGui::SetNextWindowSize(ImVec2(330, 0), ImGuiCond_Always);
   ImGui::Begin("topoplan", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize);
   if (ImGui::BeginCombo("scenario", s->scenario_path.c_str())) {
     for (const std::string& name : scenarios) {
       if (ImGui::Selectable(name.c_str(), name == s->scenario_path)) {
-        commands->emplace_back(Command::Kind::kLoad, name);
+        commands->emplace_back(SessionCommand::Kind::kLoad, name);
       }
     }
     ImGui::EndCombo();
@@ -58,13 +58,13 @@ void ScenarioPanel(const Session& session, const std::vector<std::string>& scena
                            ImGuiSliderFlags_Logarithmic)) {
       s->planner.damping = damping;
     }
-    if (ImGui::Button("Plan")) commands->emplace_back(Command::Kind::kPlan);
+    if (ImGui::Button("Plan")) commands->emplace_back(SessionCommand::Kind::kPlan);
     Remember("Plan", rects);
     ImGui::SameLine();
-    if (ImGui::Button("Step sweep")) commands->emplace_back(Command::Kind::kStep);
+    if (ImGui::Button("Step sweep")) commands->emplace_back(SessionCommand::Kind::kStep);
     Remember("Step sweep", rects);
     ImGui::SameLine();
-    if (ImGui::Button("Reset")) commands->emplace_back(Command::Kind::kReset);
+    if (ImGui::Button("Reset")) commands->emplace_back(SessionCommand::Kind::kReset);
     Remember("Reset", rects);
   }
 
@@ -74,13 +74,14 @@ void ScenarioPanel(const Session& session, const std::vector<std::string>& scena
     ImGui::Separator();
     ImGui::TextDisabled("timeline");
     if (ImGui::Button(s->playing ? "Pause" : "Play")) {
-      commands->emplace_back(s->playing ? Command::Kind::kPause : Command::Kind::kPlay);
+      commands->emplace_back(s->playing ? SessionCommand::Kind::kPause
+                                        : SessionCommand::Kind::kPlay);
     }
     Remember("Play", rects);
     ImGui::SameLine();
     int frame = s->frame;
     if (ImGui::SliderInt("t", &frame, 0, frames - 1)) {
-      commands->emplace_back(Command::Kind::kSeek, "", 0, static_cast<double>(frame));
+      commands->emplace_back(SessionCommand::Kind::kSeek, "", 0, static_cast<double>(frame));
     }
     Remember("timeline", rects);
     if (!session.sweeps().empty()) {
@@ -104,7 +105,7 @@ void ScenarioPanel(const Session& session, const std::vector<std::string>& scena
       const float a = std::isfinite(lo(i)) ? static_cast<float>(lo(i)) : -3.1416f;
       const float b = std::isfinite(hi(i)) ? static_cast<float>(hi(i)) : 3.1416f;
       if (ImGui::SliderFloat(names[i].c_str(), &v, a, b, "%.3f")) {
-        commands->emplace_back(Command::Kind::kSetJoint, "", i, v);
+        commands->emplace_back(SessionCommand::Kind::kSetJoint, "", i, v);
       }
     }
   }
@@ -129,7 +130,7 @@ void ScenarioPanel(const Session& session, const std::vector<std::string>& scena
 }
 
 void GraspPanel(const Session& session, const std::vector<std::string>& grasps, Settings* s,
-                std::vector<Command>* commands, WidgetRects* rects) {
+                std::vector<SessionCommand>* commands, WidgetRects* rects) {
   ImGui::SetNextWindowPos(ImVec2(10, static_cast<float>(s->height) - 200.0f), ImGuiCond_Always);
   ImGui::SetNextWindowSize(ImVec2(330, 0), ImGuiCond_Always);
   ImGui::Begin("grasp stability (ODE)", nullptr,
@@ -146,10 +147,10 @@ void GraspPanel(const Session& session, const std::vector<std::string>& grasps, 
     if (s->grasp.method == methods[i]) m = i;
   }
   if (ImGui::Combo("method", &m, methods, 3)) s->grasp.method = methods[m];
-  if (ImGui::Button("Transfer + test")) commands->emplace_back(Command::Kind::kGraspRun);
+  if (ImGui::Button("Transfer + test")) commands->emplace_back(SessionCommand::Kind::kGraspRun);
   Remember("Transfer + test", rects);
   ImGui::SameLine();
-  if (ImGui::Button("Step")) commands->emplace_back(Command::Kind::kGraspStep, "", 0, 1.0);
+  if (ImGui::Button("Step")) commands->emplace_back(SessionCommand::Kind::kGraspStep, "", 0, 1.0);
   Remember("Grasp step", rects);
   ImGui::SameLine();
   ImGui::Checkbox("show", &s->grasp.active);
@@ -223,7 +224,7 @@ void CostPanel(const Session& session, const Settings& s) {
 
 void DrawPanels(const Session& session, const std::vector<std::string>& scenarios,
                 const std::vector<std::string>& grasps, Settings* settings,
-                std::vector<Command>* commands, WidgetRects* rects) {
+                std::vector<SessionCommand>* commands, WidgetRects* rects) {
   ScenarioPanel(session, scenarios, settings, commands, rects);
   if (!grasps.empty()) GraspPanel(session, grasps, settings, commands, rects);
   if (settings->grasp.active) return;  // the grasp view has no writhe or cost to show

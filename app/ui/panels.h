@@ -23,6 +23,6 @@ struct WidgetRects {
 // Draws every panel for one frame. `scenarios` and `grasps` list the pickers' choices.
 void DrawPanels(const Session& session, const std::vector<std::string>& scenarios,
                 const std::vector<std::string>& grasps, Settings* settings,
-                std::vector<Command>* commands, WidgetRects* rects);
+                std::vector<SessionCommand>* commands, WidgetRects* rects);
 
 }  // namespace app::ui

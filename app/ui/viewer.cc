@@ -141,22 +141,23 @@ class ScriptRunner {
         settings->camera.distance = static_cast<float>(num(2));
         settings->camera_initialised = true;
       } else {
-        Command c;
-        using K = Command::Kind;
-        if (l.verb == "load") c = Command(K::kLoad, arg(0));
-        if (l.verb == "plan") c = Command(K::kPlan);
-        if (l.verb == "step") c = Command(K::kStep);
-        if (l.verb == "play") c = Command(K::kPlay);
-        if (l.verb == "pause") c = Command(K::kPause);
-        if (l.verb == "reset") c = Command(K::kReset);
-        if (l.verb == "seek") c = Command(K::kSeek, "", 0, num(0));
-        if (l.verb == "joint") c = Command(K::kSetJoint, "", static_cast<int>(num(0)), num(1));
+        SessionCommand c;
+        using K = SessionCommand::Kind;
+        if (l.verb == "load") c = SessionCommand(K::kLoad, arg(0));
+        if (l.verb == "plan") c = SessionCommand(K::kPlan);
+        if (l.verb == "step") c = SessionCommand(K::kStep);
+        if (l.verb == "play") c = SessionCommand(K::kPlay);
+        if (l.verb == "pause") c = SessionCommand(K::kPause);
+        if (l.verb == "reset") c = SessionCommand(K::kReset);
+        if (l.verb == "seek") c = SessionCommand(K::kSeek, "", 0, num(0));
+        if (l.verb == "joint")
+          c = SessionCommand(K::kSetJoint, "", static_cast<int>(num(0)), num(1));
         if (l.verb == "grasp") {
           settings->grasp.grasp = arg(0);
           settings->grasp.method = arg(1);
-          c = Command(K::kGraspRun);
+          c = SessionCommand(K::kGraspRun);
         }
-        if (l.verb == "grasp_step") c = Command(K::kGraspStep, "", 0, num(0));
+        if (l.verb == "grasp_step") c = SessionCommand(K::kGraspStep, "", 0, num(0));
         session->Apply(c, settings);
       }
     }
@@ -181,7 +182,7 @@ struct Viewer {
   SceneMeshCache cache;
   render::Image atlas;
   render::Overlay overlay;
-  std::vector<Command> commands;
+  std::vector<SessionCommand> commands;
 
   // Panels → commands → session; returns the scene and camera of this frame.
   void UiAndUpdate(render::Scene* scene, render::Camera* camera) {
@@ -189,7 +190,7 @@ struct Viewer {
     ImGui::NewFrame();
     DrawPanels(session, scenarios, grasps, &settings, &commands, &rects);
     ImGui::Render();
-    for (const Command& c : commands) {
+    for (const SessionCommand& c : commands) {
       try {
         session.Apply(c, &settings);
       } catch (const std::exception& e) {
@@ -331,7 +332,7 @@ int RunViewer(const ViewerOptions& options) {
   ScriptRunner script(options.script.empty() ? std::vector<ScriptLine>{}
                                              : ParseScript(options.script));
   if (!options.scenario.empty()) {
-    v.session.Apply(Command(Command::Kind::kLoad, options.scenario), &v.settings);
+    v.session.Apply(SessionCommand(SessionCommand::Kind::kLoad, options.scenario), &v.settings);
   }
   const bool headless = options.headless || !options.screenshot.empty();
   return headless ? RunHeadless(options, &v, &script) : RunWindow(options, &v, &script);

@@ -13,7 +13,7 @@ class SessionTest : public ::testing::Test {
  protected:
   void SetUp() override {
     setenv("TOPOPLAN_ASSETS", TOPOPLAN_SOURCE_DIR "/assets", 1);
-    session_.Apply(Command(Command::Kind::kLoad, "unwrap"), &settings_);
+    session_.Apply(SessionCommand(SessionCommand::Kind::kLoad, "unwrap"), &settings_);
   }
   Session session_;
   Settings settings_;
@@ -29,23 +29,23 @@ TEST_F(SessionTest, LoadsScenarioWithStartConfigurationAndWrithe) {
 }
 
 TEST_F(SessionTest, StepShowsSweepsInOrderAndPlanShowsTheResult) {
-  session_.Apply(Command(Command::Kind::kStep), &settings_);
+  session_.Apply(SessionCommand(SessionCommand::Kind::kStep), &settings_);
   ASSERT_FALSE(session_.sweeps().empty());
   EXPECT_EQ(settings_.sweep, 0);
   const Eigen::VectorXd q_sweep0 = session_.ShownQ(settings_);
-  session_.Apply(Command(Command::Kind::kStep), &settings_);
+  session_.Apply(SessionCommand(SessionCommand::Kind::kStep), &settings_);
   EXPECT_EQ(settings_.sweep, 1);
   // Stepping through every recorded sweep moves the shown end configuration.
   double moved = 0.0;
   for (size_t k = 1; k < session_.sweeps().size(); ++k) {
-    session_.Apply(Command(Command::Kind::kStep), &settings_);
+    session_.Apply(SessionCommand(SessionCommand::Kind::kStep), &settings_);
     moved = std::max(moved, (session_.ShownQ(settings_) - q_sweep0).norm());
   }
   EXPECT_EQ(settings_.sweep, static_cast<int>(session_.sweeps().size()) - 1);
   EXPECT_GT(moved, 0.1);
   // The final trajectory (sweep −1) ends unwrapped.
   settings_.sweep = -1;
-  session_.Apply(Command(Command::Kind::kSeek, "", 0, 1e9), &settings_);
+  session_.Apply(SessionCommand(SessionCommand::Kind::kSeek, "", 0, 1e9), &settings_);
   EXPECT_EQ(settings_.frame, session_.num_frames(settings_) - 1);
   EXPECT_LT(std::abs(session_.WritheAt(session_.ShownQ(settings_)).sum()), 0.1);
   ASSERT_TRUE(session_.result().has_value());
@@ -53,8 +53,8 @@ TEST_F(SessionTest, StepShowsSweepsInOrderAndPlanShowsTheResult) {
 }
 
 TEST_F(SessionTest, PlaybackAdvancesAndStopsAtTheEnd) {
-  session_.Apply(Command(Command::Kind::kPlan), &settings_);
-  session_.Apply(Command(Command::Kind::kPlay), &settings_);
+  session_.Apply(SessionCommand(SessionCommand::Kind::kPlan), &settings_);
+  session_.Apply(SessionCommand(SessionCommand::Kind::kPlay), &settings_);
   EXPECT_TRUE(settings_.playing);
   const int n = session_.num_frames(settings_);
   for (int i = 0; i < n + 5; ++i) session_.Tick(&settings_);
@@ -63,13 +63,14 @@ TEST_F(SessionTest, PlaybackAdvancesAndStopsAtTheEnd) {
 }
 
 TEST_F(SessionTest, JointSliderMovesTheRobotAndDropsThePlan) {
-  session_.Apply(Command(Command::Kind::kPlan), &settings_);
-  session_.Apply(Command(Command::Kind::kSetJoint, "", 3, 0.25), &settings_);
+  session_.Apply(SessionCommand(SessionCommand::Kind::kPlan), &settings_);
+  session_.Apply(SessionCommand(SessionCommand::Kind::kSetJoint, "", 3, 0.25), &settings_);
   EXPECT_FALSE(session_.result().has_value());
   EXPECT_DOUBLE_EQ(session_.ShownQ(settings_)(3), 0.25);
-  EXPECT_THROW(session_.Apply(Command(Command::Kind::kSetJoint, "", 99, 0.0), &settings_),
-               std::invalid_argument);
-  session_.Apply(Command(Command::Kind::kReset), &settings_);
+  EXPECT_THROW(
+      session_.Apply(SessionCommand(SessionCommand::Kind::kSetJoint, "", 99, 0.0), &settings_),
+      std::invalid_argument);
+  session_.Apply(SessionCommand(SessionCommand::Kind::kReset), &settings_);
   EXPECT_NE(session_.ShownQ(settings_)(3), 0.25);
 }
 
@@ -114,7 +115,7 @@ TEST(GraspReplayTest, TransfersRecordsAndStepsTheStabilityTest) {
   Settings settings;
   settings.grasp.grasp = "power_bottle";
   settings.grasp.method = "winding";
-  session.Apply(Command(Command::Kind::kGraspRun), &settings);
+  session.Apply(SessionCommand(SessionCommand::Kind::kGraspRun), &settings);
   ASSERT_TRUE(session.grasp().has_value());
   const GraspReplay& g = *session.grasp();
   // 0.5 s closing + 6 × 2 s at 1 kHz, one frame every 20 steps (trials may stop early).
@@ -123,10 +124,10 @@ TEST(GraspReplayTest, TransfersRecordsAndStepsTheStabilityTest) {
   EXPECT_EQ(g.frames.front().phase, 0);
   EXPECT_TRUE(settings.grasp.active);
   EXPECT_EQ(session.GraspGravity(0).norm(), 0.0);  // gravity off while closing
-  session.Apply(Command(Command::Kind::kGraspStep, "", 0, 60.0), &settings);
+  session.Apply(SessionCommand(SessionCommand::Kind::kGraspStep, "", 0, 60.0), &settings);
   EXPECT_EQ(settings.grasp.frame, 60);
   EXPECT_NEAR(session.GraspGravity(settings.grasp.frame).norm(), 9.81, 1e-9);
-  session.Apply(Command(Command::Kind::kGraspStep, "", 0, 1e6), &settings);
+  session.Apply(SessionCommand(SessionCommand::Kind::kGraspStep, "", 0, 1e6), &settings);
   EXPECT_EQ(settings.grasp.frame, static_cast<int>(g.frames.size()) - 1);
 }
 

@@ -1,0 +1,59 @@
+#include "planning/physics/grasp_trials.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace planning::physics {
+
+GraspTrial RunGraspTrial(const OdeRuntime& runtime, const TransferSetup& setup,
+                         TransferMethod method, const StabilityOptions& options,
+                         const GraspTrialHooks& hooks) {
+  GraspTrial trial;
+  trial.transfer = TransferGrasp(setup, method);
+  trial.winding_error = (trial.transfer.robot_winding - trial.transfer.target_winding).norm();
+  trial.hand = BuildSimHand(setup.sdh, trial.transfer.q, "sdh_palm");
+  trial.object = BuildSimObject(setup.object, setup.grasp.world_from_object);
+  StepCallback on_step;
+  if (hooks.on_start) on_step = hooks.on_start(setup, trial.transfer, trial.hand, trial.object);
+  trial.stability = TestGraspStability(runtime, trial.hand, trial.object, options, on_step);
+  if (hooks.on_done) hooks.on_done(setup, trial);
+  return trial;
+}
+
+GraspTrialsResult RunGraspTrials(const OdeRuntime& runtime, const Robot& human_hand,
+                                 const Robot& sdh_source, const std::vector<GraspObject>& objects,
+                                 const std::vector<HumanGrasp>& grasps,
+                                 const std::vector<TransferMethod>& methods, double mu,
+                                 const GraspTrialHooks& hooks) {
+  if (!(mu >= 0) || !std::isfinite(mu)) {
+    throw std::invalid_argument("grasp trials: mu must be a finite number >= 0");
+  }
+  GraspTrialsResult result;
+  result.grasps = grasps;
+  result.methods = methods;
+  result.stability.sim.mu = mu;
+  for (TransferMethod m : methods) {
+    GraspMethodSummary s;
+    s.method = m;
+    s.grasps = static_cast<int>(grasps.size());
+    result.summary.push_back(s);
+  }
+  for (const HumanGrasp& g : grasps) {
+    const GraspObject& object = FindGraspObject(objects, g.object);
+    const TransferSetup setup = MakeTransferSetup(human_hand, sdh_source, object, g);
+    std::vector<GraspTrial>& row = result.trials.emplace_back();
+    for (size_t mi = 0; mi < methods.size(); ++mi) {
+      row.push_back(RunGraspTrial(runtime, setup, methods[mi], result.stability, hooks));
+      const bool stable = row.back().stability.stable;
+      result.summary[mi].stable += stable ? 1 : 0;
+      result.all_stable = result.all_stable && stable;
+    }
+  }
+  for (GraspMethodSummary& s : result.summary) {
+    s.rate = static_cast<double>(s.stable) / std::max(1, s.grasps);
+  }
+  return result;
+}
+
+}  // namespace planning::physics

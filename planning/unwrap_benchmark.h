@@ -1,0 +1,70 @@
+// The thesis Fig. 4.5 experiment as a library call: collision checks needed to unwrap an arm coiled
+// around a pole, per start angle, planner and seed, plus the per-(angle, planner) summary the
+// figure and the tables show.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "planning/scenario.h"
+
+namespace planning {
+
+// One benchmark run: `planner` with `seed` on the scenario loaded with start wrap `angle_deg`.
+struct UnwrapRun {
+  double angle_deg = 0.0;  // angle to unwrap (scenario start wrap) [deg]
+  Planner planner = Planner::kAico;
+  int seed = 0;       // seed of the RRTs' generator (AICO is deterministic)
+  PlanReport report;  // success, status, collision_checks (configuration-level queries),
+                      // narrow_phase_calls, iterations, time_s (wall clock, the only
+                      // non-deterministic field), path_length [rad], final_writhe_total, ...
+};
+
+// Aggregate of the runs of one (angle, planner) pair.
+struct UnwrapCell {
+  double angle_deg = 0.0;  // [deg]
+  Planner planner = Planner::kAico;
+  int runs = 0;       // seeds run
+  int successes = 0;  // runs with report.success
+  // Mean and median of collision_checks over the SUCCESSFUL runs (NaN when none succeeded);
+  // failed runs stop at the budget and are reported separately, as in the figure.
+  double mean_checks = 0.0;
+  double median_checks = 0.0;
+};
+
+struct UnwrapBenchmarkOptions {
+  std::string scenario_path;       // the unwrap scenario JSON (coil start, "start_wrap_deg")
+  std::vector<double> angles_deg;  // start wraps to run [deg], in output order
+  std::vector<Planner> planners;   // in output order (kept everywhere, never re-sorted)
+  int seeds = 3;                   // seeds 0..seeds-1 per angle and planner
+  long rrt_budget = -1;            // RRT collision-check budget; <= 0: the scenario's own
+  // Called after every run with the number of runs done so far and the total.
+  std::function<void(int done, int total, const UnwrapRun& run)> progress;
+};
+
+struct UnwrapBenchmarkResult {
+  std::vector<double> angles_deg;  // as given
+  std::vector<Planner> planners;   // as given
+  int seeds = 0;
+  // Angle-major, then planner (given order), then seed: runs[(a * P + p) * seeds + s].
+  std::vector<UnwrapRun> runs;
+  // Angle-major, then planner: summary[a * P + p] (see UnwrapSummaryCell).
+  std::vector<UnwrapCell> summary;
+};
+
+// Runs every (angle, planner, seed) with LoadScenario(scenario_path, {start_wrap_deg = angle}) and
+// RunPlanner. Throws std::invalid_argument for bad options (no angles/planners, seeds < 1) and
+// whatever LoadScenario throws for a bad scenario file.
+UnwrapBenchmarkResult RunUnwrapBenchmark(const UnwrapBenchmarkOptions& options);
+
+// The summary of `runs` (ordered as in UnwrapBenchmarkResult::runs) for the given angles and
+// planners: one cell per (angle, planner), angle-major, planners in the given order.
+std::vector<UnwrapCell> SummarizeUnwrapRuns(const std::vector<UnwrapRun>& runs,
+                                            const std::vector<double>& angles_deg,
+                                            const std::vector<Planner>& planners);
+
+// summary cell of angle index `a` and planner index `p`.
+const UnwrapCell& UnwrapSummaryCell(const UnwrapBenchmarkResult& result, size_t a, size_t p);
+
+}  // namespace planning

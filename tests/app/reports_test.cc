@@ -1,0 +1,208 @@
+// The demo's HTML tables against the files written from the same result structs: every number in
+// a table must equal the corresponding unwrap.csv / report.json value, with the columns in the
+// planner / method order of the result.
+#include "app/reports.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <map>
+#include <regex>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace app {
+namespace {
+
+using planning::Planner;
+
+std::vector<std::vector<std::string>> TableCells(const std::string& html, bool* has_header,
+                                                 std::vector<std::string>* header) {
+  std::vector<std::vector<std::string>> rows;
+  static const std::regex kRow("<tr>(.*?)</tr>");
+  static const std::regex kCell("<t([hd])>(.*?)</t[hd]>");
+  for (auto r = std::sregex_iterator(html.begin(), html.end(), kRow); r != std::sregex_iterator();
+       ++r) {
+    const std::string row = (*r)[1].str();
+    std::vector<std::string> cells;
+    bool th = false;
+    for (auto c = std::sregex_iterator(row.begin(), row.end(), kCell); c != std::sregex_iterator();
+         ++c) {
+      th = (*c)[1].str() == "h";
+      cells.push_back((*c)[2].str());
+    }
+    if (th) {
+      *has_header = true;
+      *header = cells;
+    } else {
+      rows.push_back(cells);
+    }
+  }
+  return rows;
+}
+
+planning::UnwrapBenchmarkResult SyntheticUnwrap() {
+  planning::UnwrapBenchmarkResult result;
+  result.angles_deg = {0.0, 90.0, 180.0};
+  // Not sorted by name, so a table ordered by name would swap columns.
+  result.planners = {Planner::kAico, Planner::kRrt, Planner::kBiRrt};
+  result.seeds = 3;
+  long checks = 100;
+  for (double angle : result.angles_deg) {
+    for (Planner p : result.planners) {
+      for (int seed = 0; seed < result.seeds; ++seed) {
+        planning::UnwrapRun run;
+        run.angle_deg = angle;
+        run.planner = p;
+        run.seed = seed;
+        run.report.planner = planning::PlannerName(p);
+        // rrt fails twice at 90 deg and always at 180 deg; failed runs have huge counts.
+        const bool fail = p == Planner::kRrt && (angle == 180.0 || (angle == 90.0 && seed > 0));
+        run.report.success = !fail;
+        run.report.collision_checks = fail ? 100000 : (checks += 37 * (seed + 1));
+        run.report.time_s = 0.01 * seed;
+        result.runs.push_back(run);
+      }
+    }
+  }
+  result.summary = planning::SummarizeUnwrapRuns(result.runs, result.angles_deg, result.planners);
+  return result;
+}
+
+TEST(ReportsTest, UnwrapTableMatchesCsv) {
+  const planning::UnwrapBenchmarkResult result = SyntheticUnwrap();
+  // Per (angle, planner) from the CSV: runs, successes, sum of checks of successful runs.
+  struct Agg {
+    int runs = 0, ok = 0;
+    double sum = 0.0;
+  };
+  std::map<std::pair<std::string, std::string>, Agg> csv;
+  std::istringstream in(UnwrapCsv(result));
+  std::string line;
+  std::getline(in, line);
+  EXPECT_EQ(line, "angle_deg,planner,seed,success,collision_checks,time_s");
+  while (std::getline(in, line)) {
+    std::stringstream ss(line);
+    std::string angle, planner, seed, success, checks;
+    std::getline(ss, angle, ',');
+    std::getline(ss, planner, ',');
+    std::getline(ss, seed, ',');
+    std::getline(ss, success, ',');
+    std::getline(ss, checks, ',');
+    Agg& a = csv[{angle, planner}];
+    ++a.runs;
+    if (success == "1") {
+      ++a.ok;
+      a.sum += std::stod(checks);
+    }
+  }
+  bool has_header = false;
+  std::vector<std::string> header;
+  const auto rows = TableCells(UnwrapHtmlTable(result), &has_header, &header);
+  ASSERT_TRUE(has_header);
+  ASSERT_EQ(header.size(), 1 + result.planners.size());
+  std::vector<std::string> planners;
+  for (size_t i = 1; i < header.size(); ++i) {
+    planners.push_back(header[i].substr(0, header[i].find(':')));
+    EXPECT_EQ(planners.back(), planning::PlannerName(result.planners[i - 1]));
+  }
+  ASSERT_EQ(rows.size(), result.angles_deg.size());
+  static const std::regex kCell(R"((\d+)/(\d+), (\d+|&ndash;))");
+  int checked = 0;
+  for (size_t a = 0; a < rows.size(); ++a) {
+    ASSERT_EQ(rows[a].size(), header.size());
+    const std::string angle = rows[a][0].substr(0, rows[a][0].find('&'));
+    for (size_t p = 0; p < planners.size(); ++p) {
+      std::smatch m;
+      ASSERT_TRUE(std::regex_match(rows[a][p + 1], m, kCell)) << rows[a][p + 1];
+      ASSERT_TRUE(csv.count({angle, planners[p]})) << angle << " " << planners[p];
+      const Agg& agg = csv.at({angle, planners[p]});
+      EXPECT_EQ(std::stoi(m[1].str()), agg.ok) << angle << " " << planners[p];
+      EXPECT_EQ(std::stoi(m[2].str()), agg.runs);
+      // The figure's value (summary) and the table's agree with the CSV: mean over solved runs.
+      const planning::UnwrapCell& cell = planning::UnwrapSummaryCell(result, a, p);
+      if (agg.ok == 0) {
+        EXPECT_EQ(m[3].str(), "&ndash;");
+        EXPECT_TRUE(std::isnan(cell.mean_checks));
+      } else {
+        EXPECT_DOUBLE_EQ(cell.mean_checks, agg.sum / agg.ok);
+        EXPECT_EQ(std::stol(m[3].str()), std::lround(agg.sum / agg.ok));
+      }
+      ++checked;
+    }
+  }
+  EXPECT_EQ(checked, 9);
+}
+
+TEST(ReportsTest, UnwrapSummaryMedianOfSolvedRuns) {
+  const planning::UnwrapBenchmarkResult result = SyntheticUnwrap();
+  const planning::UnwrapCell& rrt90 = planning::UnwrapSummaryCell(result, 1, 1);
+  EXPECT_EQ(rrt90.planner, Planner::kRrt);
+  EXPECT_EQ(rrt90.successes, 1);
+  EXPECT_EQ(rrt90.runs, 3);
+  EXPECT_EQ(rrt90.median_checks, rrt90.mean_checks);
+  const planning::UnwrapCell& aico0 = planning::UnwrapSummaryCell(result, 0, 0);
+  EXPECT_EQ(aico0.median_checks, static_cast<double>(result.runs[1].report.collision_checks));
+}
+
+TEST(ReportsTest, GraspTableMatchesReportJson) {
+  namespace phys = planning::physics;
+  phys::GraspTrialsResult result;
+  result.methods = {planning::TransferMethod::kWinding, planning::TransferMethod::kJointMapping,
+                    planning::TransferMethod::kFingertip};
+  const int passed[3][3] = {{6, 4, 6}, {6, 0, 3}, {5, 6, 2}};
+  for (int g = 0; g < 3; ++g) {
+    planning::HumanGrasp grasp;
+    grasp.name = "grasp_" + std::to_string(g);
+    grasp.source = "/x/" + grasp.name + ".json";
+    result.grasps.push_back(grasp);
+    std::vector<phys::GraspTrial>& row = result.trials.emplace_back();
+    for (int m = 0; m < 3; ++m) {
+      phys::GraspTrial t;
+      t.transfer.method = result.methods[m];
+      t.stability.directions_passed = passed[g][m];
+      t.stability.stable = passed[g][m] == 6;
+      row.push_back(t);
+    }
+  }
+  for (int m = 0; m < 3; ++m) {
+    phys::GraspMethodSummary s;
+    s.method = result.methods[m];
+    s.grasps = 3;
+    for (int g = 0; g < 3; ++g) s.stable += passed[g][m] == 6 ? 1 : 0;
+    s.rate = s.stable / 3.0;
+    result.summary.push_back(s);
+  }
+  const nlohmann::json report = GraspReportJson(result);
+  bool has_header = false;
+  std::vector<std::string> header;
+  const auto rows = TableCells(GraspHtmlTable(result), &has_header, &header);
+  ASSERT_TRUE(has_header);
+  ASSERT_EQ(header.size(), 4u);
+  ASSERT_EQ(rows.size(), 4u);  // 3 grasps + success rate
+  static const std::regex kCell(R"((\d+)/6( stable)?)");
+  for (size_t g = 0; g < 3; ++g) {
+    const nlohmann::json& gj = report["grasps"][g];
+    EXPECT_EQ(rows[g][0], gj["name"].get<std::string>());
+    for (size_t m = 1; m < header.size(); ++m) {
+      const nlohmann::json& mj = gj["methods"][header[m]];
+      std::smatch sm;
+      ASSERT_TRUE(std::regex_match(rows[g][m], sm, kCell)) << rows[g][m];
+      EXPECT_EQ(std::stoi(sm[1].str()), mj["directions_passed"].get<int>());
+      EXPECT_EQ(sm[2].matched, mj["stable"].get<bool>());
+    }
+  }
+  for (size_t m = 1; m < header.size(); ++m) {
+    const nlohmann::json& s = report["summary"][header[m]];
+    EXPECT_EQ(rows[3][m], std::to_string(s["stable"].get<int>()) + "/" +
+                              std::to_string(s["grasps"].get<int>()));
+  }
+  // summary.md carries the same cells.
+  const std::string md = GraspSummaryMarkdown(result);
+  EXPECT_NE(md.find("| grasp_1 | 6/6 stable | 0/6 | 3/6 |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| **success rate** | 2/3 | 1/3 | 1/3 |"), std::string::npos) << md;
+}
+
+}  // namespace
+}  // namespace app
