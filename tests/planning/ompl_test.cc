@@ -10,6 +10,7 @@
 
 #include "planning/internal/ompl_planners.h"
 #include "planning/kinematics.h"
+#include "planning/planner.h"
 #include "planning/scenario.h"
 
 namespace planning {

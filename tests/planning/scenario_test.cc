@@ -2,6 +2,7 @@
 // unwrap from 360° and 720° (AICO: |total writhe| < 0.05, collision-free at the edge
 // resolution), reach_through_ring (inside the box, writhe peak at the link through the ring),
 // RRT paths collision-free, same seed → same report.
+#include "planning/planner.h"
 #include "planning/scenario.h"
 
 #include <gtest/gtest.h>
@@ -68,7 +69,7 @@ TEST(ScenarioLoader, ErrorsNameTheJsonPath) {
   ExpectLoadError("missing_robot.json",
                   R"({"robot": "does/not/exist.urdf", "start": {"q": "zero"}, "tasks": []})",
                   "robot");
-  ExpectLoadError("not_json.json", "{ this is not json", "JSON parse error");
+  ExpectLoadError("not_json.json", "{ this is not json", "invalid JSON");
   EXPECT_THROW(LoadScenario("/nonexistent/scenario.json"), std::invalid_argument);
 }
 
