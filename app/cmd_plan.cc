@@ -16,6 +16,7 @@
 #include "app/figures.h"
 #include "app/io.h"
 #include "app/scene_builder.h"
+#include "planning/planner.h"
 #include "planning/scenario.h"
 #include "render/frames.h"
 #include "render/image.h"
