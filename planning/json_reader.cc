@@ -130,7 +130,9 @@ bool JsonNode::Has(const std::string& key) const { return j_->is_object() && j_-
 
 JsonNode JsonNode::At(const std::string& key) const {
   if (!j_->is_object()) Fail("expected an object");
-  if (!j_->contains(key)) Fail("missing key '" + key + "'");
+  if (!j_->contains(key)) {
+    throw std::invalid_argument(file_ + ": " + Join(path_, key) + ": missing");
+  }
   return {j_->at(key), file_, Join(path_, key)};
 }
 
