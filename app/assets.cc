@@ -38,4 +38,10 @@ std::string ResolveScenarioPath(const std::string& arg) {
                               "' and no scenario of that name in assets/scenarios/");
 }
 
+std::unique_ptr<planning::Scenario> LoadScenarioArg(const std::string& arg,
+                                                    planning::ScenarioOverrides overrides) {
+  overrides.search_roots = {AssetRoot()};
+  return planning::LoadScenario(ResolveScenarioPath(arg), overrides);
+}
+
 }  // namespace app

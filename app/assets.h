@@ -1,7 +1,10 @@
 // Locating the installed data under assets/.
 #pragma once
 
+#include <memory>
 #include <string>
+
+#include "planning/scenario.h"
 
 namespace app {
 
@@ -19,5 +22,10 @@ namespace app {
 // A scenario argument: an existing file path as given, or a bare name ("unwrap") looked up as
 // assets/scenarios/NAME.json. Throws std::invalid_argument naming the argument otherwise.
 std::string ResolveScenarioPath(const std::string& arg);
+
+// Loads a scenario argument (ResolveScenarioPath) with AssetRoot() as the search root for its
+// relative robot/object paths (so a copy of a shipped scenario loads from any folder).
+std::unique_ptr<planning::Scenario> LoadScenarioArg(const std::string& arg,
+                                                    planning::ScenarioOverrides overrides = {});
 
 }  // namespace app

@@ -18,7 +18,7 @@
 #include "app/io.h"
 #include "app/reports.h"
 #include "planning/physics/grasp_trials.h"
-#include "planning/scenario.h"
+#include "planning/planner.h"
 #include "planning/unwrap_benchmark.h"
 #include "render/frames.h"
 #include "render/image.h"
@@ -172,7 +172,7 @@ class Demo {
       const std::function<void(const render::Image&, const render::Image*)>& on_frame = {}) {
     std::printf("  plan %s with aico -> %s\n", name.c_str(), dir.string().c_str());
     std::fflush(stdout);
-    const auto scenario = planning::LoadScenario(ResolveScenarioPath(name));
+    const auto scenario = LoadScenarioArg(name);
     const planning::PlanResult result =
         planning::RunPlanner(*scenario, planning::Planner::kAico, /*seed=*/0);
     *report = WritePlanOutputs(*scenario, result, /*seed=*/0, dir.string());
@@ -243,6 +243,7 @@ class Demo {
     const fs::path dir = out_ / "bench";
     planning::UnwrapBenchmarkOptions options;
     options.scenario_path = ResolveScenarioPath("unwrap");
+    options.search_roots = {AssetRoot()};
     const double max_angle = args_.full ? 900.0 : 720.0, step = args_.full ? 90.0 : 180.0;
     for (double a = 0.0; a <= max_angle + 1e-9; a += step) options.angles_deg.push_back(a);
     options.planners = {planning::Planner::kAico, planning::Planner::kRrt,

@@ -81,7 +81,7 @@ int RunTransfer(const TransferArgs& a) {
     methods = {planning::TransferMethod::kWinding, planning::TransferMethod::kJointMapping,
                planning::TransferMethod::kFingertip};
   } else {
-    methods = {planning::ParseTransferMethod(a.method)};
+    methods = {ParseFlag("--method", [&] { return planning::ParseTransferMethod(a.method); })};
   }
   // Load everything first so that a bad file fails before any simulation runs.
   const GraspInputs in = LoadGraspInputs(SelectGraspFiles(a.grasp));

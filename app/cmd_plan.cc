@@ -12,6 +12,7 @@
 #include "app/command.h"
 #include "app/io.h"
 #include "app/reports.h"
+#include "planning/planner.h"
 #include "planning/scenario.h"
 #include "planning/unwrap_benchmark.h"
 #include "render/image.h"
@@ -56,11 +57,7 @@ std::vector<planning::Planner> ParsePlanners(const std::string& text) {
   std::stringstream ss(text);
   std::string item;
   while (std::getline(ss, item, ',')) {
-    try {
-      out.push_back(planning::ParsePlanner(item));
-    } catch (const std::invalid_argument& e) {
-      throw std::invalid_argument(std::string("--planners: ") + e.what());
-    }
+    out.push_back(ParseFlag("--planners", [&] { return planning::ParsePlanner(item); }));
   }
   if (out.empty()) throw std::invalid_argument("--planners: empty list");
   return out;
@@ -111,7 +108,7 @@ void AddPlanCommands(CLI::App* root, CommandList* commands) {
            }
            overrides.start_wrap_deg = pa->start_wrap;
          }
-         const auto scenario = planning::LoadScenario(ResolveScenarioPath(pa->scenario), overrides);
+         const auto scenario = LoadScenarioArg(pa->scenario, overrides);
          const planning::Planner planner = planning::ParsePlanner(pa->planner);
          const planning::PlanResult result = planning::RunPlanner(
              *scenario, planner, pa->seed,
@@ -159,6 +156,7 @@ void AddPlanCommands(CLI::App* root, CommandList* commands) {
          options.angles_deg = ParseRange(ba->angles, "--angles");
          options.planners = ParsePlanners(ba->planners);
          options.scenario_path = ResolveScenarioPath("unwrap");
+         options.search_roots = {AssetRoot()};
          options.seeds = ba->seeds;
          options.rrt_budget = ba->budget;
          options.progress = [](int done, int total, const planning::UnwrapRun& run) {

@@ -37,6 +37,17 @@ void AddRobotCommands(CLI::App* root, CommandList* commands);     // fk, check
 void AddPlanCommands(CLI::App* root, CommandList* commands);      // plan, bench unwrap
 void AddViewCommand(CLI::App* root, CommandList* commands);       // view (app/ui/cmd_view.cc)
 
+// Calls parse() and prefixes any std::invalid_argument it throws with the flag's name
+// ("--method: unknown transfer method 'x' (...)"): the library names values, the CLI names flags.
+template <typename F>
+auto ParseFlag(const std::string& flag, F&& parse) -> decltype(parse()) {
+  try {
+    return parse();
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(flag + ": " + e.what());
+  }
+}
+
 // Runs `run`, mapping exceptions to exit codes and printing "topoplan <name>: error: ..." to
 // stderr.
 int RunGuarded(const std::string& name, const std::function<int()>& run);

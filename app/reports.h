@@ -8,7 +8,7 @@
 #include <string>
 
 #include "planning/physics/grasp_trials.h"
-#include "planning/scenario.h"
+#include "planning/planner.h"
 #include "planning/unwrap_benchmark.h"
 #include "render/frames.h"
 #include "render/image.h"

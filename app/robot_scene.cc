@@ -166,7 +166,7 @@ RobotScene LoadRobotScene(const std::string& path, const std::vector<std::string
   const fs::path base = fs::path(path).parent_path();
   if (doc.is_object() && doc.contains("robot") && doc.contains("tasks")) {
     // A planning scenario: its own loader decides the start configuration and the collision set.
-    const std::unique_ptr<planning::Scenario> sc = planning::LoadScenario(path);
+    const std::unique_ptr<planning::Scenario> sc = LoadScenarioArg(path);
     s.robot = sc->robot;
     s.q = sc->problem.q0;
     s.env = sc->objects;

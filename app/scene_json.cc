@@ -8,6 +8,7 @@
 #include <set>
 #include <stdexcept>
 
+#include "planning/json_reader.h"
 #include "topology/polyline.h"
 
 namespace app {
@@ -16,42 +17,40 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-// Error helper: "<source>: <path>: <what>".
+// Error helper: "<source>: <path>: <what>" (the message format of planning::JsonNode).
 [[noreturn]] void Fail(const std::string& source, const std::string& path,
                        const std::string& what) {
-  throw std::invalid_argument(source + ": " + (path.empty() ? "" : path + ": ") + what);
+  static const json kNull;
+  planning::JsonNode(kNull, source, path).Fail(what);
 }
 
+// Scene-specific reads (float vectors, colours, files, rotations) on top of planning::JsonNode,
+// which does the typed, located reads.
 class Reader {
  public:
   Reader(std::string source, std::string base_dir)
       : source_(std::move(source)), base_dir_(std::move(base_dir)) {}
 
   const std::string& source() const { return source_; }
+  planning::JsonNode Node(const json& j, const std::string& path) const {
+    return {j, source_, path};
+  }
 
   void ExpectObject(const json& j, const std::string& path) const {
     if (!j.is_object()) Fail(source_, path, "expected an object");
   }
-  // Rejects keys outside `allowed` (catches typos such as "raduis").
+  // Rejects keys outside `allowed` (catches typos such as "raduis", with a did-you-mean hint).
   void OnlyKeys(const json& j, const std::string& path,
                 const std::set<std::string>& allowed) const {
-    for (auto it = j.begin(); it != j.end(); ++it) {
-      if (!allowed.count(it.key())) Fail(source_, Join(path, it.key()), "unknown key");
-    }
+    Node(j, path).CheckKeys(std::vector<std::string>(allowed.begin(), allowed.end()));
   }
   static std::string Join(const std::string& path, const std::string& key) {
     return path.empty() ? key : path + "." + key;
   }
   const json& Required(const json& obj, const std::string& path, const std::string& key) const {
-    if (!obj.contains(key)) Fail(source_, Join(path, key), "missing");
-    return obj.at(key);
+    return Node(obj, path).At(key).json();
   }
-  double Number(const json& j, const std::string& path) const {
-    if (!j.is_number()) Fail(source_, path, "expected a number");
-    const double v = j.get<double>();
-    if (!std::isfinite(v)) Fail(source_, path, "expected a finite number");
-    return v;
-  }
+  double Number(const json& j, const std::string& path) const { return Node(j, path).Number(); }
   double Positive(const json& j, const std::string& path) const {
     const double v = Number(j, path);
     if (!(v > 0.0)) Fail(source_, path, "expected a positive number, got " + j.dump());
@@ -59,18 +58,16 @@ class Reader {
   }
   std::vector<double> Numbers(const json& j, const std::string& path, size_t n_min,
                               size_t n_max) const {
-    if (!j.is_array()) Fail(source_, path, "expected an array of numbers");
+    const planning::JsonNode n = Node(j, path);
+    if (!j.is_array()) n.Fail("expected an array of numbers");
     if (j.size() < n_min || j.size() > n_max) {
-      Fail(source_, path,
-           "expected " +
-               (n_min == n_max ? std::to_string(n_min)
-                               : std::to_string(n_min) + " to " + std::to_string(n_max)) +
-               " numbers, got " + std::to_string(j.size()));
+      n.Fail("expected " +
+             (n_min == n_max ? std::to_string(n_min)
+                             : std::to_string(n_min) + " to " + std::to_string(n_max)) +
+             " numbers, got " + std::to_string(j.size()));
     }
     std::vector<double> out;
-    for (size_t i = 0; i < j.size(); ++i) {
-      out.push_back(Number(j[i], path + "[" + std::to_string(i) + "]"));
-    }
+    for (size_t i = 0; i < j.size(); ++i) out.push_back(n.At(i).Number());
     return out;
   }
   Eigen::Vector3f Vec3(const json& j, const std::string& path) const {
@@ -90,13 +87,9 @@ class Reader {
     return c;
   }
   std::string String(const json& j, const std::string& path) const {
-    if (!j.is_string()) Fail(source_, path, "expected a string");
-    return j.get<std::string>();
+    return Node(j, path).String();
   }
-  bool Bool(const json& j, const std::string& path) const {
-    if (!j.is_boolean()) Fail(source_, path, "expected true or false");
-    return j.get<bool>();
-  }
+  bool Bool(const json& j, const std::string& path) const { return Node(j, path).Bool(); }
   std::string File(const json& j, const std::string& path) const {
     const std::string f = String(j, path);
     const fs::path p(f);
@@ -373,14 +366,8 @@ SceneDocument ParseSceneJson(const nlohmann::json& doc, const std::string& sourc
 }
 
 SceneDocument LoadSceneFile(const std::string& path) {
-  std::ifstream in(path);
-  if (!in || fs::is_directory(path)) throw std::invalid_argument(path + ": cannot open scene file");
-  json doc;
-  try {
-    doc = json::parse(in);
-  } catch (const json::parse_error& e) {
-    throw std::invalid_argument(path + ": invalid JSON (" + e.what() + ")");
-  }
+  if (fs::is_directory(path)) throw std::invalid_argument(path + ": cannot open scene file");
+  const json doc = planning::ParseJsonFile(path, "scene");
   const fs::path parent = fs::path(path).parent_path();
   return ParseSceneJson(doc, path, parent.empty() ? "." : parent.string());
 }

@@ -48,7 +48,7 @@ void Session::Load(const std::string& arg, const Settings& settings) {
     if (settings.planner.start_wrap_deg >= 0) {
       overrides.start_wrap_deg = settings.planner.start_wrap_deg;
     }
-    scenario_ = planning::LoadScenario(path, overrides);
+    scenario_ = LoadScenarioArg(path, overrides);
     robot_scene_.reset();
     joint_q_ = scenario_->problem.q0;
     status_ = "loaded scenario " + scenario_->name;

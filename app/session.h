@@ -16,6 +16,7 @@
 #include "planning/kinematics.h"
 #include "planning/physics/grasp_simulation.h"
 #include "planning/physics/stability.h"
+#include "planning/planner.h"
 #include "planning/scenario.h"
 
 namespace app {

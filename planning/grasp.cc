@@ -9,7 +9,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "planning/internal/json_read.h"
+#include "planning/json_reader.h"
 #include "topology/winding.h"
 #include "topology/writhe.h"
 
@@ -18,15 +18,10 @@ namespace {
 
 using Json = nlohmann::json;
 
-Eigen::Vector3d ReadVec3(const Json& j, const std::string& where) {
-  return internal::ReadJsonVec3(j, where);
-}
-
-Eigen::Isometry3d ReadPose(const Json& j, const std::string& where) {
-  if (!j.is_object() || !j.contains("xyz") || !j.contains("rpy")) {
-    throw std::invalid_argument(where + ": expected {\"xyz\": [..], \"rpy\": [..]}");
-  }
-  return PoseFromXyzRpy(ReadVec3(j["xyz"], where + ".xyz"), ReadVec3(j["rpy"], where + ".rpy"));
+// {"xyz": [x, y, z], "rpy": [r, p, y]} (both required).
+Eigen::Isometry3d ReadPose(const JsonNode& n) {
+  n.CheckKeys({"xyz", "rpy"});
+  return PoseFromXyzRpy(n.At("xyz").Vec3(), n.At("rpy").Vec3());
 }
 
 Json PoseJson(const Eigen::Isometry3d& pose) {
@@ -74,55 +69,25 @@ const std::vector<std::string>& SdhFingers() {
 }
 
 HumanGrasp LoadHumanGrasp(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw std::invalid_argument(path + ": cannot open grasp file");
-  Json j;
-  try {
-    j = Json::parse(in);
-  } catch (const std::exception& e) {
-    throw std::invalid_argument(path + ": invalid JSON: " + e.what());
-  }
+  const Json doc = ParseJsonFile(path, "grasp");
+  const JsonNode root(doc, path);
+  root.CheckKeys({"name", "type", "description", "object", "object_pose", "palm_pose", "joints",
+                  "sdh_spread", "close"});
   HumanGrasp g;
   g.source = path;
-  try {
-    if (!j.is_object()) throw std::invalid_argument(path + ": expected a JSON object");
-    for (const char* key : {"name", "object", "object_pose", "palm_pose", "joints"}) {
-      if (!j.contains(key)) throw std::invalid_argument(path + ": missing \"" + key + "\"");
-    }
-    if (!j["name"].is_string() || !j["object"].is_string()) {
-      throw std::invalid_argument(path + ": \"name\" and \"object\" must be strings");
-    }
-    g.name = j["name"].get<std::string>();
-    g.object = j["object"].get<std::string>();
-    g.type = j.value("type", "");
-    g.description = j.value("description", "");
-    g.world_from_object = ReadPose(j["object_pose"], path + ": object_pose");
-    g.world_from_palm = ReadPose(j["palm_pose"], path + ": palm_pose");
-    if (!j["joints"].is_object()) throw std::invalid_argument(path + ": joints: expected object");
-    for (const auto& [name, value] : j["joints"].items()) {
-      if (!value.is_number() || !std::isfinite(value.get<double>())) {
-        throw std::invalid_argument(path + ": joints." + name + ": expected a finite number");
-      }
-      g.joints[name] = value.get<double>();
-    }
-    if (j.contains("sdh_spread")) {
-      if (!j["sdh_spread"].is_number()) {
-        throw std::invalid_argument(path + ": sdh_spread: expected a number");
-      }
-      g.sdh_spread = j["sdh_spread"].get<double>();
-      if (!(g.sdh_spread >= 0 && g.sdh_spread <= 1.5707963268)) {
-        throw std::invalid_argument(path + ": sdh_spread: must be in [0, pi/2]");
-      }
-    }
-    if (j.contains("close")) {
-      for (const Json& c : j["close"]) {
-        if (!c.is_string()) throw std::invalid_argument(path + ": close: expected joint names");
-        g.close.push_back(c.get<std::string>());
-      }
-    }
-  } catch (const Json::exception& e) {
-    throw std::invalid_argument(path + ": " + e.what());
+  g.name = root.At("name").String();
+  g.object = root.At("object").String();
+  g.type = root.String("type", "");
+  g.description = root.String("description", "");
+  g.world_from_object = ReadPose(root.At("object_pose"));
+  g.world_from_palm = ReadPose(root.At("palm_pose"));
+  for (const auto& [name, value] : root.At("joints").Members()) g.joints[name] = value.Number();
+  if (root.Has("sdh_spread")) {
+    const JsonNode sn = root.At("sdh_spread");
+    g.sdh_spread = sn.Number();
+    if (!(g.sdh_spread >= 0 && g.sdh_spread <= 1.5707963268)) sn.Fail("must be in [0, pi/2]");
   }
+  if (root.Has("close")) g.close = root.At("close").Strings();
   return g;
 }
 

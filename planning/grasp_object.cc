@@ -6,7 +6,7 @@
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
-#include "planning/internal/json_read.h"
+#include "planning/json_reader.h"
 
 namespace planning {
 namespace {
@@ -41,10 +41,6 @@ double LocalDistance(const GraspPrimitive& prim, const Eigen::Vector3d& p) {
     }
   }
   return 0.0;
-}
-
-Eigen::Vector3d ReadVec3(const Json& j, const std::string& where) {
-  return internal::ReadJsonVec3(j, where);
 }
 
 }  // namespace
@@ -123,116 +119,105 @@ ReferenceCurve TransformReference(const ReferenceCurve& ref,
   return out;
 }
 
+namespace {
+
+GraspPrimitive ReadPrimitive(const JsonNode& pj) {
+  pj.CheckKeys({"type", "size", "xyz", "rpy"});
+  GraspPrimitive prim;
+  const JsonNode tn = pj.At("type");
+  const std::string type = tn.String();
+  if (type == "sphere") {
+    prim.kind = GraspPrimitive::Kind::kSphere;
+  } else if (type == "cylinder") {
+    prim.kind = GraspPrimitive::Kind::kCylinder;
+  } else if (type == "box") {
+    prim.kind = GraspPrimitive::Kind::kBox;
+  } else if (type == "capsule") {
+    prim.kind = GraspPrimitive::Kind::kCapsule;
+  } else if (type == "torus") {
+    prim.kind = GraspPrimitive::Kind::kTorus;
+  } else {
+    tn.Fail("'" + type + "' is not sphere|cylinder|box|capsule|torus");
+  }
+  const JsonNode sn = pj.At("size");
+  prim.size = sn.Vec3();
+  if (prim.size.x() <= 0 || (prim.kind != GraspPrimitive::Kind::kSphere &&
+                             prim.kind != GraspPrimitive::Kind::kTorus && prim.size.y() < 0)) {
+    sn.Fail("must be positive");
+  }
+  if (prim.kind == GraspPrimitive::Kind::kBox && (prim.size.array() <= 0).any()) {
+    sn.Fail("box sides must be positive");
+  }
+  if (prim.kind == GraspPrimitive::Kind::kTorus && !(prim.size.y() > 0)) {
+    sn.Fail("torus tube radius must be positive");
+  }
+  prim.object_from_primitive = PoseFromXyzRpy(pj.Vec3("xyz", Eigen::Vector3d::Zero()),
+                                              pj.Vec3("rpy", Eigen::Vector3d::Zero()));
+  return prim;
+}
+
+ReferenceCurve ReadReference(const JsonNode& r) {
+  ReferenceCurve ref;
+  const std::string type = r.String("type", "");
+  if (type == "axis") {
+    r.CheckKeys({"type", "point", "direction"});
+    ref.kind = ReferenceCurve::Kind::kAxis;
+    ref.axis.point = r.At("point").Vec3();
+    ref.axis.direction = r.At("direction").Vec3();
+    if (ref.axis.direction.norm() < 1e-9) r.At("direction").Fail("zero vector");
+  } else if (type == "loop") {
+    r.CheckKeys({"type", "points"});
+    ref.kind = ReferenceCurve::Kind::kLoop;
+    const JsonNode pts = r.At("points");
+    if (pts.Size() < 3) pts.Fail("need at least 3 points");
+    ref.loop.resize(3, static_cast<int>(pts.Size()) + 1);
+    for (size_t k = 0; k < pts.Size(); ++k) ref.loop.col(k) = pts.At(k).Vec3();
+    ref.loop.col(pts.Size()) = ref.loop.col(0);
+  } else if (type == "circle") {
+    r.CheckKeys({"type", "center", "normal", "radius", "segments"});
+    ref.kind = ReferenceCurve::Kind::kLoop;
+    const Eigen::Vector3d c = r.At("center").Vec3();
+    Eigen::Vector3d n = r.At("normal").Vec3();
+    const double radius = r.Number("radius", 0.0);
+    const int segments =
+        r.Has("segments") ? static_cast<int>(r.At("segments").Integer(3, 100000)) : 24;
+    if (n.norm() < 1e-9 || !(radius > 0)) {
+      r.Fail("need a non-zero normal, radius > 0, segments >= 3");
+    }
+    n.normalize();
+    const Eigen::Vector3d u = n.unitOrthogonal();
+    const Eigen::Vector3d v = n.cross(u);
+    ref.loop.resize(3, segments + 1);
+    for (int k = 0; k <= segments; ++k) {
+      const double a = 2 * kPi * (k % segments) / segments;
+      ref.loop.col(k) = c + radius * (std::cos(a) * u + std::sin(a) * v);
+    }
+  } else {
+    r.At("type").Fail("'" + type + "' is not axis|loop|circle");
+  }
+  return ref;
+}
+
+}  // namespace
+
 std::vector<GraspObject> LoadGraspObjects(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw std::invalid_argument(path + ": cannot open object catalogue");
-  Json root;
-  try {
-    root = Json::parse(in);
-  } catch (const std::exception& e) {
-    throw std::invalid_argument(path + ": invalid JSON: " + e.what());
-  }
-  if (!root.contains("objects") || !root["objects"].is_array()) {
-    throw std::invalid_argument(path + ": expected {\"objects\": [...]}");
-  }
+  const Json doc = ParseJsonFile(path, "object catalogue");
+  const JsonNode root(doc, path);
+  root.CheckKeys({"objects"});
+  const JsonNode list = root.At("objects");
   std::vector<GraspObject> objects;
-  const Json& list = root["objects"];
-  for (size_t i = 0; i < list.size(); ++i) {
-    const Json& o = list[i];
-    const std::string where = path + ": objects[" + std::to_string(i) + "]";
+  for (size_t i = 0; i < list.Size(); ++i) {
+    const JsonNode o = list.At(i);
+    o.CheckKeys({"name", "mass", "description", "primitives", "reference"});
     GraspObject obj;
-    if (!o.contains("name") || !o["name"].is_string()) {
-      throw std::invalid_argument(where + ".name: missing or not a string");
-    }
-    obj.name = o["name"].get<std::string>();
-    if (!o.contains("mass") || !o["mass"].is_number() || !(o["mass"].get<double>() > 0)) {
-      throw std::invalid_argument(where + ".mass: missing or not a positive number");
-    }
-    obj.mass = o["mass"].get<double>();
-    obj.description = o.value("description", "");
-    if (!o.contains("primitives") || !o["primitives"].is_array() || o["primitives"].empty()) {
-      throw std::invalid_argument(where + ".primitives: missing or empty");
-    }
-    for (size_t k = 0; k < o["primitives"].size(); ++k) {
-      const Json& pj = o["primitives"][k];
-      const std::string pw = where + ".primitives[" + std::to_string(k) + "]";
-      GraspPrimitive prim;
-      const std::string type = pj.value("type", "");
-      if (type == "sphere") {
-        prim.kind = GraspPrimitive::Kind::kSphere;
-      } else if (type == "cylinder") {
-        prim.kind = GraspPrimitive::Kind::kCylinder;
-      } else if (type == "box") {
-        prim.kind = GraspPrimitive::Kind::kBox;
-      } else if (type == "capsule") {
-        prim.kind = GraspPrimitive::Kind::kCapsule;
-      } else if (type == "torus") {
-        prim.kind = GraspPrimitive::Kind::kTorus;
-      } else {
-        throw std::invalid_argument(pw + ".type: '" + type +
-                                    "' is not sphere|cylinder|box|capsule|torus");
-      }
-      if (!pj.contains("size")) throw std::invalid_argument(pw + ".size: missing");
-      prim.size = ReadVec3(pj["size"], pw + ".size");
-      if (prim.size.x() <= 0 || (prim.kind != GraspPrimitive::Kind::kSphere &&
-                                 prim.kind != GraspPrimitive::Kind::kTorus && prim.size.y() < 0)) {
-        throw std::invalid_argument(pw + ".size: must be positive");
-      }
-      if (prim.kind == GraspPrimitive::Kind::kBox && (prim.size.array() <= 0).any()) {
-        throw std::invalid_argument(pw + ".size: box sides must be positive");
-      }
-      if (prim.kind == GraspPrimitive::Kind::kTorus && !(prim.size.y() > 0)) {
-        throw std::invalid_argument(pw + ".size: torus tube radius must be positive");
-      }
-      const Eigen::Vector3d xyz =
-          pj.contains("xyz") ? ReadVec3(pj["xyz"], pw + ".xyz") : Eigen::Vector3d::Zero();
-      const Eigen::Vector3d rpy =
-          pj.contains("rpy") ? ReadVec3(pj["rpy"], pw + ".rpy") : Eigen::Vector3d::Zero();
-      prim.object_from_primitive = PoseFromXyzRpy(xyz, rpy);
-      obj.primitives.push_back(prim);
-    }
-    if (!o.contains("reference")) throw std::invalid_argument(where + ".reference: missing");
-    const Json& r = o["reference"];
-    const std::string rw = where + ".reference";
-    const std::string type = r.value("type", "");
-    if (type == "axis") {
-      obj.reference.kind = ReferenceCurve::Kind::kAxis;
-      obj.reference.axis.point = ReadVec3(r.at("point"), rw + ".point");
-      obj.reference.axis.direction = ReadVec3(r.at("direction"), rw + ".direction");
-      if (obj.reference.axis.direction.norm() < 1e-9) {
-        throw std::invalid_argument(rw + ".direction: zero vector");
-      }
-    } else if (type == "loop") {
-      obj.reference.kind = ReferenceCurve::Kind::kLoop;
-      const Json& pts = r.at("points");
-      if (!pts.is_array() || pts.size() < 3) {
-        throw std::invalid_argument(rw + ".points: need at least 3 points");
-      }
-      obj.reference.loop.resize(3, static_cast<int>(pts.size()) + 1);
-      for (size_t k = 0; k < pts.size(); ++k) {
-        obj.reference.loop.col(k) = ReadVec3(pts[k], rw + ".points[" + std::to_string(k) + "]");
-      }
-      obj.reference.loop.col(pts.size()) = obj.reference.loop.col(0);
-    } else if (type == "circle") {
-      obj.reference.kind = ReferenceCurve::Kind::kLoop;
-      const Eigen::Vector3d c = ReadVec3(r.at("center"), rw + ".center");
-      Eigen::Vector3d n = ReadVec3(r.at("normal"), rw + ".normal");
-      const double radius = r.value("radius", 0.0);
-      const int segments = r.value("segments", 24);
-      if (n.norm() < 1e-9 || !(radius > 0) || segments < 3) {
-        throw std::invalid_argument(rw + ": need a non-zero normal, radius > 0, segments >= 3");
-      }
-      n.normalize();
-      const Eigen::Vector3d u = n.unitOrthogonal();
-      const Eigen::Vector3d v = n.cross(u);
-      obj.reference.loop.resize(3, segments + 1);
-      for (int k = 0; k <= segments; ++k) {
-        const double a = 2 * kPi * (k % segments) / segments;
-        obj.reference.loop.col(k) = c + radius * (std::cos(a) * u + std::sin(a) * v);
-      }
-    } else {
-      throw std::invalid_argument(rw + ".type: '" + type + "' is not axis|loop|circle");
-    }
+    obj.name = o.At("name").String();
+    obj.mass = o.At("mass").Number();
+    if (!(obj.mass > 0)) o.At("mass").Fail("expected a positive number");
+    obj.description = o.String("description", "");
+    const JsonNode prims = o.At("primitives");
+    if (prims.Size() == 0) prims.Fail("missing or empty");
+    for (size_t k = 0; k < prims.Size(); ++k) obj.primitives.push_back(ReadPrimitive(prims.At(k)));
+    obj.reference = ReadReference(o.At("reference"));
     objects.push_back(obj);
   }
   return objects;
@@ -249,18 +234,3 @@ const GraspObject& FindGraspObject(const std::vector<GraspObject>& objects,
 }
 
 }  // namespace planning
-
-namespace planning::internal {
-
-Eigen::Vector3d ReadJsonVec3(const nlohmann::json& j, const std::string& where) {
-  if (!j.is_array() || j.size() != 3) throw std::invalid_argument(where + ": expected [x, y, z]");
-  Eigen::Vector3d v;
-  for (int i = 0; i < 3; ++i) {
-    if (!j[i].is_number()) throw std::invalid_argument(where + ": expected numbers");
-    v[i] = j[i].get<double>();
-    if (!std::isfinite(v[i])) throw std::invalid_argument(where + ": non-finite number");
-  }
-  return v;
-}
-
-}  // namespace planning::internal

@@ -215,25 +215,6 @@ std::vector<int> LinksWithPrefix(const Robot& robot, const std::string& prefix) 
 
 }  // namespace
 
-const char* ToString(TransferMethod method) {
-  switch (method) {
-    case TransferMethod::kWinding:
-      return "winding";
-    case TransferMethod::kJointMapping:
-      return "joint";
-    case TransferMethod::kFingertip:
-      return "fingertip";
-  }
-  return "?";
-}
-
-TransferMethod ParseTransferMethod(const std::string& text) {
-  if (text == "winding") return TransferMethod::kWinding;
-  if (text == "joint") return TransferMethod::kJointMapping;
-  if (text == "fingertip") return TransferMethod::kFingertip;
-  throw std::invalid_argument("--method: '" + text + "' is not winding|joint|fingertip|all");
-}
-
 Eigen::MatrixXd FingerCorrespondence() {
   Eigen::MatrixXd m = Eigen::MatrixXd::Zero(3, 5);
   m(0, 0) = 1.0;            // SDH thumb    ← thumb

@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "planning/aico.h"
+#include "planning/enum_names.h"
 #include "planning/grasp.h"
 #include "planning/grasp_object.h"
 #include "planning/robot.h"
@@ -31,9 +32,20 @@
 namespace planning {
 
 enum class TransferMethod { kWinding, kJointMapping, kFingertip };
-const char* ToString(TransferMethod method);
-// "winding" | "joint" | "fingertip"; throws std::invalid_argument otherwise.
-TransferMethod ParseTransferMethod(const std::string& text);
+inline constexpr EnumName<TransferMethod> kTransferMethodNames[] = {
+    {TransferMethod::kWinding, "winding"},
+    {TransferMethod::kJointMapping, "joint"},
+    {TransferMethod::kFingertip, "fingertip"},
+};
+constexpr std::span<const EnumName<TransferMethod>> EnumNames(TransferMethod) {
+  return kTransferMethodNames;
+}
+inline const char* ToString(TransferMethod method) { return ToName(method); }
+// "winding" | "joint" | "fingertip"; throws std::invalid_argument "unknown transfer method 'x'
+// (winding, joint, fingertip)" otherwise.
+inline TransferMethod ParseTransferMethod(const std::string& text) {
+  return ParseEnum<TransferMethod>(text, "transfer method");
+}
 
 // A floating copy of a robot's subtree: 6 joints (hand_tx, hand_ty, hand_tz prismatic along the
 // world axes, then hand_rz, hand_ry, hand_rx revolute) carry `root_link` and everything below it.

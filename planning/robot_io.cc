@@ -18,6 +18,9 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "planning/chain_json.h"
+#include "planning/json_reader.h"
+
 namespace planning {
 namespace {
 
@@ -339,65 +342,12 @@ Mesh LoadMesh(const std::string& path) {
 // ---- Chains ------------------------------------------------------------------------------------
 
 void LoadChains(const std::string& json_path, Robot* robot) {
-  const std::string text = ReadText(json_path, "chain");
-  nlohmann::json doc;
-  try {
-    doc = nlohmann::json::parse(text);
-  } catch (const nlohmann::json::parse_error& e) {
-    throw std::invalid_argument(json_path + ": JSON error: " + e.what());
-  }
-  auto fail = [&](const std::string& jpath, const std::string& msg) -> void {
-    throw std::invalid_argument(json_path + ": " + jpath + ": " + msg);
-  };
-  if (!doc.is_object() || !doc.contains("chains") || !doc["chains"].is_array()) {
-    fail("chains", "expected an object with an array \"chains\"");
-  }
-  for (size_t c = 0; c < doc["chains"].size(); ++c) {
-    const nlohmann::json& jc = doc["chains"][c];
-    const std::string cpath = "chains[" + std::to_string(c) + "]";
-    if (!jc.is_object()) fail(cpath, "expected an object");
-    if (!jc.contains("name") || !jc["name"].is_string()) fail(cpath + ".name", "missing string");
-    if (!jc.contains("points") || !jc["points"].is_array() || jc["points"].size() < 2) {
-      fail(cpath + ".points", "expected an array of at least 2 points");
-    }
-    ChainSpec spec;
-    spec.name = jc["name"].get<std::string>();
-    for (const ChainSpec& other : robot->chains) {
-      if (other.name == spec.name) fail(cpath + ".name", "duplicate chain '" + spec.name + "'");
-    }
-    if (jc.contains("closed")) {
-      if (!jc["closed"].is_boolean()) fail(cpath + ".closed", "expected true or false");
-      spec.closed = jc["closed"].get<bool>();
-    }
-    const nlohmann::json& pts = jc["points"];
-    spec.point_local.resize(3, static_cast<Eigen::Index>(pts.size()));
-    for (size_t k = 0; k < pts.size(); ++k) {
-      const std::string ppath = cpath + ".points[" + std::to_string(k) + "]";
-      const nlohmann::json& p = pts[k];
-      if (!p.is_object() || !p.contains("link") || !p["link"].is_string()) {
-        fail(ppath + ".link", "missing link name");
-      }
-      const std::string link = p["link"].get<std::string>();
-      int li = -1;
-      for (size_t l = 0; l < robot->links.size(); ++l) {
-        if (robot->links[l].name == link) li = static_cast<int>(l);
-      }
-      if (li < 0) fail(ppath + ".link", "unknown link '" + link + "'");
-      spec.point_link.push_back(li);
-      Eigen::Vector3d xyz = Eigen::Vector3d::Zero();
-      if (p.contains("xyz")) {
-        const nlohmann::json& v = p["xyz"];
-        if (!v.is_array() || v.size() != 3) fail(ppath + ".xyz", "expected [x, y, z]");
-        for (int i = 0; i < 3; ++i) {
-          if (!v[i].is_number() || !std::isfinite(v[i].get<double>())) {
-            fail(ppath + ".xyz[" + std::to_string(i) + "]", "not a finite number");
-          }
-          xyz[i] = v[i].get<double>();
-        }
-      }
-      spec.point_local.col(static_cast<Eigen::Index>(k)) = xyz;
-    }
-    robot->chains.push_back(std::move(spec));
+  const nlohmann::json doc = ParseJsonFile(json_path, "chain");
+  const JsonNode root(doc, json_path);
+  root.CheckKeys({"chains"});
+  const JsonNode chains = root.At("chains");
+  for (size_t c = 0; c < chains.Size(); ++c) {
+    robot->chains.push_back(ResolveChain(ReadChainDescription(chains.At(c)), *robot));
   }
 }
 

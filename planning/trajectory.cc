@@ -5,22 +5,6 @@
 
 namespace planning {
 
-const char* StatusName(SolveStatus status) {
-  switch (status) {
-    case SolveStatus::kConverged:
-      return "converged";
-    case SolveStatus::kMaxIterations:
-      return "max_iterations";
-    case SolveStatus::kBudgetExhausted:
-      return "budget_exhausted";
-    case SolveStatus::kDiverged:
-      return "diverged";
-    case SolveStatus::kInvalidInput:
-      return "invalid_input";
-  }
-  return "unknown";
-}
-
 double PathLength(const Trajectory& trajectory) {
   double length = 0.0;
   for (int t = 0; t + 1 < trajectory.num_points(); ++t) {

@@ -4,6 +4,8 @@
 #include <Eigen/Core>
 #include <string>
 
+#include "planning/enum_names.h"
+
 namespace planning {
 
 // Outcome of a solver or planner run. "No path" and "did not converge" are statuses, never
@@ -16,8 +18,19 @@ enum class SolveStatus {
   kInvalidInput,     // invalid start or goal (e.g. in collision) detected by the planner.
 };
 
+inline constexpr EnumName<SolveStatus> kSolveStatusNames[] = {
+    {SolveStatus::kConverged, "converged"},
+    {SolveStatus::kMaxIterations, "max_iterations"},
+    {SolveStatus::kBudgetExhausted, "budget_exhausted"},
+    {SolveStatus::kDiverged, "diverged"},
+    {SolveStatus::kInvalidInput, "invalid_input"},
+};
+constexpr std::span<const EnumName<SolveStatus>> EnumNames(SolveStatus) {
+  return kSolveStatusNames;
+}
+
 // Human-readable name ("converged", "max_iterations", "budget_exhausted", ...).
-const char* StatusName(SolveStatus status);
+inline const char* StatusName(SolveStatus status) { return ToName(status); }
 
 // A joint-space trajectory: column t of `q` is the configuration q_t (num_dofs × num_points),
 // sampled every `dt` seconds (dt = 0 for geometric paths without timing, e.g. RRT output).

@@ -58,6 +58,7 @@ UnwrapBenchmarkResult RunUnwrapBenchmark(const UnwrapBenchmarkOptions& options) 
   for (double angle : options.angles_deg) {
     ScenarioOverrides overrides;
     overrides.start_wrap_deg = angle;
+    overrides.search_roots = options.search_roots;
     const auto scenario = LoadScenario(options.scenario_path, overrides);
     if (options.rrt_budget > 0) scenario->rrt.max_checks = options.rrt_budget;
     for (Planner planner : options.planners) {

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "planning/scenario.h"
+#include "planning/planner.h"
 
 namespace planning {
 
@@ -39,6 +39,8 @@ struct UnwrapBenchmarkOptions {
   std::vector<Planner> planners;   // in output order (kept everywhere, never re-sorted)
   int seeds = 3;                   // seeds 0..seeds-1 per angle and planner
   long rrt_budget = -1;            // RRT collision-check budget; <= 0: the scenario's own
+  // Where relative robot/object paths of the scenario are also looked up (see ScenarioOverrides).
+  std::vector<std::string> search_roots;
   // Called after every run with the number of runs done so far and the total.
   std::function<void(int done, int total, const UnwrapRun& run)> progress;
 };

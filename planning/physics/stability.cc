@@ -22,18 +22,6 @@ void Drift(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b, double* slip,
 
 }  // namespace
 
-const char* ToString(StabilityStatus status) {
-  switch (status) {
-    case StabilityStatus::kTested:
-      return "tested";
-    case StabilityStatus::kNoGrasp:
-      return "no_grasp";
-    case StabilityStatus::kBlownUp:
-      return "blown_up";
-  }
-  return "?";
-}
-
 StabilityResult TestGraspStability(const OdeRuntime& runtime, const SimHand& hand,
                                    const SimObject& object, const StabilityOptions& options,
                                    const StepCallback& on_step) {

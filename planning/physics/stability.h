@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "planning/enum_names.h"
 #include "planning/physics/grasp_simulation.h"
 
 namespace planning::physics {
@@ -70,6 +71,14 @@ StabilityResult TestGraspStability(const OdeRuntime& runtime, const SimHand& han
                                    const SimObject& object, const StabilityOptions& options,
                                    const StepCallback& on_step = {});
 
-const char* ToString(StabilityStatus status);
+inline constexpr EnumName<StabilityStatus> kStabilityStatusNames[] = {
+    {StabilityStatus::kTested, "tested"},
+    {StabilityStatus::kNoGrasp, "no_grasp"},
+    {StabilityStatus::kBlownUp, "blown_up"},
+};
+constexpr std::span<const EnumName<StabilityStatus>> EnumNames(StabilityStatus) {
+  return kStabilityStatusNames;
+}
+inline const char* ToString(StabilityStatus status) { return ToName(status); }
 
 }  // namespace planning::physics

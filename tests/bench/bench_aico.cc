@@ -9,6 +9,7 @@
 #include <string>
 
 #include "planning/aico.h"
+#include "planning/planner.h"
 #include "planning/scenario.h"
 
 namespace {

@@ -215,7 +215,15 @@ TEST(GraspTransferTest, CorrespondenceAveragesFingerPairs) {
   EXPECT_DOUBLE_EQ(t[1], 0.1);
   EXPECT_DOUBLE_EQ(t[2], 0.5);
   EXPECT_EQ(ParseTransferMethod("fingertip"), TransferMethod::kFingertip);
-  EXPECT_THROW(ParseTransferMethod("magic"), std::invalid_argument);
+  try {
+    ParseTransferMethod("magic");
+    FAIL();
+  } catch (const std::invalid_argument& e) {
+    EXPECT_STREQ(e.what(), "unknown transfer method 'magic' (winding, joint, fingertip)");
+  }
+  for (const auto& e : kTransferMethodNames) {
+    EXPECT_EQ(ParseTransferMethod(ToString(e.value)), e.value);
+  }
 }
 
 }  // namespace

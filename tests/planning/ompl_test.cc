@@ -10,7 +10,9 @@
 
 #include "planning/internal/ompl_planners.h"
 #include "planning/kinematics.h"
+#include "planning/planner.h"
 #include "planning/scenario.h"
+#include "scenario_test_util.h"
 
 namespace planning {
 namespace {
@@ -99,13 +101,7 @@ TEST(OmplPeers, RrtConnectOnReachThroughRingIsCollisionFreeAndSeedsReproduce) {
   EXPECT_TRUE(a.trajectory.q.col(0).isApprox(s->problem.q0));
   EXPECT_TRUE(a.trajectory.q.col(a.trajectory.num_points() - 1).isApprox(s->goal_q));
   // Independent re-check of the path with the project's checker at the check resolution.
-  CollisionData coll(s->robot, s->env, s->collision);
-  KinematicsData kin(s->robot);
-  const ValidityFn free = [&](const Eigen::VectorXd& q) {
-    ForwardKinematics(s->robot, q, &kin);
-    return !InCollision(s->robot, kin, &coll);
-  };
-  EXPECT_TRUE(PathIsValid(a.trajectory, s->check_resolution, free));
+  EXPECT_TRUE(PathCollisionFree(*s, a.trajectory));
   // Same seed, same report (except the wall-clock time), even after other OMPL runs.
   EXPECT_EQ(a.report.collision_checks, b.report.collision_checks);
   EXPECT_EQ(a.report.iterations, b.report.iterations);

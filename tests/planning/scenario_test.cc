@@ -9,8 +9,14 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <vector>
 
+#include "planning/json_reader.h"
 #include "planning/kinematics.h"
+#include "planning/planner.h"
+#include "planning/robot_io.h"
+#include "planning/scenario_spec.h"
+#include "scenario_test_util.h"
 
 namespace planning {
 namespace {
@@ -68,8 +74,143 @@ TEST(ScenarioLoader, ErrorsNameTheJsonPath) {
   ExpectLoadError("missing_robot.json",
                   R"({"robot": "does/not/exist.urdf", "start": {"q": "zero"}, "tasks": []})",
                   "robot");
-  ExpectLoadError("not_json.json", "{ this is not json", "JSON parse error");
+  ExpectLoadError("not_json.json", "{ this is not json", "invalid JSON");
   EXPECT_THROW(LoadScenario("/nonexistent/scenario.json"), std::invalid_argument);
+}
+
+TEST(ScenarioLoader, UnknownKeysAreRejectedWithASuggestion) {
+  ExpectLoadError("typo_wrap.json", R"({"robot": ")" + kAssets + R"(robots/lwr4_sdh.urdf",
+                      "start": {"coil": {"wrapdeg": 360}}, "tasks": []})",
+                  "start.coil.wrapdeg: unknown key 'wrapdeg' (did you mean 'wrap_deg'?)");
+  ExpectLoadError("typo_precision.json",
+                  MiniScenario(R"({"name": "x", "feature": {"type": "joint_position"},
+                                   "precison": 3})"),
+                  "tasks[0].precison: unknown key 'precison' (did you mean 'precision'?)");
+}
+
+TEST(ScenarioLoader, NumbersOutOfRangeNameFileAndPath) {
+  ExpectLoadError("int_overflow.json", R"({"robot": ")" + kAssets + R"(robots/lwr4_sdh.urdf",
+                      "start": {"q": "zero"}, "problem": {"T": 4294967297}, "tasks": []})",
+                  "problem.T: integer 4294967297 out of range");
+  ExpectLoadError("float_overflow.json", R"({"robot": ")" + kAssets + R"(robots/lwr4_sdh.urdf",
+                      "start": {"q": "zero"}, "problem": {"duration": 1e400}, "tasks": []})",
+                  "invalid JSON at problem.duration");
+  ExpectLoadError("checks_overflow.json",
+                  R"({"robot": ")" + kAssets + R"(robots/lwr4_sdh.urdf", "start": {"q": "zero"},
+                      "tasks": [], "aico": {"max_iterations": 4294967297}})",
+                  "aico.max_iterations: integer 4294967297 out of range");
+}
+
+TEST(JsonReader, TypedReadsRejectWithoutTruncating) {
+  const nlohmann::json doc = ParseJsonText(R"({"big": 4294967297, "neg": -3, "x": 1.5})", "f.json");
+  const JsonNode root(doc, "f.json");
+  EXPECT_THROW(root.At("big").Int(), std::invalid_argument);
+  EXPECT_EQ(root.At("big").Integer(0, 1LL << 40), 4294967297LL);
+  EXPECT_EQ(root.At("neg").Int(), -3);
+  EXPECT_THROW(root.At("neg").Integer(0, 10), std::invalid_argument);
+  EXPECT_THROW(root.At("x").Int(), std::invalid_argument);
+  try {
+    root.CheckKeys({"big", "neg", "y"});
+    FAIL();
+  } catch (const std::invalid_argument& e) {
+    EXPECT_EQ(std::string(e.what()), "f.json: x: unknown key 'x' (did you mean 'y'?)");
+  }
+  try {
+    ParseJsonText(R"({"a": [1, {"b": 1e400}]})", "g.json");
+    FAIL();
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("g.json: invalid JSON at a[1].b: "), std::string::npos)
+        << e.what();
+  }
+}
+
+TEST(ScenarioLoader, RelativePathsAreFoundUnderTheSearchRoots) {
+  const std::filesystem::path dir =
+      std::filesystem::path(TOPOPLAN_BINARY_DIR) / "scenario_test_tmp" / "copied";
+  std::filesystem::create_directories(dir);
+  const std::string copy = (dir / "unwrap.json").string();
+  std::filesystem::copy_file(kAssets + "scenarios/unwrap.json", copy,
+                             std::filesystem::copy_options::overwrite_existing);
+  // Without a search root the relative URDF paths do not exist next to the copy; the error
+  // lists every path tried.
+  const std::vector<std::string> roots = {"/nonexistent_root_a", "/nonexistent_root_b"};
+  try {
+    ParseScenarioSpec(copy, roots);
+    FAIL() << "expected an error";
+  } catch (const std::invalid_argument& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find(copy + ": robot: cannot find '../robots/arm20_sdh.urdf'"),
+              std::string::npos)
+        << what;
+    for (const std::string& tried : {(dir.parent_path() / "robots/arm20_sdh.urdf").string(),
+                                     std::string("/nonexistent_root_a/robots/arm20_sdh.urdf"),
+                                     std::string("/nonexistent_root_b/robots/arm20_sdh.urdf")}) {
+      EXPECT_NE(what.find(tried), std::string::npos) << what;
+    }
+  }
+  // With the asset root it loads like the original.
+  ScenarioOverrides o;
+  o.start_wrap_deg = 360.0;
+  o.search_roots = {kAssets};
+  const auto s = LoadScenario(copy, o);
+  EXPECT_EQ(s->robot.name, "arm20_sdh");
+  EXPECT_EQ(s->spec.objects.size(), 2u);
+  EXPECT_EQ(s->aico_attempts.size(), 2u);  // aico.retry
+  EXPECT_NEAR(s->start_wrap_deg, 360.0, 5.0);
+}
+
+TEST(ScenarioLoader, OneChainParserForSidecarsAndScenarios) {
+  const std::string chain =
+      R"({"name": "c2", "closed": true, "points": [{"link": "sdh_palm"},
+          {"link": "lwr_link_4", "xyz": [0, 0, 0.1]}]})";
+  // Sidecar format.
+  Robot robot = LoadRobot(kAssets + "robots/lwr4_sdh.urdf");
+  const size_t before = robot.chains.size();
+  LoadChains(WriteTemp("sidecar.chains.json", R"({"chains": [)" + chain + "]}"), &robot);
+  ASSERT_EQ(robot.chains.size(), before + 1);
+  // Scenario format.
+  const auto s = LoadScenario(
+      WriteTemp("with_chain.json", R"({"robot": ")" + kAssets + R"(robots/lwr4_sdh.urdf",
+          "robot_chains": [)" + chain + R"(], "start": {"q": "zero"}, "tasks": []})"));
+  const ChainSpec& a = robot.chains.back();
+  const ChainSpec& b = s->robot.chains[FindChain(s->robot, "c2")];
+  EXPECT_EQ(a.point_link, b.point_link);
+  EXPECT_EQ(a.point_local, b.point_local);
+  EXPECT_TRUE(a.closed && b.closed);
+  // The same errors in both.
+  const std::string bad =
+      R"({"name": "c3", "points": [{"link": "sdh_palm"}, {"link": "sdh_plam"}]})";
+  try {
+    LoadChains(WriteTemp("bad.chains.json", R"({"chains": [)" + bad + "]}"), &robot);
+    FAIL();
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("chains[0].points[1].link: unknown link 'sdh_plam' "
+                                         "(did you mean 'sdh_palm'?)"),
+              std::string::npos)
+        << e.what();
+  }
+  ExpectLoadError("bad_chain.json",
+                  R"({"robot": ")" + kAssets + R"(robots/lwr4_sdh.urdf", "robot_chains": [)" + bad +
+                      R"(], "start": {"q": "zero"}, "tasks": []})",
+                  "robot_chains[0].points[1].link: unknown link 'sdh_plam'");
+}
+
+TEST(Planners, NamesRoundTripAndUnknownNamesListTheValidOnes) {
+  for (Planner p : AvailablePlanners()) EXPECT_EQ(ParsePlanner(PlannerName(p)), p);
+  try {
+    ParsePlanner("astar");
+    FAIL();
+  } catch (const std::invalid_argument& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "unknown planner 'astar' (aico, rrt, birrt, ompl-rrt, ompl-rrtconnect)");
+  }
+  for (const auto& e : kSolveStatusNames) {
+    EXPECT_EQ(ParseEnum<SolveStatus>(StatusName(e.value), "status"), e.value);
+  }
+  for (const auto& e : kFeatureTypeNames) {
+    EXPECT_EQ(ParseEnum<FeatureType>(ToName(e.value), "feature type"), e.value);
+  }
+  EXPECT_STREQ(StatusName(SolveStatus::kBudgetExhausted), "budget_exhausted");
 }
 
 // One AICO run on unwrap from the given start wrap.
@@ -143,13 +284,7 @@ TEST(RrtBaselines, PathsAreCollisionFreeAndSeedsReproduce) {
     EXPECT_TRUE(a.trajectory.q.col(0).isApprox(s->problem.q0));
     EXPECT_TRUE(a.trajectory.q.col(a.trajectory.num_points() - 1).isApprox(s->goal_q));
     // Independent re-check of the path at the edge resolution.
-    CollisionData coll(s->robot, s->env, s->collision);
-    KinematicsData kin(s->robot);
-    const ValidityFn free = [&](const Eigen::VectorXd& q) {
-      ForwardKinematics(s->robot, q, &kin);
-      return !InCollision(s->robot, kin, &coll);
-    };
-    EXPECT_TRUE(PathIsValid(a.trajectory, s->check_resolution, free));
+    EXPECT_TRUE(PathCollisionFree(*s, a.trajectory));
     // Same seed, same report (except the wall-clock time).
     EXPECT_EQ(a.report.collision_checks, b.report.collision_checks);
     EXPECT_EQ(a.report.iterations, b.report.iterations);

@@ -71,7 +71,7 @@ TEST(SceneJsonTest, ErrorsNameTheJsonPath) {
   EXPECT_NE(ErrorOf(R"({"shapes": [{"type": "cone"}]})").find("shapes[0].type: unknown shape type"),
             std::string::npos);
   EXPECT_EQ(ErrorOf(R"({"shapes": [{"type": "sphere", "center": [0,0,0], "raduis": 1}]})"),
-            "s.json: shapes[0].raduis: unknown key");
+            "s.json: shapes[0].raduis: unknown key 'raduis' (did you mean 'radius'?)");
   EXPECT_EQ(ErrorOf(R"({"camera": {"eye": [0,0,1], "target": [0,0,0]}})"),
             "s.json: camera.up: must not be parallel to the view direction");
   EXPECT_EQ(ErrorOf(R"({"background": [1, 0, 2]})"),
@@ -82,7 +82,7 @@ TEST(SceneJsonTest, ErrorsNameTheJsonPath) {
   EXPECT_EQ(ErrorOf(R"({"shapes": [{"type": "chain", "points": [[0,0,0],[1,0,0]], "radius": 0.1,
                         "segment_colors": [[1,0,0],[0,1,0]]}]})"),
             "s.json: shapes[0].segment_colors: expected one colour per segment (1)");
-  EXPECT_EQ(ErrorOf(R"([1, 2])"), "s.json: expected an object");
+  EXPECT_EQ(ErrorOf(R"([1, 2])"), "s.json: (root): expected an object");
 }
 
 }  // namespace

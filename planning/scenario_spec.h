@@ -1,0 +1,261 @@
+// Planning scenario files (assets/scenarios/*.json) as plain data: the one place that documents
+// every key. ParseScenarioSpec only reads and checks the file; planning/scenario.h turns a spec
+// into a runnable Scenario (robot, objects, start, goal, MotionProblem).
+//
+// Units: angles in radians (except wrap_deg), lengths in metres, time in seconds. Unknown keys
+// anywhere are errors ("unknown key 'wrapdeg' (did you mean 'wrap_deg'?)"). Every error is a
+// std::invalid_argument "<file>: <JSON path>: <what>".
+//
+// Relative file paths (robot, objects[].urdf) are looked up next to the scenario file first, then
+// under each search root with leading "../" segments removed ("../robots/a.urdf" -> "<root>/robots/
+// a.urdf"); when none exists the error lists every path tried.
+//
+// Root object:
+//   name            string   default: the file's stem
+//   description     string   free text, ignored by the planner
+//   robot           string   URDF path (required; its "<stem>.chains.json" sidecar is loaded too)
+//   objects         array    of objects, default []:
+//     name          string   required, unique
+//     urdf          string   URDF path (required)
+//     xyz           [3]      position, m, default [0, 0, 0]
+//     rpy           [3]      roll, pitch, yaw, rad (R = Rz·Ry·Rx), default [0, 0, 0]
+//     collide       bool     default true; false: chains and rendering only
+//     capsules      object   collide with capsules along a chain of the object instead of its
+//                            geometry: {chain: string (required), radius: number, m (required)}
+//   robot_chains    array    extra robot chains appended to the URDF's (format: chain_json.h)
+//   collision       object   self: bool (default true); disabled_pairs: [[link_a, link_b], ...];
+//                            disabled_groups: [[prefix, ...], ...] (no self-collision checks
+//                            between any two links whose names start with prefixes of one group)
+//   writhe_report   object   the writhe report pair: {chain: robot chain, object: object name,
+//                            object_chain: chain of that object} (all strings, required)
+//   start           object   required; exactly one of
+//     q             [n] | "zero"   the start configuration
+//     coil          object   writhe continuation from q = 0 (needs writhe_report): small damped
+//                            Gauss–Newton steps that move the report pair's total writhe by `step`
+//                            under collision and joint-limit tasks until 360°·|writhe| = wrap_deg.
+//                            wrap_deg: number, degrees in [0, 2000], default 720;
+//                            step: number, default 0.05; margin: collision margin, m, default 0.05
+//   problem         object   T: integer 1..10000, default 50 (time steps); duration: s, default 2;
+//                            dynamic: bool, default true; h_rate: default 0.1; w_rate: default
+//                            1; q_rate: default 1e-10 (see MotionProblem, task.h)
+//   tasks           array    required; each:
+//     name          string   default "task"
+//     feature       object   {type, ...}, see "Features" below (required)
+//     order         integer  0 (position term, default) or 1 (velocity term)
+//     target        object   default {"type": "zero"}; type: "zero" | "value" (default when
+//                            "target" is given) | "interpolate" (linear from y(q0) to value) |
+//                            "final_pose" (linear from y(q0) to y(goal)); value: number (every
+//                            component) or [dim] (for "value" and "interpolate")
+//     precision     number   ρ for t < T, >= 0, default 0
+//     final_precision number ρ at t = T, >= 0, default = precision
+//   final_pose      object   the goal q̂_T (thesis §4.2.2; also the RRT goal), default: the start.
+//                            tasks: [task names] (required); alpha: default 0.05; prior_scale:
+//                            default 1; init: "start" (default) | "unwrapped" (the coil
+//                            continued to writhe 0; needs a coil start) | [n] configuration
+//   success         object   writhe_total_below: number (default: not checked); position:
+//                            {task: name (required), tolerance: m, default 0.05}; inside_box:
+//                            name of a "box" task whose value must be 0 at the end
+//   aico            object   max_iterations: integer >= 1, default 20; tolerance: default 0.01;
+//                            damping: default 1; sweep_mode: "forwardly" (default) | "symmetric"
+//                            | "local_gauss_newton"; max_step: rad, default 1; rollout_init:
+//                            bool, default false; rollout_prior: default 100;
+//                            rollout_iterations: integer >= 1, default 10 (see aico.h);
+//     retry         object   a second attempt when the first fails validation or the success
+//                            criteria: precision_scale: {task name: factor > 0, ...} (default
+//                            {}); max_iterations: integer >= 1, default aico.max_iterations
+//   rrt             object   range: rad, default 0 (auto); resolution: rad, default 0 (auto);
+//                            goal_bias: default 0.1; max_checks: integer >= 1, default 100000
+//   check_resolution number  edge resolution (rad) for validating output paths, default
+//                            rrt.resolution if > 0, else 0.02
+//
+// Features (the keys besides "type"):
+//   position        link (required), offset [3] (default 0)
+//   axis_alignment  link (required), axis [3] (default [0, 0, 1]), direction [3] (required)
+//   joint_limits    margin (rad, default 0)
+//   joint_position  (none)
+//   box             link (required), offset [3] (default 0), center [3], half_extent [3]
+//                   (required), margin (m, default 0)
+//   writhe          chain, object, object_chain (required), output: "matrix" (default) | "total"
+//   winding         chain, axis_point [3], axis_direction [3] (all required)
+//   collision       margin (m, default 0.05)
+#pragma once
+
+#include <Eigen/Core>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "planning/aico.h"
+#include "planning/chain_json.h"
+#include "planning/enum_names.h"
+#include "planning/feature.h"
+#include "planning/final_pose.h"
+#include "planning/rrt.h"
+
+namespace planning {
+
+// A name read from the file (link, chain, object, task) and where: "<file>: <JSON path>".
+struct SpecName {
+  std::string name;
+  std::string where;
+};
+
+struct ObjectSpec {
+  std::string name;
+  std::string urdf;  // resolved path (exists)
+  std::string where;
+  Eigen::Vector3d xyz = Eigen::Vector3d::Zero();
+  Eigen::Vector3d rpy = Eigen::Vector3d::Zero();
+  bool collide = true;
+  std::optional<SpecName> capsule_chain;  // set: collide with capsules along this chain
+  double capsule_radius = 0.0;
+};
+
+struct CollisionSpec {
+  bool self = true;
+  std::vector<std::pair<std::string, std::string>> disabled_pairs;
+  std::vector<std::vector<std::string>> disabled_groups;  // link-name prefixes
+  std::string where;                                      // empty: no "collision" key
+};
+
+struct WritheReportSpec {
+  SpecName chain, object, object_chain;
+};
+
+enum class StartKind { kQ, kZero, kCoil };
+struct StartSpec {
+  StartKind kind = StartKind::kZero;
+  Eigen::VectorXd q;  // kQ (size checked against the robot at set-up)
+  double wrap_deg = 720.0;
+  double step = 0.05;
+  double margin = 0.05;
+  std::string where;  // of "start" ("start.q" for kQ)
+};
+
+struct ProblemSpec {
+  int num_steps = 50;
+  double duration = 2.0;
+  bool dynamic = true;
+  double h_rate = 0.1;
+  double w_rate = 1.0;
+  double q_rate = 1e-10;
+};
+
+enum class FeatureType {
+  kPosition,
+  kAxisAlignment,
+  kJointLimits,
+  kJointPosition,
+  kBox,
+  kWrithe,
+  kWinding,
+  kCollision
+};
+inline constexpr EnumName<FeatureType> kFeatureTypeNames[] = {
+    {FeatureType::kPosition, "position"},
+    {FeatureType::kAxisAlignment, "axis_alignment"},
+    {FeatureType::kJointLimits, "joint_limits"},
+    {FeatureType::kJointPosition, "joint_position"},
+    {FeatureType::kBox, "box"},
+    {FeatureType::kWrithe, "writhe"},
+    {FeatureType::kWinding, "winding"},
+    {FeatureType::kCollision, "collision"},
+};
+constexpr std::span<const EnumName<FeatureType>> EnumNames(FeatureType) {
+  return kFeatureTypeNames;
+}
+
+struct FeatureSpec {
+  FeatureType type = FeatureType::kJointPosition;
+  std::string where;
+  SpecName link, chain, object, object_chain;  // as the type needs
+  Eigen::Vector3d offset = Eigen::Vector3d::Zero();
+  Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();
+  Eigen::Vector3d direction = Eigen::Vector3d::Zero();
+  Eigen::Vector3d center = Eigen::Vector3d::Zero();
+  Eigen::Vector3d half_extent = Eigen::Vector3d::Zero();
+  Eigen::Vector3d axis_point = Eigen::Vector3d::Zero();
+  Eigen::Vector3d axis_direction = Eigen::Vector3d::Zero();
+  double margin = 0.0;  // the type's default when absent (collision: 0.05)
+  WritheOutput output = WritheOutput::kMatrix;
+};
+
+enum class TargetKind { kZero, kValue, kInterpolate, kFinalPose };
+inline constexpr EnumName<TargetKind> kTargetKindNames[] = {
+    {TargetKind::kZero, "zero"},
+    {TargetKind::kValue, "value"},
+    {TargetKind::kInterpolate, "interpolate"},
+    {TargetKind::kFinalPose, "final_pose"},
+};
+constexpr std::span<const EnumName<TargetKind>> EnumNames(TargetKind) { return kTargetKindNames; }
+
+struct TargetSpec {
+  TargetKind kind = TargetKind::kZero;
+  Eigen::VectorXd value;  // kValue / kInterpolate
+  bool scalar = false;    // value was one number: every component
+  std::string where;      // of "target"
+  std::string value_where;
+};
+
+struct TaskSpec {
+  std::string name = "task";
+  FeatureSpec feature;
+  int order = 0;
+  double precision = 0.0;
+  double final_precision = 0.0;
+  TargetSpec target;
+  std::string where;
+};
+
+enum class FinalPoseInit { kStart, kUnwrapped, kQ };
+struct FinalPoseSpec {
+  std::vector<SpecName> tasks;  // empty: the goal is the start
+  FinalPoseOptions options;
+  FinalPoseInit init = FinalPoseInit::kStart;
+  Eigen::VectorXd init_q;
+  std::string init_where;
+};
+
+struct SuccessSpec {
+  double writhe_total_below = -1.0;  // < 0: not checked
+  std::optional<SpecName> position_task;
+  double position_tolerance = 0.05;
+  std::optional<SpecName> box_task;
+};
+
+// One AICO attempt: task precisions scaled by name, and its iteration limit.
+struct AicoAttemptSpec {
+  std::vector<std::pair<SpecName, double>> precision_scale;
+  int max_iterations = 20;
+};
+
+struct ScenarioSpec {
+  std::string name;
+  std::string source;  // the scenario file
+  std::string robot;   // resolved URDF path
+  std::vector<ObjectSpec> objects;
+  std::vector<ChainDescription> robot_chains;
+  CollisionSpec collision;
+  std::optional<WritheReportSpec> writhe_report;
+  StartSpec start;
+  ProblemSpec problem;
+  std::vector<TaskSpec> tasks;
+  FinalPoseSpec final_pose;
+  SuccessSpec success;
+  AicoOptions aico;
+  std::vector<AicoAttemptSpec> aico_attempts;  // [0]: plain; [1]: "aico.retry" when given
+  RrtOptions rrt;
+  double check_resolution = 0.02;
+};
+
+// Reads and checks a scenario file (see above). Throws std::invalid_argument.
+ScenarioSpec ParseScenarioSpec(const std::string& path,
+                               const std::vector<std::string>& search_roots = {});
+
+// A relative `file` next to `base_dir`, else under each search root (leading "../" removed);
+// absolute paths as given. Throws "<where>: cannot find '<file>' (tried: a, b, ...)".
+std::string ResolveDataFile(const std::string& file, const std::string& base_dir,
+                            const std::vector<std::string>& search_roots, const std::string& where);
+
+}  // namespace planning
