@@ -87,36 +87,33 @@ void AddRenderCommands(CLI::App* root, CommandList* commands) {
       "Exit codes: 0 ok, 2 bad scene/flags (the message names the JSON path), 3 no GL.");
   commands->push_back(
       {render_cmd, [ra]() {
-         return WithRenderErrors([&]() {
-           SceneDocument doc = LoadRenderInput(ra->input, ra->q);
-           int width = doc.width > 0 ? doc.width : 640, height = doc.height > 0 ? doc.height : 480;
-           if (!ra->size.empty()) ParseImageSize(ra->size, "--size", &width, &height);
-           if (!ra->camera.empty()) {
-             const std::vector<double> c = ParseNumberList(ra->camera, "--camera", 7);
-             doc.camera.eye = Eigen::Vector3d(c[0], c[1], c[2]).cast<float>();
-             doc.camera.target = Eigen::Vector3d(c[3], c[4], c[5]).cast<float>();
-             doc.camera.fovy_deg = static_cast<float>(c[6]);
-             if (!(c[6] > 0.0 && c[6] < 180.0)) {
-               throw std::invalid_argument("--camera: fovy_deg must be in (0, 180)");
-             }
-             if ((doc.camera.target - doc.camera.eye).norm() == 0.0f) {
-               throw std::invalid_argument("--camera: eye and target must differ");
-             }
+         SceneDocument doc = LoadRenderInput(ra->input, ra->q);
+         int width = doc.width > 0 ? doc.width : 640, height = doc.height > 0 ? doc.height : 480;
+         if (!ra->size.empty()) ParseImageSize(ra->size, "--size", &width, &height);
+         if (!ra->camera.empty()) {
+           const std::vector<double> c = ParseNumberList(ra->camera, "--camera", 7);
+           doc.camera.eye = Eigen::Vector3d(c[0], c[1], c[2]).cast<float>();
+           doc.camera.target = Eigen::Vector3d(c[3], c[4], c[5]).cast<float>();
+           doc.camera.fovy_deg = static_cast<float>(c[6]);
+           if (!(c[6] > 0.0 && c[6] < 180.0)) {
+             throw std::invalid_argument("--camera: fovy_deg must be in (0, 180)");
            }
-           const render::GlBackend backend =
-               ra->gl.empty() ? render::GlBackend::kAuto : render::ParseGlBackend(ra->gl, "--gl");
-           render::OffscreenContext context(backend);
-           render::Renderer renderer(context.proc_loader());
-           render::RenderOptions options;
-           options.msaa_samples = ra->msaa;
-           options.shadows = !ra->no_shadows;
-           const render::Image image =
-               renderer.Render(doc.scene, doc.camera, width, height, options);
-           render::WritePng(ra->output, image);
-           std::printf("wrote %s (%dx%d, %s)\n", ra->output.c_str(), width, height,
-                       render::GlBackendName(context.backend()));
-           return kExitOk;
-         });
+           if ((doc.camera.target - doc.camera.eye).norm() == 0.0f) {
+             throw std::invalid_argument("--camera: eye and target must differ");
+           }
+         }
+         const render::GlBackend backend =
+             ra->gl.empty() ? render::GlBackend::kAuto : render::ParseGlBackend(ra->gl, "--gl");
+         render::OffscreenContext context(backend);
+         render::Renderer renderer(context.proc_loader());
+         render::RenderOptions options;
+         options.msaa_samples = ra->msaa;
+         options.shadows = !ra->no_shadows;
+         const render::Image image = renderer.Render(doc.scene, doc.camera, width, height, options);
+         render::WritePng(ra->output, image);
+         std::printf("wrote %s (%dx%d, %s)\n", ra->output.c_str(), width, height,
+                     render::GlBackendName(context.backend()));
+         return kExitOk;
        }});
 
   // heatmap ----------------------------------------------------------------------------------
@@ -135,21 +132,19 @@ void AddRenderCommands(CLI::App* root, CommandList* commands) {
       "cells are whole pixels; the colour bar shows the values.");
   commands->push_back(
       {heatmap, [ha]() {
-         return WithRenderErrors([&]() {
-           int width = 0, height = 0;
-           ParseImageSize(ha->size, "--size", &width, &height);
-           const topology::Chain a = topology::ReadChainCsv(ha->a_path);
-           const topology::Chain b = topology::ReadChainCsv(ha->b_path);
-           topology::WritheOptions options;
-           if (ha->unsigned_variant) options.variant = topology::WritheVariant::kUnsignedSolidAngle;
-           const Eigen::MatrixXd w = topology::WritheMatrix(a, b, options);
-           render::WritePng(
-               ha->output, WritheHeatmapFigure(w, Stem(ha->a_path), Stem(ha->b_path), width, height,
-                                               ha->title, !ha->unsigned_variant));
-           std::printf("wrote %s (%ldx%ld writhe matrix, total %.6f)\n", ha->output.c_str(),
-                       static_cast<long>(w.rows()), static_cast<long>(w.cols()), w.sum());
-           return kExitOk;
-         });
+         int width = 0, height = 0;
+         ParseImageSize(ha->size, "--size", &width, &height);
+         const topology::Chain a = topology::ReadChainCsv(ha->a_path);
+         const topology::Chain b = topology::ReadChainCsv(ha->b_path);
+         topology::WritheOptions options;
+         if (ha->unsigned_variant) options.variant = topology::WritheVariant::kUnsignedSolidAngle;
+         const Eigen::MatrixXd w = topology::WritheMatrix(a, b, options);
+         render::WritePng(ha->output,
+                          WritheHeatmapFigure(w, Stem(ha->a_path), Stem(ha->b_path), width, height,
+                                              ha->title, !ha->unsigned_variant));
+         std::printf("wrote %s (%ldx%ld writhe matrix, total %.6f)\n", ha->output.c_str(),
+                     static_cast<long>(w.rows()), static_cast<long>(w.cols()), w.sum());
+         return kExitOk;
        }});
 
   // diff -------------------------------------------------------------------------------------

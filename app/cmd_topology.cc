@@ -103,12 +103,9 @@ void AddTopologyCommands(CLI::App* root, CommandList* commands) {
            const auto stem = [](const std::string& p) {
              return std::filesystem::path(p).stem().string();
            };
-           WithRenderErrors([&] {
-             render::WritePng(wa->heatmap_path,
-                              WritheHeatmapFigure(w, stem(wa->a_path), stem(wa->b_path), width,
-                                                  height, "", !wa->unsigned_variant));
-             return 0;
-           });
+           render::WritePng(wa->heatmap_path,
+                            WritheHeatmapFigure(w, stem(wa->a_path), stem(wa->b_path), width,
+                                                height, "", !wa->unsigned_variant));
            std::fprintf(stderr, "wrote %s\n", wa->heatmap_path.c_str());
          }
          return kExitOk;

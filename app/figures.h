@@ -3,7 +3,6 @@
 #pragma once
 
 #include <Eigen/Core>
-#include <functional>
 #include <string>
 
 #include "render/image.h"
@@ -21,9 +20,5 @@ void ParseImageSize(const std::string& text, const std::string& flag, int* width
 render::Image WritheHeatmapFigure(const Eigen::MatrixXd& w, const std::string& a_name,
                                   const std::string& b_name, int width, int height,
                                   const std::string& title = "", bool signed_values = true);
-
-// Obsolete: returns run(). render::EnvironmentError is app::EnvironmentError and RunGuarded maps
-// it to exit code 3 directly; kept only until the remaining callers drop the wrapper.
-inline int WithRenderErrors(const std::function<int()>& run) { return run(); }
 
 }  // namespace app

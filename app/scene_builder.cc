@@ -20,15 +20,7 @@ std::shared_ptr<const render::TriangleMesh> ConvertMesh(const planning::Mesh& me
                                                         SceneMeshCache* cache) {
   auto it = cache->meshes.find(&mesh);
   if (it != cache->meshes.end()) return it->second;
-  auto out = std::make_shared<render::TriangleMesh>();
-  out->positions = mesh.vertices;
-  out->normals = mesh.normals;
-  out->indices.reserve(mesh.triangles.size() * 3);
-  for (const Eigen::Vector3i& t : mesh.triangles) {
-    for (int i = 0; i < 3; ++i) out->indices.push_back(static_cast<std::uint32_t>(t[i]));
-  }
-  cache->meshes[&mesh] = out;
-  return out;
+  return cache->meshes[&mesh] = ToRenderMesh(mesh);
 }
 
 render::Shape ToShape(const planning::Robot& model, const planning::Geometry& g,
@@ -121,6 +113,17 @@ void AddChains(const planning::Robot& model, const planning::KinematicsData& kin
 }
 
 }  // namespace
+
+std::shared_ptr<const render::TriangleMesh> ToRenderMesh(const planning::Mesh& mesh) {
+  auto out = std::make_shared<render::TriangleMesh>();
+  out->positions = mesh.vertices;
+  out->normals = mesh.normals;
+  out->indices.reserve(mesh.triangles.size() * 3);
+  for (const Eigen::Vector3i& t : mesh.triangles) {
+    for (int i = 0; i < 3; ++i) out->indices.push_back(static_cast<std::uint32_t>(t[i]));
+  }
+  return out;
+}
 
 void AddRobotShapes(const planning::Robot& robot, const planning::KinematicsData& kin,
                     const Eigen::Isometry3d& world_from_robot, const SceneBuildOptions& options,

@@ -30,6 +30,10 @@ struct SceneMeshCache {
   std::map<const planning::Mesh*, std::shared_ptr<const render::TriangleMesh>> meshes;
 };
 
+// The render copy of a loaded mesh (planning/mesh_io.h): the same vertices, unit normals and
+// triangles (counter-clockwise vertex index triples, flattened to 3 indices per triangle).
+std::shared_ptr<const render::TriangleMesh> ToRenderMesh(const planning::Mesh& mesh);
+
 // Appends the shapes of `robot` at the configuration in `kin` (ForwardKinematics done), placed by
 // world_from_robot, and (if options.chains) its chains as tubes, one colour per chain.
 void AddRobotShapes(const planning::Robot& robot, const planning::KinematicsData& kin,

@@ -8,7 +8,9 @@
 #include <set>
 #include <stdexcept>
 
+#include "app/scene_builder.h"
 #include "planning/json_reader.h"
+#include "planning/mesh_io.h"
 #include "topology/polyline.h"
 
 namespace app {
@@ -172,7 +174,7 @@ void ParseShape(const Reader& r, const json& s, const std::string& path, render:
     shape.material = material;
     const std::string file = r.File(r.Required(s, path, "file"), key("file"));
     try {
-      shape.mesh = render::LoadMesh(file);
+      shape.mesh = ToRenderMesh(planning::LoadMesh(file));
     } catch (const std::invalid_argument& e) {
       Fail(r.source(), key("file"), e.what());
     }

@@ -23,6 +23,16 @@ void ResizeState(int slices, int d, AicoState* st) {
   st->task_cost.assign(slices, 0.0);
 }
 
+// Control cost of the step from slice t to t + 1: h_rate/τ · Σ_i metric_i (to_i − from_i)² for
+// dynamic problems (from, to: the two slices' velocities), w_rate · Σ_i metric_i (to_i − from_i)²
+// for kinematic ones (from, to: the two slices' positions). All vectors have size n.
+double StepControlCost(const MotionProblem& p, const Eigen::VectorXd& metric, double tau,
+                       const Eigen::Ref<const Eigen::VectorXd>& from,
+                       const Eigen::Ref<const Eigen::VectorXd>& to) {
+  const double sum = ((to - from).array().square() * metric.array()).sum();
+  return p.dynamic ? p.h_rate / tau * sum : p.w_rate * sum;
+}
+
 // The solver's view of one run: problem, options, workspace and derived constants.
 class Aico {
  public:
@@ -48,6 +58,10 @@ class Aico {
   Trajectory Rollout();
   void TaskMessage(int t, const Eigen::VectorXd& x);
   void InvertSpd(const Eigen::MatrixXd& m, Eigen::MatrixXd* out);
+  // The message (mean m, precision Minv) arriving at neighbour slice k combined with k's task
+  // message (r, R): w.Sbar = (Minv + R_k)⁻¹, w.vtmp2 = w.Sbar (r_k + Minv m). The shared first step
+  // of the forward (k = t − 1) and backward (k = t + 1) updates.
+  void AbsorbTaskMessage(int k, const Eigen::MatrixXd& Minv, const Eigen::VectorXd& m);
   void UpdateForward(int t);
   void UpdateBackward(int t);
   void UpdateBelief(int t);
@@ -137,14 +151,20 @@ void Aico::TaskMessage(int t, const Eigen::VectorXd& x) {
   st().task_cost[t] = cost;
 }
 
+void Aico::AbsorbTaskMessage(int k, const Eigen::MatrixXd& Minv, const Eigen::VectorXd& m) {
+  AicoWorkspace& w = *ws_;
+  const AicoState& s = st();
+  w.tmp = Minv + s.R[k];
+  InvertSpd(w.tmp, &w.Sbar);
+  w.vtmp = s.r[k];
+  w.vtmp.noalias() += Minv * m;
+  w.vtmp2.noalias() = w.Sbar * w.vtmp;
+}
+
 void Aico::UpdateForward(int t) {
   AicoWorkspace& w = *ws_;
   AicoState& s = st();
-  w.tmp = s.Sinv[t - 1] + s.R[t - 1];
-  InvertSpd(w.tmp, &w.Sbar);
-  w.vtmp = s.r[t - 1];
-  w.vtmp.noalias() += s.Sinv[t - 1] * s.s[t - 1];
-  w.vtmp2.noalias() = w.Sbar * w.vtmp;
+  AbsorbTaskMessage(t - 1, s.Sinv[t - 1], s.s[t - 1]);
   if (p_.dynamic) {
     s.s[t].noalias() = w.A * w.vtmp2;
     w.tmp.noalias() = w.A * w.Sbar;
@@ -165,11 +185,7 @@ void Aico::UpdateBackward(int t) {
     s.Vinv[t] = (p_.dynamic ? 1e-4 : 1.0) * w.eye;
     return;
   }
-  w.tmp = s.Vinv[t + 1] + s.R[t + 1];
-  InvertSpd(w.tmp, &w.Sbar);  // V̄
-  w.vtmp = s.r[t + 1];
-  w.vtmp.noalias() += s.Vinv[t + 1] * s.v[t + 1];
-  w.vtmp2.noalias() = w.Sbar * w.vtmp;
+  AbsorbTaskMessage(t + 1, s.Vinv[t + 1], s.v[t + 1]);  // w.Sbar = V̄
   if (p_.dynamic) {
     s.v[t].noalias() = w.Ainv * w.vtmp2;
     w.tmp = w.Qbar + w.Sbar;
@@ -215,13 +231,8 @@ bool Aico::Relocate(int t, bool force) {
 double Aico::ControlCost(const AicoState& s) const {
   double cost = 0.0;
   for (int t = 0; t < T_; ++t) {
-    if (p_.dynamic) {
-      const auto dv = s.b[t + 1].tail(n_) - s.b[t].tail(n_);
-      cost += p_.h_rate / tau_ * (dv.array().square() * metric_.array()).sum();
-    } else {
-      const auto dq = s.b[t + 1] - s.b[t];
-      cost += p_.w_rate * (dq.array().square() * metric_.array()).sum();
-    }
+    // The velocity half of the state for dynamic problems, the whole (position) state otherwise.
+    cost += StepControlCost(p_, metric_, tau_, s.b[t].tail(n_), s.b[t + 1].tail(n_));
   }
   return cost;
 }
@@ -489,13 +500,8 @@ double TrajectoryCost(const MotionProblem& problem, const Eigen::MatrixXd& q,
     task +=
         TaskCost(problem, t, problem.dynamic ? Eigen::VectorXd(v.col(t)) : Eigen::VectorXd(), *ws);
     if (t < T) {
-      if (problem.dynamic) {
-        control += problem.h_rate / dt *
-                   ((v.col(t + 1) - v.col(t)).array().square() * metric.array()).sum();
-      } else {
-        control +=
-            problem.w_rate * ((q.col(t + 1) - q.col(t)).array().square() * metric.array()).sum();
-      }
+      const Eigen::MatrixXd& x = problem.dynamic ? v : q;
+      control += StepControlCost(problem, metric, dt, x.col(t), x.col(t + 1));
     }
   }
   if (task_cost != nullptr) *task_cost = task;

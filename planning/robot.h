@@ -67,8 +67,8 @@ struct Geometry {
   std::array<float, 4> rgba{0.7f, 0.7f, 0.7f, 1.0f};  // linear RGBA in [0, 1] (visuals)
 };
 
-// A triangle mesh loaded through assimp (all meshes of the file merged, node transforms applied,
-// in the file's units; the Geometry's scale is applied on top).
+// A triangle mesh read by planning/mesh_io.h (all meshes of the file merged, node transforms
+// applied, z up, metres; the Geometry's scale is applied on top).
 struct Mesh {
   std::string path;                        // resolved file path
   std::vector<Eigen::Vector3f> vertices;   // mesh frame

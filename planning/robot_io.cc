@@ -1,14 +1,12 @@
 // URDF → Robot: a validation pass over the XML (for clear, line-numbered messages and the file
-// order of joints), then urdfdom for the model itself, assimp for meshes, nlohmann-json for chains.
+// order of joints), then urdfdom for the model itself, planning/mesh_io for meshes, nlohmann-json
+// for chains.
 #include "planning/robot_io.h"
 
-#include <assimp/postprocess.h>
-#include <assimp/scene.h>
 #include <tinyxml.h>
 #include <urdf_model/model.h>
 #include <urdf_parser/urdf_parser.h>
 
-#include <assimp/Importer.hpp>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -20,6 +18,7 @@
 
 #include "planning/chain_json.h"
 #include "planning/json_reader.h"
+#include "planning/mesh_io.h"
 
 namespace planning {
 namespace {
@@ -299,45 +298,6 @@ struct GeometryBuilder {
 };
 
 }  // namespace
-
-// ---- Meshes ------------------------------------------------------------------------------------
-
-Mesh LoadMesh(const std::string& path) {
-  if (!fs::is_regular_file(path)) throw std::invalid_argument(path + ": mesh file not found");
-  Assimp::Importer importer;
-  // Keep COLLADA files in their own axes (ROS meshes are authored Z-up, like URDF frames).
-  importer.SetPropertyBool(AI_CONFIG_IMPORT_COLLADA_IGNORE_UP_DIRECTION, true);
-  const aiScene* scene = importer.ReadFile(
-      path, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_GenSmoothNormals |
-                aiProcess_PreTransformVertices | aiProcess_SortByPType);
-  if (!scene || !scene->mRootNode) {
-    throw std::invalid_argument(path + ": cannot read mesh: " + importer.GetErrorString());
-  }
-  Mesh mesh;
-  mesh.path = path;
-  for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
-    const aiMesh* am = scene->mMeshes[m];
-    if (!(am->mPrimitiveTypes & aiPrimitiveType_TRIANGLE)) continue;
-    const int base = static_cast<int>(mesh.vertices.size());
-    for (unsigned v = 0; v < am->mNumVertices; ++v) {
-      mesh.vertices.emplace_back(am->mVertices[v].x, am->mVertices[v].y, am->mVertices[v].z);
-      Eigen::Vector3f n = Eigen::Vector3f::UnitZ();
-      if (am->HasNormals())
-        n = Eigen::Vector3f(am->mNormals[v].x, am->mNormals[v].y, am->mNormals[v].z);
-      if (!(n.norm() > 1e-12f)) n = Eigen::Vector3f::UnitZ();
-      mesh.normals.push_back(n.normalized());
-    }
-    for (unsigned f = 0; f < am->mNumFaces; ++f) {
-      const aiFace& face = am->mFaces[f];
-      if (face.mNumIndices != 3) continue;
-      mesh.triangles.emplace_back(base + static_cast<int>(face.mIndices[0]),
-                                  base + static_cast<int>(face.mIndices[1]),
-                                  base + static_cast<int>(face.mIndices[2]));
-    }
-  }
-  if (mesh.triangles.empty()) throw std::invalid_argument(path + ": mesh has no triangles");
-  return mesh;
-}
 
 // ---- Chains ------------------------------------------------------------------------------------
 

@@ -4,7 +4,8 @@
 // URDF support (parsed with urdfdom, validated first with our own pass for clear messages):
 //   - joints: revolute, continuous, prismatic, fixed, with <mimic joint= multiplier= offset=>;
 //     floating and planar joints are rejected (model a free base with 6 joints instead);
-//   - geometry: box, sphere, cylinder, mesh (any format assimp reads: STL, DAE, OBJ, PLY, ...).
+//   - geometry: box, sphere, cylinder, mesh (any format assimp reads: STL, DAE, OBJ, PLY, ...;
+//     read by planning/mesh_io.h, which states the axes and units, once per file and robot).
 //     A <collision> or <visual> whose name starts with "capsule" and holds a <cylinder> is loaded
 //     as a capsule of that radius whose cap centres are `length` apart (URDF has no capsule);
 //   - mesh filenames: "package://PKG/rel", "file:///abs", absolute, or relative to the URDF's
@@ -48,9 +49,5 @@ Robot ParseRobot(const std::string& urdf_xml, const std::string& source_name,
 // Reads chains from a sidecar JSON file into robot->chains (appending). Throws
 // std::invalid_argument naming the file and JSON path (e.g. "chains[2].points[0].link").
 void LoadChains(const std::string& json_path, Robot* robot);
-
-// Loads a mesh file with assimp: all meshes merged, node transforms applied, triangulated, with
-// smooth per-vertex normals. Throws std::invalid_argument naming the file on failure.
-Mesh LoadMesh(const std::string& path);
 
 }  // namespace planning

@@ -108,12 +108,14 @@ Trajectory ToTrajectory(const std::vector<const RrtNode*>& nodes, int n) {
 }
 
 // What both planners set up first: argument checks, the default range (20 % of the joint box's
-// diagonal) and edge resolution (1 %), the counting checker, and the start and goal validity
-// checks. Returns false (result filled with kInvalidInput) when start or goal is invalid.
+// diagonal) and edge resolution (1 %), the counting checker, the per-iteration buffers (size n),
+// and the start and goal validity checks. Returns false (result filled with kInvalidInput) when
+// start or goal is invalid.
 struct Setup {
-  int n;
-  double range, resolution;
   Checker check;
+  int n = 0;
+  double range = 0.0, resolution = 0.0;
+  Eigen::VectorXd q_rand{}, q_new{}, tmp{};  // sample, extension, edge interpolation
 };
 
 bool Prepare(const RrtProblem& problem, const RrtOptions& options, Setup* s, RrtResult* result) {
@@ -122,6 +124,9 @@ bool Prepare(const RrtProblem& problem, const RrtOptions& options, Setup* s, Rrt
   s->n = static_cast<int>(problem.start.size());
   s->range = options.range > 0 ? options.range : 0.2 * diag;
   s->resolution = options.resolution > 0 ? options.resolution : 0.01 * diag;
+  s->q_rand.resize(s->n);
+  s->q_new.resize(s->n);
+  s->tmp.resize(s->n);
   if (!s->check(problem.start) || !s->check(problem.goal)) {
     result->status = SolveStatus::kInvalidInput;
     result->checks = s->check.count;
@@ -130,47 +135,50 @@ bool Prepare(const RrtProblem& problem, const RrtOptions& options, Setup* s, Rrt
   return true;
 }
 
+// One extension of `tree` towards s->q_rand: from its nearest node (*near) to s->q_new, at most
+// s->range away, then the validity check of that edge.
+EdgeResult Extend(const std::vector<RrtNode>& tree, Setup* s, int* near) {
+  *near = Nearest(tree, s->q_rand);
+  Steer(tree[*near].q, s->q_rand, s->range, &s->q_new);
+  return CheckEdge(tree[*near].q, s->q_new, s->resolution, &s->check, &s->tmp);
+}
+
 }  // namespace
 
 RrtResult PlanRrt(const RrtProblem& problem, const RrtOptions& options, const ValidityFn& valid,
                   std::mt19937* rng) {
   RrtResult result;
-  Setup setup{0, 0.0, 0.0, Checker{valid, options.max_checks}};
+  Setup setup{Checker{valid, options.max_checks}};
   if (!Prepare(problem, options, &setup, &result)) return result;
-  const int n = setup.n;
-  const double range = setup.range, resolution = setup.resolution;
-  Checker& check = setup.check;
 
   std::vector<RrtNode> tree;
   tree.push_back({problem.start, -1});
-  Eigen::VectorXd q_rand(n), q_new(n), tmp(n);
   std::uniform_real_distribution<double> coin(0.0, 1.0);
   result.status = SolveStatus::kBudgetExhausted;
-  while (!check.exhausted() && result.iterations < options.max_iterations) {
+  while (!setup.check.exhausted() && result.iterations < options.max_iterations) {
     ++result.iterations;
     const bool to_goal = coin(*rng) < options.goal_bias;
     if (to_goal) {
-      q_rand = problem.goal;
+      setup.q_rand = problem.goal;
     } else {
-      SampleUniform(problem, rng, &q_rand);
+      SampleUniform(problem, rng, &setup.q_rand);
     }
-    const int near = Nearest(tree, q_rand);
-    Steer(tree[near].q, q_rand, range, &q_new);
-    const EdgeResult edge = CheckEdge(tree[near].q, q_new, resolution, &check, &tmp);
+    int near = 0;
+    const EdgeResult edge = Extend(tree, &setup, &near);
     if (edge == EdgeResult::kBudget) break;
     if (edge == EdgeResult::kInvalid) continue;
-    tree.push_back({q_new, near});
-    if ((q_new - problem.goal).norm() <= 1e-12) {
+    tree.push_back({setup.q_new, near});
+    if ((setup.q_new - problem.goal).norm() <= 1e-12) {
       std::vector<int> idx;
       AppendBranch(tree, static_cast<int>(tree.size()) - 1, false, &idx);
       std::vector<const RrtNode*> nodes;
       for (int i : idx) nodes.push_back(&tree[i]);
-      result.path = ToTrajectory(nodes, n);
+      result.path = ToTrajectory(nodes, setup.n);
       result.status = SolveStatus::kConverged;
       break;
     }
   }
-  result.checks = check.count;
+  result.checks = setup.check.count;
   result.tree_size = static_cast<int>(tree.size());
   return result;
 }
@@ -178,41 +186,37 @@ RrtResult PlanRrt(const RrtProblem& problem, const RrtOptions& options, const Va
 RrtResult PlanBiRrt(const RrtProblem& problem, const RrtOptions& options, const ValidityFn& valid,
                     std::mt19937* rng) {
   RrtResult result;
-  Setup setup{0, 0.0, 0.0, Checker{valid, options.max_checks}};
+  Setup setup{Checker{valid, options.max_checks}};
   if (!Prepare(problem, options, &setup, &result)) return result;
-  const int n = setup.n;
-  const double range = setup.range, resolution = setup.resolution;
-  Checker& check = setup.check;
 
   std::vector<RrtNode> trees[2];
   trees[0].push_back({problem.start, -1});
   trees[1].push_back({problem.goal, -1});
-  Eigen::VectorXd q_rand(n), q_new(n), tmp(n);
   std::uniform_real_distribution<double> coin(0.0, 1.0);
   int grow = 0;  // index of the tree that grows this iteration
   result.status = SolveStatus::kBudgetExhausted;
-  while (!check.exhausted() && result.iterations < options.max_iterations) {
+  while (!setup.check.exhausted() && result.iterations < options.max_iterations) {
     ++result.iterations;
     std::vector<RrtNode>& a = trees[grow];
     std::vector<RrtNode>& b = trees[1 - grow];
     // Target: a random node of the other tree (goal_bias) or a uniform sample.
     if (coin(*rng) < options.goal_bias) {
       std::uniform_int_distribution<int> pick(0, static_cast<int>(b.size()) - 1);
-      q_rand = b[pick(*rng)].q;
+      setup.q_rand = b[pick(*rng)].q;
     } else {
-      SampleUniform(problem, rng, &q_rand);
+      SampleUniform(problem, rng, &setup.q_rand);
     }
-    const int near = Nearest(a, q_rand);
-    Steer(a[near].q, q_rand, range, &q_new);
-    const EdgeResult edge = CheckEdge(a[near].q, q_new, resolution, &check, &tmp);
+    int near = 0;
+    const EdgeResult edge = Extend(a, &setup, &near);
     if (edge == EdgeResult::kBudget) break;
     if (edge == EdgeResult::kValid) {
-      a.push_back({q_new, near});
+      a.push_back({setup.q_new, near});
       const int added = static_cast<int>(a.size()) - 1;
       // Try to join the trees through the other tree's nearest node.
-      const int other = Nearest(b, q_new);
-      if ((b[other].q - q_new).norm() <= range) {
-        const EdgeResult join = CheckEdge(q_new, b[other].q, resolution, &check, &tmp);
+      const int other = Nearest(b, setup.q_new);
+      if ((b[other].q - setup.q_new).norm() <= setup.range) {
+        const EdgeResult join =
+            CheckEdge(setup.q_new, b[other].q, setup.resolution, &setup.check, &setup.tmp);
         if (join == EdgeResult::kBudget) break;
         if (join == EdgeResult::kValid) {
           // Path: start tree root .. joint, then goal tree joint .. root.
@@ -224,7 +228,7 @@ RrtResult PlanBiRrt(const RrtProblem& problem, const RrtOptions& options, const 
           std::vector<const RrtNode*> nodes;
           for (int i : from_start) nodes.push_back(&trees[0][i]);
           for (int i : from_goal) nodes.push_back(&trees[1][i]);
-          result.path = ToTrajectory(nodes, n);
+          result.path = ToTrajectory(nodes, setup.n);
           result.status = SolveStatus::kConverged;
           break;
         }
@@ -232,7 +236,7 @@ RrtResult PlanBiRrt(const RrtProblem& problem, const RrtOptions& options, const 
     }
     grow = 1 - grow;
   }
-  result.checks = check.count;
+  result.checks = setup.check.count;
   result.tree_size = static_cast<int>(trees[0].size() + trees[1].size());
   return result;
 }

@@ -110,44 +110,6 @@ struct Bounds {
   bool empty() const { return lo.x() > hi.x(); }
 };
 
-GLuint Compile(const GlApi& gl, GLenum type, const char* source, const char* what,
-               const char* prefix = "") {
-  const GLuint shader = gl.CreateShader(type);
-  const char* sources[] = {prefix, source};
-  gl.ShaderSource(shader, 2, sources, nullptr);
-  gl.CompileShader(shader);
-  GLint ok = 0;
-  gl.GetShaderiv(shader, GL_COMPILE_STATUS, &ok);
-  if (!ok) {
-    char log[2048] = {};
-    gl.GetShaderInfoLog(shader, sizeof(log), nullptr, log);
-    gl.DeleteShader(shader);
-    throw ContextError(std::string("GL: compiling the ") + what + " shader failed: " + log);
-  }
-  return shader;
-}
-
-GLuint Link(const GlApi& gl, const char* vs, const char* fs, const char* what,
-            const char* prefix = "") {
-  const GLuint v = Compile(gl, GL_VERTEX_SHADER, vs, what, prefix);
-  const GLuint f = Compile(gl, GL_FRAGMENT_SHADER, fs, what, prefix);
-  const GLuint program = gl.CreateProgram();
-  gl.AttachShader(program, v);
-  gl.AttachShader(program, f);
-  gl.LinkProgram(program);
-  gl.DeleteShader(v);
-  gl.DeleteShader(f);
-  GLint ok = 0;
-  gl.GetProgramiv(program, GL_LINK_STATUS, &ok);
-  if (!ok) {
-    char log[2048] = {};
-    gl.GetProgramInfoLog(program, sizeof(log), nullptr, log);
-    gl.DeleteProgram(program);
-    throw ContextError(std::string("GL: linking the ") + what + " program failed: " + log);
-  }
-  return program;
-}
-
 }  // namespace
 
 Eigen::Matrix4f ViewMatrix(const Camera& camera) {
@@ -203,13 +165,15 @@ class Renderer::Impl {
       for (int grid = 0; grid < 2; ++grid) {
         const std::string prefix = "#version 330 core\n#define SHADOWS " + std::to_string(shadows) +
                                    "\n#define GRID " + std::to_string(grid) + "\n";
-        mesh_programs_[shadows][grid] = Link(gl_, internal::kMeshVertexShader,
-                                             internal::kMeshFragmentShader, "mesh", prefix.c_str());
+        mesh_programs_[shadows][grid] =
+            internal::LinkProgram(gl_, internal::kMeshVertexShader, internal::kMeshFragmentShader,
+                                  "mesh", prefix.c_str());
       }
     }
-    depth_program_ =
-        Link(gl_, internal::kDepthVertexShader, internal::kDepthFragmentShader, "depth");
-    line_program_ = Link(gl_, internal::kLineVertexShader, internal::kLineFragmentShader, "line");
+    depth_program_ = internal::LinkProgram(gl_, internal::kDepthVertexShader,
+                                           internal::kDepthFragmentShader, "depth");
+    line_program_ = internal::LinkProgram(gl_, internal::kLineVertexShader,
+                                          internal::kLineFragmentShader, "line");
     for (int lod = 0; lod < 3; ++lod) {
       sphere_[lod] = Upload(internal::UnitSphere(internal::kLodSlices[lod]));
       cylinder_[lod] = Upload(internal::UnitCylinder(internal::kLodSlices[lod]));

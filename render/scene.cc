@@ -1,11 +1,7 @@
-// Shape helpers and mesh loading (assimp) for render::Scene.
+// Shape helpers for render::Scene.
 #include "render/scene.h"
 
-#include <assimp/postprocess.h>
-#include <assimp/scene.h>
-
-#include <assimp/Importer.hpp>
-#include <filesystem>
+#include <cmath>
 #include <stdexcept>
 
 namespace render {
@@ -24,34 +20,6 @@ Eigen::Matrix4f FrameAlong(const Eigen::Vector3f& a, const Eigen::Vector3f& b) {
   m.block<3, 1>(0, 2) = z;
   m.block<3, 1>(0, 3) = 0.5f * (a + b);
   return m;
-}
-
-void AppendNode(const aiScene* scene, const aiNode* node, const aiMatrix4x4& parent, float scale,
-                TriangleMesh* out) {
-  const aiMatrix4x4 world = parent * node->mTransformation;
-  aiMatrix3x3 normal_matrix(world);
-  normal_matrix.Inverse().Transpose();
-  for (unsigned k = 0; k < node->mNumMeshes; ++k) {
-    const aiMesh* mesh = scene->mMeshes[node->mMeshes[k]];
-    const auto base = static_cast<std::uint32_t>(out->positions.size());
-    for (unsigned v = 0; v < mesh->mNumVertices; ++v) {
-      const aiVector3D p = world * mesh->mVertices[v];
-      out->positions.emplace_back(scale * p.x, scale * p.y, scale * p.z);
-      if (mesh->HasNormals()) {
-        aiVector3D n = normal_matrix * mesh->mNormals[v];
-        n.Normalize();
-        out->normals.emplace_back(n.x, n.y, n.z);
-      }
-    }
-    for (unsigned f = 0; f < mesh->mNumFaces; ++f) {
-      const aiFace& face = mesh->mFaces[f];
-      if (face.mNumIndices != 3) continue;  // points and lines
-      for (int c = 0; c < 3; ++c) out->indices.push_back(base + face.mIndices[c]);
-    }
-  }
-  for (unsigned c = 0; c < node->mNumChildren; ++c) {
-    AppendNode(scene, node->mChildren[c], world, scale, out);
-  }
 }
 
 }  // namespace
@@ -97,24 +65,6 @@ Shape MakeBox(const Eigen::Vector3f& center, const Eigen::Vector3f& edge_lengths
   s.size = edge_lengths;
   s.material = material;
   return s;
-}
-
-std::shared_ptr<const TriangleMesh> LoadMesh(const std::string& path, float scale) {
-  if (!std::filesystem::is_regular_file(path)) {
-    throw std::invalid_argument(path + ": mesh file not found");
-  }
-  Assimp::Importer importer;
-  const aiScene* scene = importer.ReadFile(
-      path, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_SortByPType);
-  if (scene == nullptr || scene->mRootNode == nullptr) {
-    throw std::invalid_argument(path + ": cannot read mesh (" + importer.GetErrorString() + ")");
-  }
-  auto mesh = std::make_shared<TriangleMesh>();
-  AppendNode(scene, scene->mRootNode, aiMatrix4x4(), scale, mesh.get());
-  if (mesh->indices.empty()) throw std::invalid_argument(path + ": mesh has no triangles");
-  // Normals only when every part had them; otherwise the renderer computes them.
-  if (mesh->normals.size() != mesh->positions.size()) mesh->normals.clear();
-  return mesh;
 }
 
 }  // namespace render

@@ -29,18 +29,13 @@ struct Material {
 // An indexed triangle mesh in its own frame. `normals` is either empty (the renderer computes
 // flat-ish area-weighted vertex normals) or has one unit normal per vertex. Triangles are
 // counter-clockwise seen from outside. Meshes are shared between frames through shared_ptr so the
-// renderer can upload each one once (it caches GPU buffers per TriangleMesh object).
+// renderer can upload each one once (it caches GPU buffers per TriangleMesh object). render reads
+// no mesh files: the caller fills this (the app converts the meshes its loader read).
 struct TriangleMesh {
   std::vector<Eigen::Vector3f> positions;
   std::vector<Eigen::Vector3f> normals;
   std::vector<std::uint32_t> indices;  // 3 per triangle, each < positions.size()
 };
-
-// Loads a triangle mesh with assimp (OBJ, STL, DAE, PLY, ... anything assimp reads), merging all of
-// the file's meshes with their node transforms into one mesh in the file's frame, scaled by
-// `scale`. Throws std::invalid_argument naming the path when the file is missing or has no
-// triangles.
-std::shared_ptr<const TriangleMesh> LoadMesh(const std::string& path, float scale = 1.0f);
 
 // One solid. world_from_shape is a rigid transform (4x4, last row 0 0 0 1) placing the shape's
 // own frame; the `size` meaning depends on kind, all in the shape frame:

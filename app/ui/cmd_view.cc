@@ -1,8 +1,9 @@
 // `topoplan view`: the interactive window, or its headless twin with --screenshot.
 #include <memory>
+#include <stdexcept>
 
 #include "app/command.h"
-#include "app/io.h"
+#include "app/figures.h"
 #include "app/ui/viewer.h"
 
 namespace app {
@@ -29,20 +30,14 @@ void AddViewCommand(CLI::App* root, CommandList* commands) {
   view->footer(
       "Mouse: left drag orbits, right drag pans, wheel zooms. Buttons: Plan, Step sweep (shows the "
       "next AICO sweep), Play/Pause and the timeline scrubber; joint sliders move the robot.");
-  commands->push_back(
-      {view, [o, size]() {
-         const auto x = size->find('x');
-         const std::vector<double> wh =
-             x == std::string::npos
-                 ? std::vector<double>{}
-                 : ParseNumberList(size->substr(0, x) + "," + size->substr(x + 1), "--size", 2);
-         if (wh.size() != 2 || wh[0] < 64 || wh[1] < 64 || wh[0] > 8192 || wh[1] > 8192) {
-           throw std::invalid_argument("--size: expected WxH, 64..8192, got '" + *size + "'");
-         }
-         o->width = static_cast<int>(wh[0]);
-         o->height = static_cast<int>(wh[1]);
-         return ui::RunViewer(*o);
-       }});
+  commands->push_back({view, [o, size]() {
+                         ParseImageSize(*size, "--size", &o->width, &o->height);
+                         if (o->width < 64 || o->height < 64) {
+                           throw std::invalid_argument(
+                               "--size: the viewer needs each side >= 64, got '" + *size + "'");
+                         }
+                         return ui::RunViewer(*o);
+                       }});
 }
 
 }  // namespace app

@@ -4,62 +4,12 @@
 #include <cmath>
 #include <string>
 
-#include "render/offscreen_context.h"
+#include "render/internal/shaders.h"
 
 namespace render::internal {
-namespace {
-
-// Pixel coordinates (top-left origin) to clip space; colour times texture.
-const char* const kVertexShader = R"(#version 330 core
-layout(location = 0) in vec2 position;
-layout(location = 1) in vec2 uv;
-layout(location = 2) in vec4 color;
-uniform vec2 viewport;
-out vec2 frag_uv;
-out vec4 frag_color;
-void main() {
-  frag_uv = uv;
-  frag_color = color;
-  gl_Position = vec4(2.0 * position.x / viewport.x - 1.0, 1.0 - 2.0 * position.y / viewport.y, 0.0, 1.0);
-}
-)";
-const char* const kFragmentShader = R"(#version 330 core
-in vec2 frag_uv;
-in vec4 frag_color;
-uniform sampler2D atlas;
-out vec4 out_color;
-void main() { out_color = frag_color * texture(atlas, frag_uv); }
-)";
-
-GLuint Compile(const GlApi& gl, GLenum type, const char* source) {
-  const GLuint shader = gl.CreateShader(type);
-  gl.ShaderSource(shader, 1, &source, nullptr);
-  gl.CompileShader(shader);
-  GLint ok = 0;
-  gl.GetShaderiv(shader, GL_COMPILE_STATUS, &ok);
-  if (!ok) {
-    char log[1024] = {0};
-    gl.GetShaderInfoLog(shader, sizeof log, nullptr, log);
-    gl.DeleteShader(shader);
-    throw ContextError(std::string("GL: overlay shader does not compile: ") + log);
-  }
-  return shader;
-}
-
-}  // namespace
 
 OverlayPass::OverlayPass(const GlApi& gl) : gl_(gl) {
-  const GLuint vs = Compile(gl_, GL_VERTEX_SHADER, kVertexShader);
-  const GLuint fs = Compile(gl_, GL_FRAGMENT_SHADER, kFragmentShader);
-  program_ = gl_.CreateProgram();
-  gl_.AttachShader(program_, vs);
-  gl_.AttachShader(program_, fs);
-  gl_.LinkProgram(program_);
-  gl_.DeleteShader(vs);
-  gl_.DeleteShader(fs);
-  GLint ok = 0;
-  gl_.GetProgramiv(program_, GL_LINK_STATUS, &ok);
-  if (!ok) throw ContextError("GL: overlay program does not link");
+  program_ = LinkProgram(gl_, kOverlayVertexShader, kOverlayFragmentShader, "overlay");
   viewport_location_ = gl_.GetUniformLocation(program_, "viewport");
   sampler_location_ = gl_.GetUniformLocation(program_, "atlas");
 

@@ -1,7 +1,55 @@
-// GLSL sources (see shaders.h).
+// GLSL sources and the compile/link helpers (see shaders.h).
 #include "render/internal/shaders.h"
 
+#include <string>
+
+#include "render/offscreen_context.h"
+
 namespace render::internal {
+
+namespace {
+
+// Throws ContextError `message` + the object's info log, after deleting the object, unless its
+// `status` (GL_COMPILE_STATUS of a shader, GL_LINK_STATUS of a program) is set.
+void CheckStatus(GLuint object, GLenum status, PFNGLGETSHADERIVPROC get_iv,
+                 PFNGLGETSHADERINFOLOGPROC get_log, PFNGLDELETESHADERPROC destroy,
+                 const std::string& message) {
+  GLint ok = 0;
+  get_iv(object, status, &ok);
+  if (ok) return;
+  char log[2048] = {};
+  get_log(object, sizeof(log), nullptr, log);
+  destroy(object);
+  throw ContextError(message + log);
+}
+
+}  // namespace
+
+GLuint CompileShader(const GlApi& gl, GLenum stage, const char* source, const char* what,
+                     const char* prefix) {
+  const GLuint shader = gl.CreateShader(stage);
+  const char* sources[] = {prefix, source};
+  gl.ShaderSource(shader, 2, sources, nullptr);
+  gl.CompileShader(shader);
+  CheckStatus(shader, GL_COMPILE_STATUS, gl.GetShaderiv, gl.GetShaderInfoLog, gl.DeleteShader,
+              std::string("GL: compiling the ") + what + " shader failed: ");
+  return shader;
+}
+
+GLuint LinkProgram(const GlApi& gl, const char* vertex_source, const char* fragment_source,
+                   const char* what, const char* prefix) {
+  const GLuint v = CompileShader(gl, GL_VERTEX_SHADER, vertex_source, what, prefix);
+  const GLuint f = CompileShader(gl, GL_FRAGMENT_SHADER, fragment_source, what, prefix);
+  const GLuint program = gl.CreateProgram();
+  gl.AttachShader(program, v);
+  gl.AttachShader(program, f);
+  gl.LinkProgram(program);
+  gl.DeleteShader(v);
+  gl.DeleteShader(f);
+  CheckStatus(program, GL_LINK_STATUS, gl.GetProgramiv, gl.GetProgramInfoLog, gl.DeleteProgram,
+              std::string("GL: linking the ") + what + " program failed: ");
+  return program;
+}
 
 const char* const kMeshVertexShader = R"(
 layout(location = 0) in vec3 a_position;
@@ -131,6 +179,27 @@ const char* const kLineFragmentShader = R"(#version 330 core
 uniform vec4 u_color;
 out vec4 frag_color;
 void main() { frag_color = u_color; }
+)";
+
+const char* const kOverlayVertexShader = R"(#version 330 core
+layout(location = 0) in vec2 position;
+layout(location = 1) in vec2 uv;
+layout(location = 2) in vec4 color;
+uniform vec2 viewport;
+out vec2 frag_uv;
+out vec4 frag_color;
+void main() {
+  frag_uv = uv;
+  frag_color = color;
+  gl_Position = vec4(2.0 * position.x / viewport.x - 1.0, 1.0 - 2.0 * position.y / viewport.y, 0.0, 1.0);
+}
+)";
+const char* const kOverlayFragmentShader = R"(#version 330 core
+in vec2 frag_uv;
+in vec4 frag_color;
+uniform sampler2D atlas;
+out vec4 out_color;
+void main() { out_color = frag_color * texture(atlas, frag_uv); }
 )";
 
 }  // namespace render::internal

@@ -1,7 +1,22 @@
-// GLSL 3.30 core sources of the renderer's three programs (see renderer.cc for the uniforms).
+// GLSL 3.30 core sources of the renderer's programs (see renderer.cc and overlay_pass.cc for the
+// uniforms), and the one compile/link helper pair every GL program is built with.
 #pragma once
 
+#include "render/internal/gl_api.h"
+
 namespace render::internal {
+
+// Compiles one shader stage (GL_VERTEX_SHADER or GL_FRAGMENT_SHADER) from the concatenation
+// prefix + source. Throws render::ContextError
+// "GL: compiling the <what> shader failed: <info log>".
+GLuint CompileShader(const GlApi& gl, GLenum stage, const char* source, const char* what,
+                     const char* prefix = "");
+
+// Compiles both stages (each as prefix + its source) and links them into a program; the shader
+// objects are released. Throws render::ContextError naming `what` with the compile or link info
+// log ("GL: linking the <what> program failed: <info log>").
+GLuint LinkProgram(const GlApi& gl, const char* vertex_source, const char* fragment_source,
+                   const char* what, const char* prefix = "");
 
 // Lit instanced meshes (shapes, tube pieces, the ground grid). Per-vertex: position (0), normal
 // (1). Per-instance: model matrix columns (2..5), RGBA colour (6), material (7: specular,
@@ -17,5 +32,9 @@ extern const char* const kDepthFragmentShader;
 // Unlit lines: position (0), uniform colour.
 extern const char* const kLineVertexShader;
 extern const char* const kLineFragmentShader;
+// Overlays (text, images) in pixel coordinates: position (0), uv (1), RGBA colour (2); the
+// colour times the atlas texture.
+extern const char* const kOverlayVertexShader;
+extern const char* const kOverlayFragmentShader;
 
 }  // namespace render::internal

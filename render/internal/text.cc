@@ -19,6 +19,22 @@ struct Font::Data {
   stbtt_fontinfo info;
 };
 
+namespace {
+
+// Moves the pen *x past code point cps[i]: its advance width, then the kerning towards the next
+// code point (if any), both in pixels at `scale`.
+void AdvancePen(const stbtt_fontinfo& info, float scale, const std::vector<int>& cps, size_t i,
+                float* x) {
+  int advance = 0, lsb = 0;
+  stbtt_GetCodepointHMetrics(&info, cps[i], &advance, &lsb);
+  *x += scale * static_cast<float>(advance);
+  if (i + 1 < cps.size()) {
+    *x += scale * static_cast<float>(stbtt_GetCodepointKernAdvance(&info, cps[i], cps[i + 1]));
+  }
+}
+
+}  // namespace
+
 std::vector<int> DecodeUtf8(std::string_view text) {
   std::vector<int> out;
   for (size_t i = 0; i < text.size();) {
@@ -81,13 +97,7 @@ float Font::Width(std::string_view text, float px) const {
   const std::vector<int> cps = DecodeUtf8(text);
   float x = 0.0f;
   for (size_t i = 0; i < cps.size(); ++i) {
-    int advance = 0, lsb = 0;
-    stbtt_GetCodepointHMetrics(&data_->info, cps[i], &advance, &lsb);
-    x += scale * static_cast<float>(advance);
-    if (i + 1 < cps.size()) {
-      x += scale *
-           static_cast<float>(stbtt_GetCodepointKernAdvance(&data_->info, cps[i], cps[i + 1]));
-    }
+    AdvancePen(data_->info, scale, cps, i, &x);
   }
   return x;
 }
@@ -134,13 +144,7 @@ void Font::Draw(Image* image, float x, float y, std::string_view text, float px,
         }
       }
     }
-    int advance = 0, lsb = 0;
-    stbtt_GetCodepointHMetrics(&data_->info, cps[i], &advance, &lsb);
-    x += scale * static_cast<float>(advance);
-    if (i + 1 < cps.size()) {
-      x += scale *
-           static_cast<float>(stbtt_GetCodepointKernAdvance(&data_->info, cps[i], cps[i + 1]));
-    }
+    AdvancePen(data_->info, scale, cps, i, &x);
   }
 }
 

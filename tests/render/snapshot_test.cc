@@ -7,7 +7,9 @@
 #include <cmath>
 
 #include "app/figures.h"
+#include "app/scene_builder.h"
 #include "app/scene_json.h"
+#include "planning/mesh_io.h"
 #include "render/diff.h"
 #include "render/plot.h"
 #include "tests/render/gl_fixture.h"
@@ -41,7 +43,8 @@ TEST(SnapshotTest, TorusMesh) {
   s.grid.extent = 3.0f;
   Shape torus;
   torus.kind = Shape::Kind::kMesh;
-  torus.mesh = LoadMesh(TOPOPLAN_SOURCE_DIR "/assets/scenes/torus.obj");
+  torus.mesh =
+      app::ToRenderMesh(planning::LoadMesh(TOPOPLAN_SOURCE_DIR "/assets/scenes/torus.obj"));
   torus.world_from_shape.block<3, 1>(0, 3) = Eigen::Vector3f(0, 0, 0.6f);
   torus.world_from_shape.block<3, 3>(0, 0) =
       Eigen::AngleAxisf(0.6f, Eigen::Vector3f::UnitX()).toRotationMatrix();
