@@ -6,9 +6,11 @@
 #   3. the prefix is moved elsewhere (the original removed) and its topoplan binary runs from
 #      another folder without TOPOPLAN_ASSETS: it must find its assets next to itself. A scenario
 #      that exists only in the moved copy proves the installed tree is the one used (the source
-#      tree's assets/ folder, baked in as the last fallback, does not have it).
-# Variables: BUILD_DIR, CONSUMER_DIR (tests/install), WORK_DIR, LIBDIR, CXX_COMPILER,
-# COMPILER_LAUNCHER (may be empty), SCENARIO (a quick scenario of assets/scenarios, no .json).
+#      tree's assets/ folder, baked in as the last fallback, does not have it). Where unshare(1)
+#      may create a mount namespace, the source tree's assets/ is also hidden for one run.
+# Variables: BUILD_DIR, SOURCE_ASSETS (the source tree's assets/), CONSUMER_DIR (tests/install),
+# WORK_DIR, LIBDIR, CXX_COMPILER, COMPILER_LAUNCHER (may be empty), SCENARIO (a quick scenario of
+# assets/scenarios, without .json).
 cmake_minimum_required(VERSION 3.25)
 
 function(run)
@@ -84,8 +86,26 @@ run(${moved}/bin/topoplan plan installed_copy_only -o ${WORK_DIR}/elsewhere/plan
 if(NOT EXISTS ${WORK_DIR}/elsewhere/plan/report.json)
   message(FATAL_ERROR "topoplan plan wrote no report.json")
 endif()
-# $TOPOPLAN_ASSETS comes first: an empty asset folder hides the installed one.
 file(MAKE_DIRECTORY ${WORK_DIR}/no_assets)
+# Where a private mount namespace is allowed, also hide the source tree's assets/ outright (an
+# empty folder mounted over it, for this one process) and plan a scenario of the installed tree.
+find_program(UNSHARE unshare)
+set(hide [[mount --bind "$1" "$2" && cd "$3" && shift 3 && exec "$@"]])
+set(rc 1)
+if(UNSHARE)
+  execute_process(COMMAND ${UNSHARE} -rm sh -c "${hide}" sh ${WORK_DIR}/no_assets ${SOURCE_ASSETS}
+                          ${WORK_DIR} ls -A ${SOURCE_ASSETS}
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_QUIET)
+endif()
+if(rc EQUAL 0 AND out STREQUAL "")
+  run(${UNSHARE} -rm sh -c "${hide}" sh ${WORK_DIR}/no_assets ${SOURCE_ASSETS}
+      ${WORK_DIR}/elsewhere ${moved}/bin/topoplan plan ${SCENARIO} -o ${WORK_DIR}/elsewhere/hidden)
+  message(STATUS "topoplan plan ${SCENARIO} ran with ${SOURCE_ASSETS} hidden")
+else()
+  message(STATUS "no private mount namespace: ${SOURCE_ASSETS} not hidden (the check with a "
+                 "scenario only the installed tree has holds regardless)")
+endif()
+# $TOPOPLAN_ASSETS comes first: an empty asset folder hides the installed one.
 set(ENV{TOPOPLAN_ASSETS} ${WORK_DIR}/no_assets)
 execute_process(COMMAND ${moved}/bin/topoplan plan installed_copy_only -o ${WORK_DIR}/elsewhere/x
                 WORKING_DIRECTORY ${WORK_DIR}/elsewhere RESULT_VARIABLE rc OUTPUT_VARIABLE out
