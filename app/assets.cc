@@ -3,13 +3,28 @@
 #include <cstdlib>
 #include <filesystem>
 #include <stdexcept>
+#include <string>
+#include <system_error>
 
 #include "app/command.h"
 
 namespace app {
 
 std::string AssetRoot() {
+  namespace fs = std::filesystem;
   if (const char* env = std::getenv("TOPOPLAN_ASSETS"); env != nullptr && *env != '\0') return env;
+  // Installed: <prefix>/bin/topoplan with its data in <prefix>/share/topoplan (the relative path
+  // comes from the install layout, cmake/TopoplanInstall.cmake). The executable does not move
+  // while it runs, so this is looked up once.
+  static const std::string installed = [] {
+    std::error_code ec;
+    const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+    if (ec) return std::string();
+    const fs::path dir = (exe.parent_path() / TOPOPLAN_INSTALLED_ASSET_DIR).lexically_normal();
+    return fs::is_directory(dir, ec) ? dir.string() : std::string();
+  }();
+  if (!installed.empty()) return installed;
+  // Not installed (a binary in the build tree): the source tree's assets/ folder.
   return TOPOPLAN_ASSET_DIR;
 }
 

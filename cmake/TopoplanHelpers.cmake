@@ -15,11 +15,12 @@ function(topoplan_add_test)
 endfunction()
 
 # topoplan_add_library(name SOURCES ... PUBLIC_LIBS ... PRIVATE_LIBS ...)
-# One static library per module, include paths rooted at the repository, alias topoplan::name.
+# One static library per module, include paths rooted at the repository (at <prefix>/include once
+# installed, see TopoplanInstall.cmake), alias topoplan::name.
 function(topoplan_add_library name)
   cmake_parse_arguments(L "" "" "SOURCES;PUBLIC_LIBS;PRIVATE_LIBS" ${ARGN})
   add_library(${name} STATIC ${L_SOURCES})
   add_library(topoplan::${name} ALIAS ${name})
-  target_include_directories(${name} PUBLIC ${PROJECT_SOURCE_DIR})
+  target_include_directories(${name} PUBLIC $<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}>)
   target_link_libraries(${name} PUBLIC ${L_PUBLIC_LIBS} PRIVATE ${L_PRIVATE_LIBS})
 endfunction()

@@ -15,7 +15,7 @@ shift || true
 
 case "$cmd" in
   demo|test|build|bench) ;;
-  -h|--help) sed -n '2,8p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+  -h|--help) sed -n '2,7p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
   *) echo "run.sh: unknown command '$cmd' (demo, test, build, bench)" >&2; exit 2 ;;
 esac
 
@@ -25,7 +25,10 @@ bash scripts/setup.sh
 werror=()
 [[ "${CI:-}" == "true" ]] && werror=(-DTOPOPLAN_WERROR=ON)
 cmake -S "$ROOT" -B "$BUILD_DIR" -DCMAKE_BUILD_TYPE=Release "${werror[@]}" >/dev/null
-cmake --build "$BUILD_DIR" -j "$JOBS"
+# The demo needs only the topoplan binary; the other commands build everything (tests, benchmarks).
+targets=()
+[[ "$cmd" == "demo" ]] && targets=(--target topoplan)
+cmake --build "$BUILD_DIR" -j "$JOBS" "${targets[@]}"
 
 case "$cmd" in
   demo) "$BUILD_DIR/app/topoplan" demo -o "$ROOT/demo-out" "$@" ;;
