@@ -31,8 +31,10 @@ std::string AssetRoot() {
 std::string AssetPath(const std::string& relative) {
   const std::filesystem::path p = std::filesystem::path(AssetRoot()) / relative;
   if (!std::filesystem::exists(p)) {
-    throw EnvironmentError("missing asset " + p.string() +
-                           " (set TOPOPLAN_ASSETS to the repository's assets/ folder)");
+    throw EnvironmentError(
+        "missing asset " + p.string() +
+        " (set TOPOPLAN_ASSETS to an assets/ folder: the repository's, or PREFIX/share/topoplan of "
+        "an installation)");
   }
   return p.string();
 }

@@ -8,8 +8,9 @@
 
 namespace app {
 
-// Root of the asset tree: $TOPOPLAN_ASSETS if set, else the source tree's assets/ folder baked in
-// at build time.
+// Root of the asset tree: $TOPOPLAN_ASSETS if set (then the only place looked in), else
+// <exe dir>/../share/topoplan when it exists (an installed binary), else the source tree's assets/
+// baked in at build time (a binary run from the build tree).
 std::string AssetRoot();
 
 // AssetRoot()/relative; throws EnvironmentError (exit 3) when the file does not exist.
