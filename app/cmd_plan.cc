@@ -52,6 +52,15 @@ std::vector<double> ParseRange(const std::string& text, const std::string& flag)
   return out;
 }
 
+// "aico | rrt | birrt ..." from the planner registry of this build.
+std::string PlannerChoices() {
+  std::string out;
+  for (planning::Planner p : planning::AvailablePlanners()) {
+    out += (out.empty() ? "" : " | ") + std::string(planning::PlannerName(p));
+  }
+  return out;
+}
+
 std::vector<planning::Planner> ParsePlanners(const std::string& text) {
   std::vector<planning::Planner> out;
   std::stringstream ss(text);
@@ -83,9 +92,8 @@ void AddPlanCommands(CLI::App* root, CommandList* commands) {
                    "reach_through_ring)")
       ->required();
   plan->add_option("--planner", pa->planner,
-                   "aico | rrt | birrt | ompl-rrt | ompl-rrtconnect (the OMPL peers need a build "
-                   "with libompl-dev)")
-      ->check(CLI::IsMember({"aico", "rrt", "birrt", "ompl-rrt", "ompl-rrtconnect"}));
+                   PlannerChoices() + " (default aico; the OMPL peers need a build with "
+                   "libompl-dev)");
   plan->add_option("--seed", pa->seed, "seed of the RRTs' random generator (default 0)");
   plan->add_option("--start-wrap", pa->start_wrap,
                    "start coil of a coil-start scenario (unwrap): angle to unwrap in degrees");
@@ -108,8 +116,9 @@ void AddPlanCommands(CLI::App* root, CommandList* commands) {
            }
            overrides.start_wrap_deg = pa->start_wrap;
          }
+         const planning::Planner planner =
+             ParseFlag("--planner", [&] { return planning::ParsePlanner(pa->planner); });
          const auto scenario = LoadScenarioArg(pa->scenario, overrides);
-         const planning::Planner planner = planning::ParsePlanner(pa->planner);
          const planning::PlanResult result = planning::RunPlanner(
              *scenario, planner, pa->seed,
              [](int sweep, double cost, bool accepted, const planning::Trajectory&) {
