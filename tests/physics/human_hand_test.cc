@@ -9,43 +9,24 @@
 #include "planning/physics/grasp_trials.h"
 #include "planning/physics/hand_builder.h"
 #include "planning/robot_io.h"
+#include "tests/physics/test_hands.h"
 
 namespace planning::physics {
 namespace {
 
 const std::string kAssets = std::string(TOPOPLAN_SOURCE_DIR) + "/assets/";
 
-// A fixed palm and one 4 g phalanx (capsule r 7.5 mm, 10 mm: inertia about the hinge ≈ 1e-6
-// kg m²) sitting at its lower stop, commanded to close with a 5 N m motor; the object is far away.
+// The claw hand's palm and first phalanx, made a 4 g link (capsule r 9 mm, 45 mm: inertia about
+// the hinge ≈ 3e-6 kg m²) that sits at its lower stop and is commanded to close with a 5 N m
+// motor; the object is far away.
 SimHand PhalanxAtStop(bool limit_stop_torque) {
-  SimHand hand;
+  SimHand hand = testing_hands::ClawHand(1.0);
+  hand.links.resize(2);
   hand.limit_stop_torque = limit_stop_torque;
-  SimHandLink palm;
-  palm.name = "palm";
-  palm.mass = 0.2;
-  SimShape box;
-  box.kind = SimShape::Kind::kBox;
-  box.size = Eigen::Vector3d(0.08, 0.02, 0.08);
-  palm.shapes.push_back(box);
-  hand.links.push_back(palm);
-  SimHandLink tip;
-  tip.name = "tip";
-  tip.parent = 0;
-  tip.world_from_link.translation() = Eigen::Vector3d(0, 0, 0.05);
-  tip.joint_anchor = Eigen::Vector3d(0, 0, 0.045);
-  tip.joint_axis = Eigen::Vector3d::UnitX();
-  tip.q_start = 0.0;
-  tip.lower = 0.0;
-  tip.upper = 1.5;
-  tip.q_target = 1.0;
-  tip.max_torque = 5.0;
-  tip.mass = 0.004;
-  SimShape capsule;
-  capsule.kind = SimShape::Kind::kCapsule;
-  capsule.size = Eigen::Vector3d(0.0075, 0.01, 0);
-  capsule.body_from_shape.translation() = Eigen::Vector3d(0, 0, 0.005);
-  tip.shapes.push_back(capsule);
-  hand.links.push_back(tip);
+  SimHandLink& link = hand.links[1];
+  link.lower = link.q_start;
+  link.max_torque = 5.0;
+  link.mass = 0.004;
   return hand;
 }
 
