@@ -16,6 +16,7 @@ REQUIRED=(
   libassimp-dev liburdfdom-dev libtinyxml-dev     # meshes, URDF (+ TinyXML, used directly)
   libfcl-dev libccd-dev                           # collision
   libode-dev                                      # physics
+  libqhull-dev                                    # convex hulls (grasp quality)
   libgtest-dev libgmock-dev libbenchmark-dev      # tests, benchmarks
   xvfb xauth xdotool imagemagick                  # headless window tests
 )

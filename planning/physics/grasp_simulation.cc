@@ -171,6 +171,21 @@ dMass CentredMass(const std::vector<SimShape>& shapes, double total, Eigen::Vect
   return sum;
 }
 
+// Inertia of a body about the axis through `anchor` along the unit vector `axis` (world frame,
+// current pose) [kg m²]: aᵀ R I_c Rᵀ a + m |(c − anchor) × a|².
+double AxisInertia(dBodyID body, const Eigen::Vector3d& anchor, const Eigen::Vector3d& axis) {
+  dMass mass;
+  dBodyGetMass(body, &mass);
+  Eigen::Matrix3d inertia;
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c) inertia(r, c) = mass.I[4 * r + c];
+  }
+  const Eigen::Isometry3d pose = BodyPose(body);
+  const Eigen::Vector3d a_body = pose.linear().transpose() * axis;
+  const Eigen::Vector3d lever = (pose.translation() - anchor).cross(axis);
+  return a_body.dot(inertia * a_body) + mass.mass * lever.squaredNorm();
+}
+
 }  // namespace
 
 // --- Implementation state -----------------------------------------------------------------------
@@ -191,6 +206,9 @@ struct GraspSimulation::Impl {
   dBodyID object_body = nullptr;
   Eigen::Vector3d object_com = Eigen::Vector3d::Zero();  // object frame
   std::vector<double> q_target;
+  // Per link with a hinge: stops relative to q_start and the link's inertia about the hinge
+  // axis through the anchor [kg m²] (SimHand::limit_stop_torque).
+  std::vector<double> lo_stop, hi_stop, axis_inertia;
   std::vector<Eigen::Isometry3d> kin_pose;  // kinematic mode scratch
   dContact contact_buffer[kMaxContactsPerPair];
 
@@ -298,6 +316,18 @@ struct GraspSimulation::Impl {
       const double v = std::clamp(options.motor_gain * (q_target[i] - q), -options.max_joint_speed,
                                   options.max_joint_speed);
       dJointSetHingeParam(hinge[i], dParamVel, v);
+      if (hand.limit_stop_torque) {
+        // ODE applies fudge × max_torque open-loop when the motor pushes away from a stop.
+        const double a = q - hand.links[i].q_start;
+        const bool away = (a <= lo_stop[i] && v > 0) || (a >= hi_stop[i] && v < 0);
+        double fudge = 1.0;
+        if (away) {
+          const double needed =
+              axis_inertia[i] * std::abs(v - dJointGetHingeAngleRate(hinge[i])) / options.dt;
+          fudge = std::min(1.0, needed / std::max(hand.links[i].max_torque, 1e-12));
+        }
+        dJointSetHingeParam(hinge[i], dParamFudgeFactor, fudge);
+      }
     }
   }
 
@@ -430,6 +460,9 @@ GraspSimulation::GraspSimulation(const OdeRuntime& /*runtime*/, const SimHand& h
   m.link_body.resize(n);
   m.link_com.resize(n);
   m.hinge.assign(n, nullptr);
+  m.lo_stop.assign(n, 0.0);
+  m.hi_stop.assign(n, 0.0);
+  m.axis_inertia.assign(n, 0.0);
   m.q_target.resize(n);
   m.kin_pose.resize(n);
   for (int i = 0; i < n; ++i) {
@@ -462,8 +495,11 @@ GraspSimulation::GraspSimulation(const OdeRuntime& /*runtime*/, const SimHand& h
       dJointSetHingeAnchor(j, l.joint_anchor.x(), l.joint_anchor.y(), l.joint_anchor.z());
       const Eigen::Vector3d a = l.joint_axis.normalized();
       dJointSetHingeAxis(j, a.x(), a.y(), a.z());
-      dJointSetHingeParam(j, dParamLoStop, std::max(l.lower - l.q_start, -kPi + 1e-3));
-      dJointSetHingeParam(j, dParamHiStop, std::min(l.upper - l.q_start, kPi - 1e-3));
+      m.lo_stop[i] = std::max(l.lower - l.q_start, -kPi + 1e-3);
+      m.hi_stop[i] = std::min(l.upper - l.q_start, kPi - 1e-3);
+      dJointSetHingeParam(j, dParamLoStop, m.lo_stop[i]);
+      dJointSetHingeParam(j, dParamHiStop, m.hi_stop[i]);
+      m.axis_inertia[i] = AxisInertia(m.link_body[i], l.joint_anchor, a);
       dJointSetHingeParam(j, dParamStopERP, 0.2);
       dJointSetHingeParam(j, dParamStopCFM, 1e-5);
       dJointSetHingeParam(j, dParamFMax, l.max_torque);

@@ -59,6 +59,16 @@ struct SimHandLink {
 // the hand never collide with each other).
 struct SimHand {
   std::vector<SimHandLink> links;
+  // Motor torque at a joint stop (kMotorized). ODE drives a powered hinge that sits at one of its
+  // stops with an open-loop torque of max_torque (its "fudge factor" 1) whenever the commanded
+  // velocity points away from the stop, however small the velocity error. On a light link that
+  // torque changes the joint speed by max_torque·dt / I per step (I = the link's inertia about
+  // the hinge axis): ≈ 5 N m · 1 ms / 2e-6 kg m² = 2500 rad/s for a human finger phalanx, which
+  // throws the finger off in one step. With `limit_stop_torque` the torque at a stop is limited
+  // to I·|v_cmd − q̇| / dt, what brings the joint to its commanded speed v_cmd in one step (the
+  // fudge factor set per step to that torque / max_torque, at most 1). Off by default: the SDH
+  // results and golden images were produced with ODE's plain behaviour.
+  bool limit_stop_torque = false;
 };
 
 // The object: one free rigid body. `world_from_object` places the object frame; the shapes are

@@ -4,7 +4,21 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "planning/kinematics.h"
+
 namespace planning::physics {
+namespace {
+
+// Runs the stability test on trial->hand and trial->object, with the hooks around it.
+void Simulate(const OdeRuntime& runtime, const TransferSetup& setup,
+              const StabilityOptions& options, const GraspTrialHooks& hooks, GraspTrial* trial) {
+  StepCallback on_step;
+  if (hooks.on_start) on_step = hooks.on_start(setup, trial->transfer, trial->hand, trial->object);
+  trial->stability = TestGraspStability(runtime, trial->hand, trial->object, options, on_step);
+  if (hooks.on_done) hooks.on_done(setup, *trial);
+}
+
+}  // namespace
 
 GraspTrial RunGraspTrial(const OdeRuntime& runtime, const TransferSetup& setup,
                          TransferMethod method, const StabilityOptions& options,
@@ -14,10 +28,28 @@ GraspTrial RunGraspTrial(const OdeRuntime& runtime, const TransferSetup& setup,
   trial.winding_error = (trial.transfer.robot_winding - trial.transfer.target_winding).norm();
   trial.hand = BuildSimHand(setup.sdh, trial.transfer.q, "sdh_palm");
   trial.object = BuildSimObject(setup.object, setup.grasp.world_from_object);
-  StepCallback on_step;
-  if (hooks.on_start) on_step = hooks.on_start(setup, trial.transfer, trial.hand, trial.object);
-  trial.stability = TestGraspStability(runtime, trial.hand, trial.object, options, on_step);
-  if (hooks.on_done) hooks.on_done(setup, trial);
+  Simulate(runtime, setup, options, hooks, &trial);
+  return trial;
+}
+
+GraspTrial RunHumanTrial(const OdeRuntime& runtime, const TransferSetup& setup,
+                         const StabilityOptions& options, const GraspTrialHooks& hooks) {
+  GraspTrial trial;
+  trial.human = true;
+  TransferResult& t = trial.transfer;
+  t.q = setup.human_q;
+  KinematicsData kin(setup.human);
+  ForwardKinematics(setup.human, setup.human_q, &kin);
+  const GraspEncoding enc = EncodeGrasp(setup.human, kin, setup.human_chains, setup.reference);
+  t.human_winding = t.target_winding = t.robot_winding = enc.finger;
+  t.human_phalanx_winding = t.robot_phalanx_winding = enc.phalanx;
+  t.min_clearance = HandClearance(setup.human, kin, SampleHandSpheres(setup.human, {}, 0.002),
+                                  setup.object, setup.grasp.world_from_object);
+  t.solver = "demonstration";
+  t.iterations = 0;
+  trial.hand = BuildSimHand(setup.human, setup.human_q, "hand_palm", HumanHandBuildOptions());
+  trial.object = BuildSimObject(setup.object, setup.grasp.world_from_object);
+  Simulate(runtime, setup, options, hooks, &trial);
   return trial;
 }
 

@@ -22,6 +22,10 @@ struct GraspTrial {
   SimObject object;            // ODE description of the object at the grasp's world_from_object
   StabilityResult stability;   // closing phase + 6 gravity directions
   double winding_error = 0.0;  // |robot_winding − target_winding| (Euclidean, turns)
+  // RunHumanTrial: the demonstration itself; `transfer` then describes the human hand (q =
+  // setup.human_q, all three windings = the human's, solver "demonstration", method unused) and
+  // `hand` is the human hand (palm link "hand_palm").
+  bool human = false;
 };
 
 // Observers of a trial. `on_start` runs after the transfer, once the ODE hand and object are
@@ -39,6 +43,14 @@ struct GraspTrialHooks {
 GraspTrial RunGraspTrial(const OdeRuntime& runtime, const TransferSetup& setup,
                          TransferMethod method, const StabilityOptions& options,
                          const GraspTrialHooks& hooks = {});
+
+// The human reference: simulates the demonstrated grasp itself with the same protocol. The human
+// hand (setup.human) is built at setup.human_q (HumanConfiguration: palm pose and finger joints
+// of the grasp file) with HumanHandBuildOptions() below "hand_palm", the object at
+// setup.grasp.world_from_object; then TestGraspStability. winding_error = 0; transfer.
+// min_clearance is the human hand's clearance to the object [m]. Deterministic.
+GraspTrial RunHumanTrial(const OdeRuntime& runtime, const TransferSetup& setup,
+                         const StabilityOptions& options, const GraspTrialHooks& hooks = {});
 
 // Success of one method over all grasps.
 struct GraspMethodSummary {

@@ -36,6 +36,33 @@ SimShape ToSimShape(const Geometry& g, const Eigen::Isometry3d& body_from_geomet
   return s;
 }
 
+// Volume of a primitive [m³] (0 for a trimesh).
+double Volume(const SimShape& s) {
+  const double r = s.size.x();
+  switch (s.kind) {
+    case SimShape::Kind::kSphere:
+      return 4.0 / 3.0 * kPi * r * r * r;
+    case SimShape::Kind::kCapsule:
+      return kPi * r * r * s.size.y() + 4.0 / 3.0 * kPi * r * r * r;
+    case SimShape::Kind::kCylinder:
+      return kPi * r * r * s.size.y();
+    case SimShape::Kind::kBox:
+      return s.size.prod();
+    case SimShape::Kind::kTrimesh:
+      return 0.0;
+  }
+  return 0.0;
+}
+
+// First entry whose key is a substring of `name`, else nullptr.
+const double* FindBySubstring(const std::vector<std::pair<std::string, double>>& table,
+                              const std::string& name) {
+  for (const auto& [key, value] : table) {
+    if (name.find(key) != std::string::npos) return &value;
+  }
+  return nullptr;
+}
+
 bool Holds(const HandBuildOptions& o, const std::string& joint) {
   for (const std::string& h : o.hold_joints) {
     if (joint.find(h) != std::string::npos) return true;
@@ -74,6 +101,7 @@ SimHand BuildSimHand(const Robot& robot, const Eigen::VectorXd& q, const std::st
   ForwardKinematics(robot, q, &grasp);
 
   SimHand hand;
+  hand.limit_stop_torque = options.limit_stop_torque;
   std::vector<int> body_of(robot.links.size(), -1);
   body_of[palm] = 0;
   SimHandLink palm_link_sim;
@@ -82,10 +110,8 @@ SimHand BuildSimHand(const Robot& robot, const Eigen::VectorXd& q, const std::st
   palm_link_sim.mass = options.default_mass;
   hand.links.push_back(palm_link_sim);
   auto mass_of = [&](const std::string& name) {
-    for (const auto& [key, m] : options.link_masses) {
-      if (name.find(key) != std::string::npos) return m;
-    }
-    return options.default_mass;
+    const double* m = FindBySubstring(options.link_masses, name);
+    return m ? *m : options.default_mass;
   };
   hand.links[0].mass = mass_of(robot.links[palm].name);
   for (size_t i = 0; i < robot.links.size(); ++i) {
@@ -94,7 +120,9 @@ SimHand BuildSimHand(const Robot& robot, const Eigen::VectorXd& q, const std::st
       if (pj < 0 || body_of[robot.joints[pj].parent_link] < 0) continue;  // not below the palm
       const Joint& j = robot.joints[pj];
       const int parent_body = body_of[j.parent_link];
-      if (j.type == JointType::kFixed) {
+      if (j.type == JointType::kFixed ||
+          (options.weld_held_joints && Holds(options, j.name) &&
+           (j.type == JointType::kRevolute || j.type == JointType::kContinuous))) {
         body_of[i] = parent_body;
       } else if (j.type == JointType::kRevolute || j.type == JointType::kContinuous) {
         SimHandLink l;
@@ -111,7 +139,9 @@ SimHand BuildSimHand(const Robot& robot, const Eigen::VectorXd& q, const std::st
         l.upper = std::min(hi, kPi - 0.01);
         l.q_start = std::clamp(l.q_start, l.lower, l.upper);
         l.q_target = std::clamp(grasp.joint_value[pj] + close, l.lower, l.upper);
-        l.max_torque = std::isfinite(j.limits.effort) && j.limits.effort > 0
+        const double* torque = FindBySubstring(options.joint_torques, j.name);
+        l.max_torque = torque ? *torque
+                       : std::isfinite(j.limits.effort) && j.limits.effort > 0
                            ? j.limits.effort
                            : options.default_torque;
         l.mass = mass_of(l.name);
@@ -132,7 +162,26 @@ SimHand BuildSimHand(const Robot& robot, const Eigen::VectorXd& q, const std::st
       if (ok) hand.links[b].shapes.push_back(s);
     }
   }
+  if (options.density > 0) {
+    for (SimHandLink& l : hand.links) {
+      if (FindBySubstring(options.link_masses, l.name)) continue;
+      double volume = 0.0;
+      for (const SimShape& s : l.shapes) volume += Volume(s);
+      if (volume > 0) l.mass = options.density * volume;
+    }
+  }
   return hand;
+}
+
+HandBuildOptions HumanHandBuildOptions() {
+  HandBuildOptions o;
+  o.hold_joints = {"_abd"};
+  o.link_masses.clear();
+  o.density = 1100.0;
+  o.default_mass = 0.005;
+  o.limit_stop_torque = true;
+  o.weld_held_joints = true;
+  return o;
 }
 
 std::vector<std::string> SimHandLinkNames(const SimHand& hand) {

@@ -27,8 +27,26 @@ struct HandBuildOptions {
   std::vector<std::pair<std::string, double>> link_masses = {
       {"palm", 1.0288}, {"knuckle", 0.047}, {"proximal", 0.167}, {"distal", 0.0929}};
   double default_mass = 0.05;
+  // > 0: a link that no link_masses entry matches weighs density × the volume of its collision
+  // shapes (uniform density; links without collision shapes get default_mass) [kg/m³].
+  double density = 0.0;
   double default_torque = 2.0;  // used when the URDF gives no effort limit [N m]
+  // Motor torque limits by joint name substring (first match), overriding the URDF effort [N m].
+  std::vector<std::pair<std::string, double>> joint_torques;
+  bool limit_stop_torque = false;  // SimHand::limit_stop_torque
+  // Held joints become rigid (their link is merged into the parent body) instead of hinges whose
+  // motors hold the grasp value. Removes the light, shapeless intermediate body of a two-axis
+  // joint (the human MCP: abduction, then flexion about the same point), which the iterative
+  // solver cannot keep in place against a heavy object.
+  bool weld_held_joints = false;
 };
+
+// Options for the human hand (assets/robots/human_hand.urdf, palm link "hand_palm"): the MCP and
+// CMC abduction joints ("_abd") are held at their grasp value and welded (weld_held_joints), the
+// links weigh 1100 kg/m³ (tissue) × their capsule volume (≈ 15, 8 and 4 g for the index
+// phalanges; shapeless links 5 g), the motors keep the URDF efforts (5 N m) and the torque at a
+// joint stop is limited (limit_stop_torque). Flexion joints open and close as for the SDH.
+HandBuildOptions HumanHandBuildOptions();
 
 // The hand below `palm_link` at configuration q (world frame from ForwardKinematics): the palm
 // becomes link 0 (welded), every revolute joint a motorised hinge, fixed joints are merged into
