@@ -116,10 +116,13 @@ PlanVerdict JudgePlan(const Scenario& s, const Trajectory& path) {
     if (InCollision(s.robot, kin, &coll)) {
       fail(FailureReason::kCollision, k);
       v.collision_free = false;
+      v.min_clearance_m = std::min(v.min_clearance_m, 0.0);
+    } else {  // (no penetration-depth queries: FCL's EPA can abort on degenerate contacts)
+      ComputeProximity(s.robot, kin, 0.2, &coll, &pairs);
+      for (const ProximityPair& p : pairs) {
+        v.min_clearance_m = std::min(v.min_clearance_m, p.distance);
+      }
     }
-    ComputeProximity(s.robot, kin, 0.2, &coll, &pairs);
-    for (const ProximityPair& p : pairs)
-      v.min_clearance_m = std::min(v.min_clearance_m, p.distance);
     if (!winding) continue;
     ChainPoints(s.robot, kin, s.report_chain, &points);
     const double w = topology::WindingNumber(points, axis);
