@@ -33,6 +33,7 @@ struct BenchArgs {
   std::string angles = "0:900:90", planners = "aico,rrt,birrt", output;
   int seeds = 3;
   long budget = -1;
+  double perturb = 0.0;
 };
 
 // "a:b:step" → a, a+step, ..., ≤ b.
@@ -44,8 +45,11 @@ std::vector<double> ParseRange(const std::string& text, const std::string& flag)
     }
     return ParseNumberList(t, flag, 3);
   }();
-  if (!(v[2] > 0.0) || v[1] < v[0] || v[0] < 0.0 || v[1] > 2000.0) {
+  if (!(v[2] > 0.0) || !(v[1] >= v[0]) || !(v[0] >= 0.0) || !(v[1] <= 2000.0)) {
     throw std::invalid_argument(flag + ": expected a:b:step with 0 <= a <= b <= 2000, step > 0");
+  }
+  if ((v[1] - v[0]) / v[2] >= 10000.0) {
+    throw std::invalid_argument(flag + ": more than 10000 points; use a larger step");
   }
   std::vector<double> out;
   for (double a = v[0]; a <= v[1] + 1e-9; a += v[2]) out.push_back(a);
@@ -92,8 +96,9 @@ void AddPlanCommands(CLI::App* root, CommandList* commands) {
                    "reach_through_ring)")
       ->required();
   plan->add_option("--planner", pa->planner,
-                   PlannerChoices() + " (default aico; the OMPL peers need a build with "
-                   "libompl-dev)");
+                   PlannerChoices() +
+                       " (default aico; the OMPL peers need a build with "
+                       "libompl-dev)");
   plan->add_option("--seed", pa->seed, "seed of the RRTs' random generator (default 0)");
   plan->add_option("--start-wrap", pa->start_wrap,
                    "start coil of a coil-start scenario (unwrap): angle to unwrap in degrees");
@@ -153,9 +158,13 @@ void AddPlanCommands(CLI::App* root, CommandList* commands) {
                      "comma-separated subset of aico,rrt,birrt,ompl-rrt,ompl-rrtconnect");
   unwrap->add_option("--budget", ba->budget,
                      "collision-check budget of the RRTs (default: the scenario's, 100000)");
+  unwrap->add_option("--perturb", ba->perturb,
+                     "move the pole of each seed by a random offset of at most M metres "
+                     "perpendicular to its axis (seeded, reproducible; default 0)");
   unwrap->add_option("-o,--output", ba->output, "output folder")->required();
   unwrap->footer(
-      "Writes DIR/unwrap.csv (angle_deg,planner,seed,success,collision_checks,time_s) and\n"
+      "Writes DIR/unwrap.csv (angle_deg,planner,seed,success,failure_reason,collision_checks,\n"
+      "narrow_phase_calls,time_s,path_length,reach_error_m,pole_offset_m) and\n"
       "DIR/unwrap.png (mean collision checks of successful runs vs angle, log scale, one curve\n"
       "per planner, x markers where a run failed). time_s is wall-clock; everything else is\n"
       "deterministic. Exit 0 when the benchmark ran (failed runs are data, not errors).");
@@ -168,6 +177,10 @@ void AddPlanCommands(CLI::App* root, CommandList* commands) {
          options.search_roots = {AssetRoot()};
          options.seeds = ba->seeds;
          options.rrt_budget = ba->budget;
+         if (!(ba->perturb >= 0.0) || !std::isfinite(ba->perturb)) {
+           throw std::invalid_argument("--perturb: expected a finite distance >= 0 in metres");
+         }
+         options.perturb_m = ba->perturb;
          options.progress = [](int done, int total, const planning::UnwrapRun& run) {
            char what[96];
            std::snprintf(what, sizeof(what), "%s @ %.0f deg seed %d",

@@ -53,6 +53,11 @@ nlohmann::json PlanReportJson(const planning::Scenario& s, const planning::PlanR
   j["min_clearance_m"] = r.min_clearance_m;
   j["path_collision_free"] = r.path_collision_free;
   j["cost_history"] = r.cost_history;
+  j["failure_reason"] = planning::FailureReasonName(r.failure_reason);
+  j["failure_step"] = r.failure_step;
+  j["reach_error_m"] = r.reach_error_m;
+  j["max_winding_jump_turns"] = r.max_winding_jump_turns;
+  j["final_winding_turns"] = r.final_winding_turns;
   return j;
 }
 
@@ -81,12 +86,12 @@ nlohmann::json WritePlanOutputs(const planning::Scenario& s, const planning::Pla
 std::string PlanSummaryLine(const planning::Scenario& s, const planning::PlanReport& r) {
   char line[512];
   std::snprintf(line, sizeof(line),
-                "%s on %s (start wrap %.1f deg): %s [%s], %ld collision checks, %ld iterations, "
-                "%.3f s, writhe %+.3f -> %+.3f, min clearance %.3f m",
+                "%s on %s (start wrap %.1f deg): %s [%s, %s], %ld collision checks, %ld "
+                "iterations, %.3f s, writhe %+.3f -> %+.3f, min clearance %.3f m",
                 r.planner.c_str(), s.name.c_str(), s.start_wrap_deg,
                 r.success ? "success" : "FAILED", planning::StatusName(r.status),
-                r.collision_checks, r.iterations, r.time_s, r.start_writhe_total,
-                r.final_writhe_total, r.min_clearance_m);
+                planning::FailureReasonName(r.failure_reason), r.collision_checks, r.iterations,
+                r.time_s, r.start_writhe_total, r.final_writhe_total, r.min_clearance_m);
   return line;
 }
 
@@ -193,11 +198,14 @@ std::string PlanReportHtml(const nlohmann::json& r) {
 
 std::string UnwrapCsv(const planning::UnwrapBenchmarkResult& result) {
   std::ostringstream csv;
-  csv << "angle_deg,planner,seed,success,collision_checks,time_s\n";
+  csv << "angle_deg,planner,seed,success,failure_reason,collision_checks,narrow_phase_calls,"
+         "time_s,path_length,reach_error_m,pole_offset_m\n";
   for (const planning::UnwrapRun& r : result.runs) {
-    csv << r.angle_deg << "," << r.report.planner << "," << r.seed << ","
-        << (r.report.success ? 1 : 0) << "," << r.report.collision_checks << "," << r.report.time_s
-        << "\n";
+    const planning::PlanReport& p = r.report;
+    csv << r.angle_deg << "," << p.planner << "," << r.seed << "," << (p.success ? 1 : 0) << ","
+        << planning::FailureReasonName(p.failure_reason) << "," << p.collision_checks << ","
+        << p.narrow_phase_calls << "," << p.time_s << "," << p.path_length << "," << p.reach_error_m
+        << "," << r.pole_offset.norm() << "\n";
   }
   return csv.str();
 }

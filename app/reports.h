@@ -19,7 +19,9 @@ namespace app {
 
 // report.json of `topoplan plan`: scenario, planner, seed, success, status, collision_checks,
 // narrow_phase_calls, iterations, attempts, cost, path_length [rad], time_s, start_wrap_deg,
-// start/final_writhe_total, min_clearance_m, path_collision_free, cost_history.
+// start/final_writhe_total, min_clearance_m, path_collision_free, cost_history, failure_reason
+// (planning::FailureReasonName), failure_step, reach_error_m, max_winding_jump_turns,
+// final_winding_turns.
 nlohmann::json PlanReportJson(const planning::Scenario& scenario,
                               const planning::PlanReport& report, unsigned seed);
 
@@ -55,8 +57,8 @@ std::string PlanReportHtml(const nlohmann::json& report);
 
 // --- bench unwrap (Fig. 4.5) --------------------------------------------------------------------
 
-// unwrap.csv: "angle_deg,planner,seed,success,collision_checks,time_s", one row per run in
-// result.runs order.
+// unwrap.csv: "angle_deg,planner,seed,success,failure_reason,collision_checks,narrow_phase_calls,
+// time_s,path_length,reach_error_m,pole_offset_m", one row per run in result.runs order.
 std::string UnwrapCsv(const planning::UnwrapBenchmarkResult& result);
 
 // unwrap.png: mean collision checks of successful runs vs angle (log y), one curve per planner in

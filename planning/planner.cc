@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <optional>
 #include <random>
 #include <stdexcept>
 
@@ -10,6 +11,7 @@
 #include "planning/internal/ompl_planners.h"
 #include "planning/kinematics.h"
 #include "planning/rrt.h"
+#include "topology/winding.h"
 
 namespace planning {
 
@@ -69,21 +71,89 @@ bool OmplAvailable() {
 
 const char* PlannerName(Planner planner) { return ToName(planner); }
 
-bool MeetsSuccessCriteria(const Scenario& s, const Eigen::VectorXd& q, double final_writhe) {
+inline constexpr EnumName<FailureReason> kFailureReasonNames[] = {
+    {FailureReason::kNone, "none"},
+    {FailureReason::kJointLimits, "joint_limits"},
+    {FailureReason::kCollision, "collision"},
+    {FailureReason::kTunnelled, "tunnelled"},
+    {FailureReason::kWritheNotReached, "writhe_not_reached"},
+    {FailureReason::kReachError, "reach_error"},
+    {FailureReason::kBudgetExhausted, "budget_exhausted"},
+    {FailureReason::kDiverged, "diverged"},
+    {FailureReason::kInvalidInput, "invalid_input"},
+};
+constexpr std::span<const EnumName<FailureReason>> EnumNames(FailureReason) {
+  return kFailureReasonNames;
+}
+
+const char* FailureReasonName(FailureReason reason) { return ToName(reason); }
+
+PlanVerdict JudgePlan(const Scenario& s, const Trajectory& path) {
+  if (path.num_points() == 0) throw std::invalid_argument("JudgePlan: empty path");
   const SuccessCriteria& c = s.success;
-  if (c.writhe_total_below >= 0.0 && !(std::abs(final_writhe) < c.writhe_total_below)) {
-    return false;
+  PlanVerdict v;
+  CollisionData coll(s.robot, s.env, s.collision);
+  KinematicsData kin(s.robot);
+  const Eigen::VectorXd lo = LowerLimits(s.robot), hi = UpperLimits(s.robot);
+  const bool winding = c.winding_max_jump > 0.0 || c.winding_final_below > 0.0;
+  const topology::Axis axis = winding ? ReportAxis(s) : topology::Axis{};
+  Eigen::Matrix3Xd points;
+  std::vector<ProximityPair> pairs;
+  const Trajectory dense = Densify(path, s.check_resolution);
+  const auto fail = [&v](FailureReason reason, int k) {
+    if (v.reason != FailureReason::kNone) return;
+    v.reason = reason;
+    v.step = k;
+  };
+  double w_prev = 0.0;
+  for (int k = 0; k < dense.num_points(); ++k) {
+    const auto q = dense.q.col(k);
+    if (((q.array() < lo.array()) || (q.array() > hi.array())).any()) {
+      fail(FailureReason::kJointLimits, k);
+      v.collision_free = false;
+    }
+    ForwardKinematics(s.robot, q, &kin);
+    if (InCollision(s.robot, kin, &coll)) {
+      fail(FailureReason::kCollision, k);
+      v.collision_free = false;
+      v.min_clearance_m = std::min(v.min_clearance_m, 0.0);
+    } else {  // (no penetration-depth queries: FCL's EPA can abort on degenerate contacts)
+      ComputeProximity(s.robot, kin, 0.2, &coll, &pairs);
+      for (const ProximityPair& p : pairs) {
+        v.min_clearance_m = std::min(v.min_clearance_m, p.distance);
+      }
+    }
+    if (!winding) continue;
+    ChainPoints(s.robot, kin, s.report_chain, &points);
+    const double w = topology::WindingNumber(points, axis);
+    if (k > 0) {
+      const double jump = std::abs(w - w_prev);
+      v.max_winding_jump_turns = std::max(v.max_winding_jump_turns, jump);
+      if (c.winding_max_jump > 0.0 && jump >= c.winding_max_jump)
+        fail(FailureReason::kTunnelled, k);
+    }
+    w_prev = w;
+  }
+  v.final_winding_turns = w_prev;
+  const Eigen::VectorXd q_end = path.q.col(path.num_points() - 1);
+  v.final_writhe_total = ReportWritheTotal(s, q_end);
+  if ((c.winding_final_below > 0.0 && !(std::abs(v.final_winding_turns) < c.winding_final_below)) ||
+      (c.writhe_total_below >= 0.0 && !(std::abs(v.final_writhe_total) < c.writhe_total_below))) {
+    fail(FailureReason::kWritheNotReached, -1);
   }
   const int T = s.problem.num_steps;
-  for (int idx : {c.position_task, c.box_task}) {
-    if (idx < 0) continue;
-    const Task& task = s.problem.tasks[idx];
-    const Eigen::VectorXd y = FeatureValue(s.robot, *task.feature, q);
-    const double err = (y - task.target.col(T)).norm();
-    if (idx == c.position_task && err > c.position_tolerance) return false;
-    if (idx == c.box_task && err > 1e-9) return false;
+  if (c.position_task >= 0) {
+    const Task& task = s.problem.tasks[c.position_task];
+    v.reach_error_m = (FeatureValue(s.robot, *task.feature, q_end) - task.target.col(T)).norm();
+    if (!(v.reach_error_m <= c.position_tolerance)) fail(FailureReason::kReachError, -1);
   }
-  return true;
+  if (c.box_task >= 0) {
+    const Task& task = s.problem.tasks[c.box_task];
+    if (!((FeatureValue(s.robot, *task.feature, q_end) - task.target.col(T)).norm() <= 1e-9)) {
+      fail(FailureReason::kReachError, -1);
+    }
+  }
+  return v;
 }
 
 PlanResult RunPlanner(const Scenario& s, Planner planner, unsigned seed,
@@ -97,6 +167,7 @@ PlanResult RunPlanner(const Scenario& s, Planner planner, unsigned seed,
   const ValidityFn valid = ValidityChecker(s, &coll, &kin);
   const auto t0 = std::chrono::steady_clock::now();
   bool found = false;
+  std::optional<PlanVerdict> verdict;  // AICO: of the last attempt
   if (planner == Planner::kAico) {
     // Attempt k: solve, then validate the path at the edge resolution (counted: a plan is only
     // usable once checked) and test the success criteria; the next attempt only on failure.
@@ -121,9 +192,8 @@ PlanResult RunPlanner(const Scenario& s, Planner planner, unsigned seed,
                                 PathIsValid(out.trajectory, s.check_resolution, valid);
       rep.collision_checks += coll.queries - q0;
       rep.narrow_phase_calls += coll.narrow_phase_calls - n0;
-      const Eigen::VectorXd q_end = out.trajectory.q.col(out.trajectory.num_points() - 1);
-      found =
-          rep.path_collision_free && MeetsSuccessCriteria(s, q_end, ReportWritheTotal(s, q_end));
+      verdict = JudgePlan(s, out.trajectory);
+      found = rep.path_collision_free && verdict->reason == FailureReason::kNone;
     }
     found = found || out.trajectory.num_points() > 0;
   } else {
@@ -177,27 +247,40 @@ PlanResult RunPlanner(const Scenario& s, Planner planner, unsigned seed,
 
   // Report quantities (not counted).
   rep.start_writhe_total = ReportWritheTotal(s, s.problem.q0);
+  rep.final_writhe_total = rep.start_writhe_total;
+  rep.success = false;
   if (out.trajectory.num_points() > 0) {
-    const Eigen::VectorXd q_end = out.trajectory.q.col(out.trajectory.num_points() - 1);
-    rep.final_writhe_total = ReportWritheTotal(s, q_end);
+    if (!verdict) verdict = JudgePlan(s, out.trajectory);
+    rep.final_writhe_total = verdict->final_writhe_total;
     rep.path_length = PathLength(out.trajectory);
     if (planner != Planner::kAico) rep.cost = rep.path_length;
-    // Minimum clearance along the densified path (pairs within 0.2 m; 0.2 if none is closer).
-    CollisionData metric(s.robot, s.env, s.collision);
-    std::vector<ProximityPair> pairs;
-    double clearance = 0.2;
-    const Trajectory dense = Densify(out.trajectory, s.check_resolution);
-    for (int t = 0; t < dense.num_points(); ++t) {
-      ForwardKinematics(s.robot, dense.q.col(t), &kin);
-      ComputeProximity(s.robot, kin, 0.2, &metric, &pairs);
-      for (const ProximityPair& p : pairs) clearance = std::min(clearance, p.distance);
+    rep.min_clearance_m = verdict->min_clearance_m;
+    rep.failure_reason = verdict->reason;
+    rep.failure_step = verdict->step;
+    rep.reach_error_m = verdict->reach_error_m;
+    rep.max_winding_jump_turns = verdict->max_winding_jump_turns;
+    rep.final_winding_turns = verdict->final_winding_turns;
+    rep.success = found && rep.path_collision_free && verdict->reason == FailureReason::kNone;
+  }
+  // A failed run whose solver status is a failure in itself is named by that status.
+  if (!rep.success) {
+    switch (rep.status) {
+      case SolveStatus::kDiverged:
+        rep.failure_reason = FailureReason::kDiverged;
+        break;
+      case SolveStatus::kInvalidInput:
+        rep.failure_reason = FailureReason::kInvalidInput;
+        break;
+      case SolveStatus::kBudgetExhausted:
+        rep.failure_reason = FailureReason::kBudgetExhausted;
+        break;
+      case SolveStatus::kConverged:
+      case SolveStatus::kMaxIterations:
+        if (rep.failure_reason == FailureReason::kNone) {
+          rep.failure_reason = FailureReason::kBudgetExhausted;  // no path within the limits
+        }
+        break;
     }
-    rep.min_clearance_m = clearance;
-    rep.success =
-        found && rep.path_collision_free && MeetsSuccessCriteria(s, q_end, rep.final_writhe_total);
-  } else {
-    rep.final_writhe_total = rep.start_writhe_total;
-    rep.success = false;
   }
   return out;
 }

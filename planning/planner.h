@@ -27,6 +27,24 @@ Planner ParsePlanner(const std::string& name);
 bool OmplAvailable();
 const char* PlannerName(Planner planner);
 
+// Why a plan is not a success (kNone: it is one). See JudgePlan for the order of the checks.
+enum class FailureReason {
+  kNone,
+  kJointLimits,       // a resampled state outside the joint limits (failure_step)
+  kCollision,         // a resampled state in collision (failure_step)
+  kTunnelled,         // winding jump >= max_jump between resampled states (failure_step and
+                      // max_winding_jump_turns): through the pole, or off its end
+  kWritheNotReached,  // |final writhe| or |final winding| not below its bound
+  kReachError,        // the position task's final distance (reach_error_m) above its tolerance,
+                      // or the box task's value not 0
+  kBudgetExhausted,   // RRT: no path within the collision-check budget
+  kDiverged,          // AICO: no accepted sweep / non-finite cost
+  kInvalidInput,      // invalid start or goal
+};
+// "none" | "joint_limits" | "collision" | "tunnelled" | "writhe_not_reached" | "reach_error" |
+// "budget_exhausted" | "diverged" | "invalid_input".
+const char* FailureReasonName(FailureReason reason);
+
 struct PlanReport {
   std::string planner;
   bool success = false;
@@ -43,6 +61,24 @@ struct PlanReport {
   double min_clearance_m = 0.0;  // minimum signed distance along the path at check_resolution
   bool path_collision_free = false;
   std::vector<double> cost_history;  // AICO accepted-sweep costs (last attempt)
+  FailureReason failure_reason = FailureReason::kNone;
+  int failure_step = -1;                // resampled-state index of the first violation, or −1
+  double reach_error_m = -1.0;          // final distance of the position task to its target, m
+                                        // (−1: no position criterion or no path)
+  double max_winding_jump_turns = 0.0;  // largest winding change between resampled states
+  double final_winding_turns = 0.0;     // winding about the report line at the end
+};
+
+// The verdict of JudgePlan.
+struct PlanVerdict {
+  FailureReason reason = FailureReason::kNone;
+  int step = -1;  // index into Densify(path, check_resolution) of the first violation, or −1
+  double max_winding_jump_turns = 0.0;
+  double final_winding_turns = 0.0;
+  double final_writhe_total = 0.0;
+  double reach_error_m = -1.0;   // −1 when the scenario has no position criterion
+  double min_clearance_m = 0.2;  // minimum signed distance over the pairs within 0.2 m
+  bool collision_free = true;    // every resampled state within limits and collision-free
 };
 
 struct PlanResult {
@@ -60,8 +96,13 @@ struct PlanResult {
 PlanResult RunPlanner(const Scenario& scenario, Planner planner, unsigned seed,
                       const AicoCallback& callback = {});
 
-// The scenario's success criteria at a final configuration q with report-pair writhe
-// `final_writhe` (SuccessCriteria, scenario.h).
-bool MeetsSuccessCriteria(const Scenario& scenario, const Eigen::VectorXd& q, double final_writhe);
+// Judges `path` (non-empty) by the scenario's success criteria, the same for every planner
+// (uncounted queries on a collision state of its own). The path is resampled with
+// Densify(path, check_resolution); walking its states k = 0, 1, ...: outside the joint limits ->
+// kJointLimits, InCollision -> kCollision, |w_k − w_{k−1}| >= winding_max_jump -> kTunnelled (w =
+// ReportWinding, turns; only with the winding criterion), the first of these stops the walk. At
+// the end: |w| >= winding_final_below or |total writhe| >= writhe_total_below ->
+// kWritheNotReached; position error > position_tolerance or box value != 0 -> kReachError.
+PlanVerdict JudgePlan(const Scenario& scenario, const Trajectory& path);
 
 }  // namespace planning

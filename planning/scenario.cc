@@ -8,6 +8,7 @@
 #include "planning/grasp_object.h"
 #include "planning/kinematics.h"
 #include "planning/robot_io.h"
+#include "topology/winding.h"
 #include "topology/writhe.h"
 
 namespace planning {
@@ -307,6 +308,24 @@ double ReportWritheTotal(const Scenario& s, const Eigen::VectorXd& q, Eigen::Mat
   return W.sum();
 }
 
+double ReportWinding(const Scenario& s, const Eigen::VectorXd& q) {
+  if (s.report_chain < 0) return 0.0;
+  KinematicsData kin(s.robot);
+  ForwardKinematics(s.robot, q, &kin);
+  Eigen::Matrix3Xd P;
+  ChainPoints(s.robot, kin, s.report_chain, &P);
+  return topology::WindingNumber(P, ReportAxis(s));
+}
+
+topology::Axis ReportAxis(const Scenario& s) {
+  const Eigen::Matrix3Xd& O = s.report_object_chain;
+  if (s.report_chain < 0 || O.cols() < 2) throw std::invalid_argument("ReportAxis: no report pair");
+  topology::Axis axis;
+  axis.point = O.col(0);
+  axis.direction = O.col(O.cols() - 1) - O.col(0);
+  return axis;
+}
+
 MotionProblem AttemptProblem(const Scenario& s, int k) {
   if (k < 0 || k >= static_cast<int>(s.aico_attempts.size())) {
     throw std::invalid_argument("AttemptProblem: no AICO attempt " + std::to_string(k));
@@ -378,6 +397,11 @@ std::unique_ptr<Scenario> SetUpScenario(ScenarioSpec spec,
   if (su.position_task) s->success.position_task = TaskIndex(*s, *su.position_task);
   s->success.position_tolerance = su.position_tolerance;
   if (su.box_task) s->success.box_task = TaskIndex(*s, *su.box_task);
+  if (!su.winding_where.empty() && s->report_chain < 0) {
+    throw std::invalid_argument(su.winding_where + ": the winding criterion needs writhe_report");
+  }
+  s->success.winding_max_jump = su.winding_max_jump;
+  s->success.winding_final_below = su.winding_final_below;
   return s;
 }
 

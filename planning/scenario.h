@@ -36,6 +36,10 @@ struct SuccessCriteria {
   int position_task = -1;            // index into problem.tasks; −1: not checked
   double position_tolerance = 0.05;
   int box_task = -1;  // index of a "box" task whose y must be 0 at the end
+  // Winding of the report chain about the report object chain's line (first to last point), in
+  // turns: largest change between neighbouring resampled path states, and |value| at the end.
+  double winding_max_jump = -1.0;     // < 0: not checked
+  double winding_final_below = -1.0;  // < 0: not checked
 };
 
 // One AICO attempt: per-task precision multipliers (size = problem.tasks) and iteration limit.
@@ -89,6 +93,12 @@ AicoOptions AttemptOptions(const Scenario& scenario, int k);
 
 // Feature value y = φ(q) (dim of the feature).
 Eigen::VectorXd FeatureValue(const Robot& robot, const Feature& feature, const Eigen::VectorXd& q);
+
+// Winding number (turns) of the report chain at q about the line through the first and last
+// point of the report object chain (topology::WindingNumber, signed); 0 if no report pair.
+double ReportWinding(const Scenario& scenario, const Eigen::VectorXd& q);
+// That line (the pole's axis in unwrap); throws std::invalid_argument if there is no report pair.
+topology::Axis ReportAxis(const Scenario& scenario);
 
 // Total writhe and writhe matrix of the report pair at q (empty matrix if no report pair).
 double ReportWritheTotal(const Scenario& scenario, const Eigen::VectorXd& q,

@@ -224,7 +224,7 @@ FinalPoseSpec ReadFinalPose(const JsonNode& n) {
 }
 
 SuccessSpec ReadSuccess(const JsonNode& n) {
-  n.CheckKeys({"writhe_total_below", "position", "inside_box"});
+  n.CheckKeys({"writhe_total_below", "position", "inside_box", "winding"});
   SuccessSpec s;
   s.writhe_total_below = n.Number("writhe_total_below", -1.0);
   if (n.Has("position")) {
@@ -234,6 +234,16 @@ SuccessSpec ReadSuccess(const JsonNode& n) {
     s.position_tolerance = pn.Number("tolerance", s.position_tolerance);
   }
   if (n.Has("inside_box")) s.box_task = Name(n, "inside_box");
+  if (n.Has("winding")) {
+    const JsonNode wn = n.At("winding");
+    wn.CheckKeys({"max_jump", "final_below"});
+    s.winding_where = wn.Where();
+    s.winding_max_jump = wn.Number("max_jump", 0.1);
+    s.winding_final_below = wn.Number("final_below", 0.1);
+    if (!(s.winding_max_jump > 0.0) || !(s.winding_final_below > 0.0)) {
+      throw std::invalid_argument(s.winding_where + ": max_jump and final_below must be > 0");
+    }
+  }
   return s;
 }
 

@@ -52,9 +52,18 @@
 //                            tasks: [task names] (required); alpha: default 0.05; prior_scale:
 //                            default 1; init: "start" (default) | "unwrapped" (the coil
 //                            continued to writhe 0; needs a coil start) | [n] configuration
-//   success         object   writhe_total_below: number (default: not checked); position:
-//                            {task: name (required), tolerance: m, default 0.05}; inside_box:
-//                            name of a "box" task whose value must be 0 at the end
+//   success         object   what a plan must meet (every planner alike; planner.h JudgePlan).
+//                            Always: the path resampled at check_resolution is collision-free and
+//                            within the joint limits. writhe_total_below: |total writhe of the
+//                            report pair| at the end (default: not checked); position: {task: name
+//                            (required), tolerance: m, default 0.05}: distance of the task's
+//                            feature to its final target; inside_box: name of a "box" task whose
+//                            value must be 0 at the end; winding (needs writhe_report): {max_jump:
+//                            turns > 0, default 0.1; final_below: turns > 0, default 0.1}: the
+//                            winding of the report chain about the line of the object chain (its
+//                            first to last point), along the resampled path, changes by less than
+//                            max_jump between neighbouring states (no tunnelling through the pole,
+//                            no coil slipping off its end) and ends below final_below in modulus
 //   aico            object   max_iterations: integer >= 1, default 20; tolerance: default 0.01;
 //                            damping: default 1; sweep_mode: "forwardly" (default) | "symmetric"
 //                            | "local_gauss_newton"; max_step: rad, default 1; rollout_init:
@@ -222,6 +231,9 @@ struct SuccessSpec {
   std::optional<SpecName> position_task;
   double position_tolerance = 0.05;
   std::optional<SpecName> box_task;
+  double winding_max_jump = -1.0;     // turns; < 0: not checked
+  double winding_final_below = -1.0;  // turns; < 0: not checked
+  std::string winding_where;          // of "success.winding" (empty: not given)
 };
 
 // One AICO attempt: task precisions scaled by name, and its iteration limit.

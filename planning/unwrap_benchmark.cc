@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <random>
 #include <stdexcept>
 
 namespace planning {
@@ -45,29 +46,71 @@ const UnwrapCell& UnwrapSummaryCell(const UnwrapBenchmarkResult& result, size_t 
   return result.summary.at(a * result.planners.size() + p);
 }
 
+Eigen::Vector3d UnwrapPoleOffset(int seed, double max_m, const Eigen::Vector3d& axis_direction) {
+  if (!(max_m > 0.0)) return Eigen::Vector3d::Zero();
+  const Eigen::Vector3d d = axis_direction.normalized();
+  // An orthonormal basis (e1, e2) of the plane perpendicular to d.
+  const Eigen::Vector3d helper =
+      std::abs(d.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
+  const Eigen::Vector3d e1 = d.cross(helper).normalized();
+  const Eigen::Vector3d e2 = d.cross(e1);
+  std::mt19937 rng(static_cast<unsigned>(seed));
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  const double r = max_m * std::sqrt(unit(rng));  // uniform over the disc
+  const double phi = 2.0 * M_PI * unit(rng);
+  return r * (std::cos(phi) * e1 + std::sin(phi) * e2);
+}
+
 UnwrapBenchmarkResult RunUnwrapBenchmark(const UnwrapBenchmarkOptions& options) {
   if (options.angles_deg.empty()) throw std::invalid_argument("unwrap benchmark: no angles");
   if (options.planners.empty()) throw std::invalid_argument("unwrap benchmark: no planners");
   if (options.seeds < 1) throw std::invalid_argument("unwrap benchmark: seeds must be >= 1");
+  if (!(options.perturb_m >= 0.0) || !std::isfinite(options.perturb_m)) {
+    throw std::invalid_argument("unwrap benchmark: perturb must be a finite number >= 0");
+  }
   UnwrapBenchmarkResult result;
   result.angles_deg = options.angles_deg;
   result.planners = options.planners;
   result.seeds = options.seeds;
   const int total =
       static_cast<int>(options.angles_deg.size() * options.planners.size()) * options.seeds;
+  const ScenarioSpec spec = ParseScenarioSpec(options.scenario_path, options.search_roots);
+  // Seed offsets of the pole (perpendicular to its line), and which object it is.
+  std::vector<Eigen::Vector3d> offsets(options.seeds, Eigen::Vector3d::Zero());
+  int pole = -1;
+  if (options.perturb_m > 0.0) {
+    if (!spec.writhe_report) {
+      throw std::invalid_argument("unwrap benchmark: perturb needs the scenario's writhe_report");
+    }
+    for (size_t i = 0; i < spec.objects.size(); ++i) {
+      if (spec.objects[i].name == spec.writhe_report->object.name) pole = static_cast<int>(i);
+    }
+    const auto base = SetUpScenario(spec, options.angles_deg.front());
+    const Eigen::Vector3d axis = ReportAxis(*base).direction;
+    for (int seed = 0; seed < options.seeds; ++seed) {
+      offsets[seed] = UnwrapPoleOffset(seed, options.perturb_m, axis);
+    }
+  }
   for (double angle : options.angles_deg) {
-    ScenarioOverrides overrides;
-    overrides.start_wrap_deg = angle;
-    overrides.search_roots = options.search_roots;
-    const auto scenario = LoadScenario(options.scenario_path, overrides);
-    if (options.rrt_budget > 0) scenario->rrt.max_checks = options.rrt_budget;
-    for (Planner planner : options.planners) {
-      for (int seed = 0; seed < options.seeds; ++seed) {
+    std::unique_ptr<Scenario> shared;  // unperturbed: one set-up per angle
+    for (int seed = 0; seed < options.seeds; ++seed) {
+      std::unique_ptr<Scenario> own;
+      if (pole >= 0) {
+        ScenarioSpec moved = spec;
+        moved.objects[pole].xyz += offsets[seed];
+        own = SetUpScenario(std::move(moved), angle);
+      } else if (!shared) {
+        shared = SetUpScenario(spec, angle);
+      }
+      Scenario& scenario = own ? *own : *shared;
+      if (options.rrt_budget > 0) scenario.rrt.max_checks = options.rrt_budget;
+      for (Planner planner : options.planners) {
         UnwrapRun run;
         run.angle_deg = angle;
         run.planner = planner;
         run.seed = seed;
-        run.report = RunPlanner(*scenario, planner, static_cast<unsigned>(seed)).report;
+        run.pole_offset = offsets[seed];
+        run.report = RunPlanner(scenario, planner, static_cast<unsigned>(seed)).report;
         result.runs.push_back(std::move(run));
         if (options.progress) {
           options.progress(static_cast<int>(result.runs.size()), total, result.runs.back());
@@ -75,6 +118,20 @@ UnwrapBenchmarkResult RunUnwrapBenchmark(const UnwrapBenchmarkOptions& options) 
       }
     }
   }
+  // Runs are produced seed-major within an angle; order them planner-major (the documented order).
+  std::stable_sort(
+      result.runs.begin(), result.runs.end(), [&](const UnwrapRun& a, const UnwrapRun& b) {
+        const auto idx = [&](const UnwrapRun& r) {
+          const auto a_it =
+              std::find(options.angles_deg.begin(), options.angles_deg.end(), r.angle_deg);
+          const auto p_it = std::find(options.planners.begin(), options.planners.end(), r.planner);
+          return ((a_it - options.angles_deg.begin()) * static_cast<long>(options.planners.size()) +
+                  (p_it - options.planners.begin())) *
+                     options.seeds +
+                 r.seed;
+        };
+        return idx(a) < idx(b);
+      });
   result.summary = SummarizeUnwrapRuns(result.runs, result.angles_deg, result.planners);
   return result;
 }

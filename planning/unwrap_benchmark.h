@@ -3,6 +3,7 @@
 // figure and the tables show.
 #pragma once
 
+#include <Eigen/Core>
 #include <functional>
 #include <string>
 #include <vector>
@@ -15,7 +16,8 @@ namespace planning {
 struct UnwrapRun {
   double angle_deg = 0.0;  // angle to unwrap (scenario start wrap) [deg]
   Planner planner = Planner::kAico;
-  int seed = 0;       // seed of the RRTs' generator (AICO is deterministic)
+  int seed = 0;  // seed of the RRTs' generator and of the pole offset (AICO is deterministic)
+  Eigen::Vector3d pole_offset = Eigen::Vector3d::Zero();  // world-frame pole offset [m]
   PlanReport report;  // success, status, collision_checks (configuration-level queries),
                       // narrow_phase_calls, iterations, time_s (wall clock, the only
                       // non-deterministic field), path_length [rad], final_writhe_total, ...
@@ -39,6 +41,9 @@ struct UnwrapBenchmarkOptions {
   std::vector<Planner> planners;   // in output order (kept everywhere, never re-sorted)
   int seeds = 3;                   // seeds 0..seeds-1 per angle and planner
   long rrt_budget = -1;            // RRT collision-check budget; <= 0: the scenario's own
+  // Pole perturbation [m], >= 0: each seed s moves the writhe-report object (the pole) by
+  // UnwrapPoleOffset(s, perturb_m, axis) before the scenario is set up (0: the shipped placement).
+  double perturb_m = 0.0;
   // Where relative robot/object paths of the scenario are also looked up (see ScenarioOverrides).
   std::vector<std::string> search_roots;
   // Called after every run with the number of runs done so far and the total.
@@ -55,8 +60,14 @@ struct UnwrapBenchmarkResult {
   std::vector<UnwrapCell> summary;
 };
 
+// The pole offset of seed `seed`: uniform in the disc of radius `max_m` perpendicular to
+// `axis_direction` (non-zero), drawn from std::mt19937(seed) (reproducible). max_m = 0: zero.
+Eigen::Vector3d UnwrapPoleOffset(int seed, double max_m, const Eigen::Vector3d& axis_direction);
+
 // Runs every (angle, planner, seed) with LoadScenario(scenario_path, {start_wrap_deg = angle}) and
-// RunPlanner. Throws std::invalid_argument for bad options (no angles/planners, seeds < 1) and
+// RunPlanner (with perturb_m > 0: the pole of seed s moved by UnwrapPoleOffset about the report
+// line of the unperturbed scenario). Throws std::invalid_argument for bad options (no
+// angles/planners, seeds < 1, perturb_m negative or not finite) and
 // whatever LoadScenario throws for a bad scenario file.
 UnwrapBenchmarkResult RunUnwrapBenchmark(const UnwrapBenchmarkOptions& options);
 

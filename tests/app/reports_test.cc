@@ -81,14 +81,17 @@ TEST(ReportsTest, UnwrapTableMatchesCsv) {
   std::istringstream in(UnwrapCsv(result));
   std::string line;
   std::getline(in, line);
-  EXPECT_EQ(line, "angle_deg,planner,seed,success,collision_checks,time_s");
+  EXPECT_EQ(line,
+            "angle_deg,planner,seed,success,failure_reason,collision_checks,narrow_phase_calls,"
+            "time_s,path_length,reach_error_m,pole_offset_m");
   while (std::getline(in, line)) {
     std::stringstream ss(line);
-    std::string angle, planner, seed, success, checks;
+    std::string angle, planner, seed, success, reason, checks;
     std::getline(ss, angle, ',');
     std::getline(ss, planner, ',');
     std::getline(ss, seed, ',');
     std::getline(ss, success, ',');
+    std::getline(ss, reason, ',');
     std::getline(ss, checks, ',');
     Agg& a = csv[{angle, planner}];
     ++a.runs;

@@ -1,7 +1,7 @@
 // Scenario loader errors, and the end-to-end planning properties of the shipped scenarios:
-// unwrap from 360° and 720° (AICO: |total writhe| < 0.05, collision-free at the edge
-// resolution), reach_through_ring (inside the box, writhe peak at the link through the ring),
-// RRT paths collision-free, same seed → same report.
+// unwrap from 90°, 270°, 360° and 720° (AICO, one attempt, JudgePlan success), reach_through_ring
+// (inside the box, writhe peak at the link through the ring), RRT paths collision-free, same seed →
+// same report.
 #include "planning/scenario.h"
 
 #include <gtest/gtest.h>
@@ -155,7 +155,7 @@ TEST(ScenarioLoader, RelativePathsAreFoundUnderTheSearchRoots) {
   const auto s = LoadScenario(copy, o);
   EXPECT_EQ(s->robot.name, "arm20_sdh");
   EXPECT_EQ(s->spec.objects.size(), 2u);
-  EXPECT_EQ(s->aico_attempts.size(), 2u);  // aico.retry
+  EXPECT_EQ(s->aico_attempts.size(), 1u);  // one attempt: unwrap.json has no aico.retry
   EXPECT_NEAR(s->start_wrap_deg, 360.0, 5.0);
 }
 
@@ -213,7 +213,9 @@ TEST(Planners, NamesRoundTripAndUnknownNamesListTheValidOnes) {
   EXPECT_STREQ(StatusName(SolveStatus::kBudgetExhausted), "budget_exhausted");
 }
 
-// One AICO run on unwrap from the given start wrap.
+// One AICO run on unwrap from the given start wrap: a success by JudgePlan in one attempt (the
+// resampled path collision-free and within limits, the winding about the pole continuous and
+// ending near 0, |writhe| < 0.05, the grasp point within 0.05 m of the cylinder centre).
 void CheckUnwrap(double wrap_deg) {
   ScenarioOverrides o;
   o.start_wrap_deg = wrap_deg;
@@ -221,8 +223,15 @@ void CheckUnwrap(double wrap_deg) {
   EXPECT_NEAR(s->start_wrap_deg, wrap_deg, 5.0);
   const PlanResult r = RunPlanner(*s, Planner::kAico, 0);
   SCOPED_TRACE("start wrap " + std::to_string(wrap_deg));
+  EXPECT_TRUE(r.report.success) << FailureReasonName(r.report.failure_reason);
+  EXPECT_EQ(r.report.failure_reason, FailureReason::kNone);
+  EXPECT_EQ(r.report.attempts, 1);
   EXPECT_NEAR(std::abs(r.report.start_writhe_total) * 360.0, wrap_deg, 5.0);
   EXPECT_LT(std::abs(r.report.final_writhe_total), 0.05);
+  EXPECT_LT(r.report.reach_error_m, 0.05);
+  EXPECT_GE(r.report.reach_error_m, 0.0);
+  EXPECT_LT(r.report.max_winding_jump_turns, 0.1);
+  EXPECT_LT(std::abs(r.report.final_winding_turns), 0.1);
   EXPECT_TRUE(r.report.path_collision_free);
   EXPECT_GT(r.report.min_clearance_m, 0.0);
   EXPECT_EQ(r.trajectory.num_points(), s->problem.num_steps + 1);
@@ -235,6 +244,9 @@ void CheckUnwrap(double wrap_deg) {
 
 TEST(UnwrapScenario, AicoUnwrapsFrom360Degrees) { CheckUnwrap(360.0); }
 TEST(UnwrapScenario, AicoUnwrapsFrom720Degrees) { CheckUnwrap(720.0); }
+// Regression: these tunnelled through the pole before the wider collision margin.
+TEST(UnwrapScenario, AicoUnwrapsFrom90Degrees) { CheckUnwrap(90.0); }
+TEST(UnwrapScenario, AicoUnwrapsFrom270Degrees) { CheckUnwrap(270.0); }
 
 TEST(ReachThroughRing, AicoEndsInsideTheBoxWithTheWrithePeakAtTheLinkThroughTheRing) {
   const auto s = LoadScenario(kAssets + "scenarios/reach_through_ring.json");

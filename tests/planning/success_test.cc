@@ -1,0 +1,113 @@
+// The success criterion every planner is judged by (JudgePlan, planner.h): a path that tunnels
+// through the pole between time slices is rejected with `tunnelled`, a 0.1 m miss of the target
+// with `reach_error`, an exact hit passes; the winding keys of "success" are checked on load.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "planning/kinematics.h"
+#include "planning/planner.h"
+#include "planning/scenario.h"
+
+namespace planning {
+namespace {
+
+const std::string kAssets = TOPOPLAN_SOURCE_DIR "/assets/";
+
+std::string WriteTemp(const std::string& name, const std::string& text) {
+  const std::filesystem::path dir = std::filesystem::path(TOPOPLAN_BINARY_DIR) / "success_test_tmp";
+  std::filesystem::create_directories(dir);
+  const std::string path = (dir / name).string();
+  std::ofstream(path) << text;
+  return path;
+}
+
+// The shipped unwrap scenario from `wrap_deg`.
+std::unique_ptr<Scenario> Unwrap(double wrap_deg) {
+  ScenarioOverrides o;
+  o.start_wrap_deg = wrap_deg;
+  return LoadScenario(kAssets + "scenarios/unwrap.json", o);
+}
+
+TEST(JudgePlan, APathThatTunnelsThroughThePoleBetweenSlicesIsRejected) {
+  const auto s = Unwrap(360.0);
+  const auto unwrapped = Unwrap(0.0);
+  // Judged without the collision checker, so that only the winding criterion can see the arm
+  // passing through the pole (as it cannot when the pass falls between resampled states).
+  s->collision.self_collision = false;
+  s->collision.environment = false;
+  // Two slices: the coil (one turn about the pole) and the unwrapped pose. Straight-line
+  // interpolation in joint space pulls the arm through the pole instead of around its end.
+  Trajectory path;
+  path.q.resize(s->problem.q0.size(), 2);
+  path.q.col(0) = s->problem.q0;
+  path.q.col(1) = unwrapped->problem.q0;
+  EXPECT_NEAR(std::abs(ReportWinding(*s, path.q.col(0))), 1.0, 0.2);
+  EXPECT_LT(std::abs(ReportWinding(*s, path.q.col(1))), 0.2);
+  const PlanVerdict v = JudgePlan(*s, path);
+  EXPECT_EQ(v.reason, FailureReason::kTunnelled) << FailureReasonName(v.reason);
+  EXPECT_GT(v.step, 0);
+  EXPECT_GT(v.max_winding_jump_turns, 0.5);  // a whole turn lost in one resampled step
+}
+
+// A 7-dof arm whose link-7 origin must reach `target`; the path is the single state q = 0.
+std::unique_ptr<Scenario> ReachScenario(const std::string& name, double miss_m) {
+  const std::string robot = R"({"robot": ")" + kAssets + R"(robots/lwr4_sdh.urdf",
+      "start": {"q": "zero"}, "problem": {"T": 5}, )";
+  const auto probe = LoadScenario(
+      WriteTemp("probe.json", robot + R"("tasks": [{"feature": {"type": "joint_position"}}]})"));
+  KinematicsData kin(probe->robot);
+  ForwardKinematics(probe->robot, probe->problem.q0, &kin);
+  const int link = FindLink(probe->robot, "lwr_link_7");
+  const Eigen::Vector3d p = kin.world_from_link[link].translation() + Eigen::Vector3d(miss_m, 0, 0);
+  char target[160];
+  std::snprintf(target, sizeof(target), "[%.17g, %.17g, %.17g]", p.x(), p.y(), p.z());
+  return LoadScenario(WriteTemp(name, robot + R"("tasks": [{"name": "reach",
+      "feature": {"type": "position", "link": "lwr_link_7"}, "target": {"value": )" +
+                                          target +
+                                          R"(}}],
+      "success": {"position": {"task": "reach", "tolerance": 0.05}}})"));
+}
+
+TEST(JudgePlan, TheReachCriterionRejectsATenCentimetreMiss) {
+  for (const double miss : {0.0, 0.1}) {
+    const auto s = ReachScenario("reach.json", miss);
+    Trajectory path;
+    path.q = s->problem.q0;
+    const PlanVerdict v = JudgePlan(*s, path);
+    SCOPED_TRACE("miss " + std::to_string(miss));
+    EXPECT_NEAR(v.reach_error_m, miss, 1e-5);
+    EXPECT_EQ(v.reason, miss > 0.05 ? FailureReason::kReachError : FailureReason::kNone)
+        << FailureReasonName(v.reason);
+  }
+}
+
+TEST(JudgePlan, WindingCriterionNeedsAReportPairAndPositiveBounds) {
+  const std::string base = R"({"robot": ")" + kAssets + R"(robots/lwr4_sdh.urdf",
+      "start": {"q": "zero"}, "tasks": [{"feature": {"type": "joint_position"}}], "success": )";
+  for (const auto& [success, fragment] :
+       {std::pair<std::string, std::string>{R"({"winding": {}})", "needs writhe_report"},
+        {R"({"winding": {"max_jump": 0}})", "must be > 0"},
+        {R"({"winding": {"jump": 0.1}})", "unknown key"}}) {
+    try {
+      LoadScenario(WriteTemp("winding.json", base + success + "}"));
+      ADD_FAILURE() << "expected an error for " << success;
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("success.winding"), std::string::npos) << e.what();
+    }
+  }
+}
+
+TEST(FailureReasons, NamesAreStable) {
+  EXPECT_STREQ(FailureReasonName(FailureReason::kTunnelled), "tunnelled");
+  EXPECT_STREQ(FailureReasonName(FailureReason::kReachError), "reach_error");
+  EXPECT_STREQ(FailureReasonName(FailureReason::kWritheNotReached), "writhe_not_reached");
+  EXPECT_STREQ(FailureReasonName(FailureReason::kBudgetExhausted), "budget_exhausted");
+}
+
+}  // namespace
+}  // namespace planning
