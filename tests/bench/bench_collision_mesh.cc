@@ -89,7 +89,10 @@ const fs::path& Dir() {
       const double a = 2 * M_PI * arm / 8;
       std::string parent = "torso";
       for (int k = 0; k < 10 && links < 80; ++k, ++links) {
-        const std::string name = "a" + std::to_string(arm) + "_" + std::to_string(k);
+        std::string name = std::to_string(arm);
+        name.insert(0, 1, 'a');
+        name += '_';
+        name += std::to_string(k);
         urdf += Link(name, "tube.stl");
         const std::string xyz = k == 0 ? std::to_string(0.2 * std::cos(a)) + " " +
                                              std::to_string(0.2 * std::sin(a)) + " 0.45"
