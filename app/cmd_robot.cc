@@ -85,8 +85,7 @@ void AddRobotCommands(CLI::App* root, CommandList* commands) {
       "lists them. Poses are in the world frame = the root link's frame; \"rotation\" is the 3x3\n"
       "matrix, row-major. A --q of the wrong length is an error (exit 2).");
   commands->push_back({fk, [fa]() {
-                         const RobotScene scene =
-                             LoadRobotScene(fa->urdf, fa->input);
+                         const RobotScene scene = LoadRobotScene(fa->urdf, fa->input);
                          const planning::Robot& robot = scene.robot;
                          const Eigen::VectorXd q = ChooseQ(scene, fa->q, fa->pose);
                          planning::KinematicsData kin(robot);

@@ -30,7 +30,8 @@ using internal::FclScene;
 using internal::FclShape;
 
 // FCL convex shape of a hull (scaled per axis); null when the hull is empty.
-std::shared_ptr<fcl::CollisionGeometryd> MakeConvex(const Mesh& hull, const Eigen::Vector3d& scale) {
+std::shared_ptr<fcl::CollisionGeometryd> MakeConvex(const Mesh& hull,
+                                                    const Eigen::Vector3d& scale) {
   if (hull.triangles.empty()) return nullptr;
   auto vertices = std::make_shared<std::vector<fcl::Vector3d>>();
   vertices->reserve(hull.vertices.size());
@@ -98,7 +99,7 @@ struct BroadphaseQuery {
 bool Skip(const FclScene& s, const FclShape& a, const FclShape& b) {
   if (a.object >= 0 && b.object >= 0) return true;  // environment vs environment
   if (a.object < 0 && b.object < 0) {
-    return !s.self_collision || s.skip[a.link * s.num_links + b.link] != 0;
+    return !s.self_collision || s.skip[s.geo_row[a.link] * s.num_links + s.geo_row[b.link]] != 0;
   }
   return !s.environment;
 }
@@ -242,7 +243,8 @@ Robot MakePrimitiveObject(const std::string& name, const Geometry& geometry) {
   }
   const bool round = geometry.kind != Geometry::Kind::kBox;  // size[0] is a radius
   for (int i = 0; i < 3; ++i) {
-    if (!std::isfinite(geometry.size[i]) || geometry.size[i] < 0 || (round && i == 0 && !(geometry.size[0] > 0))) {
+    if (!std::isfinite(geometry.size[i]) || geometry.size[i] < 0 ||
+        (round && i == 0 && !(geometry.size[0] > 0))) {
       throw std::invalid_argument("MakePrimitiveObject: '" + name +
                                   "': sizes must be finite and >= 0, radii > 0");
     }
@@ -284,7 +286,14 @@ CollisionData::CollisionData(const Robot& robot, const Environment& env,
   FclScene& s = *scene;
   s.self_collision = options.self_collision;
   s.environment = options.environment;
-  s.num_links = static_cast<int>(robot.links.size());
+  s.geo_row.assign(robot.links.size(), -1);
+  std::vector<int> geo_links;  // links with collision shapes, in link order
+  for (size_t l = 0; l < robot.links.size(); ++l) {
+    if (robot.links[l].collisions.empty()) continue;
+    s.geo_row[l] = static_cast<int>(geo_links.size());
+    geo_links.push_back(static_cast<int>(l));
+  }
+  s.num_links = static_cast<int>(geo_links.size());
   // Robot shapes.
   size_t count = 0;
   for (const Link& l : robot.links) count += l.collisions.size();
@@ -332,18 +341,21 @@ CollisionData::CollisionData(const Robot& robot, const Environment& env,
   s.skip.assign(static_cast<size_t>(s.num_links) * s.num_links, 0);
   for (int a = 0; a < s.num_links; ++a) {
     for (int b = 0; b < s.num_links; ++b) {
-      if (AreAdjacent(robot, a, b)) s.skip[a * s.num_links + b] = 1;
+      if (AreAdjacent(robot, geo_links[a], geo_links[b])) s.skip[a * s.num_links + b] = 1;
     }
   }
   for (const auto& [na, nb] : options.disabled_pairs) {
-    const int a = FindLink(robot, na), b = FindLink(robot, nb);
+    const int a = s.geo_row[FindLink(robot, na)], b = s.geo_row[FindLink(robot, nb)];
+    if (a < 0 || b < 0) continue;  // a link without shapes is never checked anyway
     s.skip[a * s.num_links + b] = s.skip[b * s.num_links + a] = 1;
   }
   // Candidate shape pairs for distance queries: self pairs (a < b), then per object.
   if (s.self_collision) {
     for (size_t a = 0; a < s.robot.size(); ++a) {
       for (size_t b = a + 1; b < s.robot.size(); ++b) {
-        if (s.skip[s.robot[a].link * s.num_links + s.robot[b].link]) continue;
+        if (s.skip[s.geo_row[s.robot[a].link] * s.num_links + s.geo_row[s.robot[b].link]]) {
+          continue;
+        }
         s.pairs.push_back({static_cast<int>(a), static_cast<int>(b), false});
       }
     }

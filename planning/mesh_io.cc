@@ -106,7 +106,8 @@ Mesh ConvexHull(const Mesh& mesh) {
       Eigen::Vector3i t(vertex_of(static_cast<vertexT*>(facet->vertices->e[0].p)),
                         vertex_of(static_cast<vertexT*>(facet->vertices->e[1].p)),
                         vertex_of(static_cast<vertexT*>(facet->vertices->e[2].p)));
-      const Eigen::Vector3f a = hull.vertices[t[0]], b = hull.vertices[t[1]], c = hull.vertices[t[2]];
+      const Eigen::Vector3f a = hull.vertices[t[0]], b = hull.vertices[t[1]],
+                            c = hull.vertices[t[2]];
       const Eigen::Vector3f outward(static_cast<float>(facet->normal[0]),
                                     static_cast<float>(facet->normal[1]),
                                     static_cast<float>(facet->normal[2]));

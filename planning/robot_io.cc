@@ -7,10 +7,10 @@
 #include <urdf_model/model.h>
 #include <urdf_parser/urdf_parser.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <filesystem>
-#include <algorithm>
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
@@ -53,7 +53,7 @@ struct XmlSummary {
   std::vector<std::string> links;  // file order
   std::map<std::string, int> link_line;
   std::map<std::string, std::array<size_t, 2>> geometry_count;  // link → (visuals, collisions)
-  std::vector<XmlJoint> joints;  // file order
+  std::vector<XmlJoint> joints;                                 // file order
 };
 
 std::string Attr(const TiXmlElement* e, const char* name) { return internal::XmlAttr(e, name); }
@@ -213,7 +213,8 @@ XmlSummary ValidateXml(const std::string& xml, const std::string& source) {
   for (const std::string& l : s.links) {
     if (!parent_of.count(l)) roots.push_back(l);
   }
-  if (roots.empty()) Fail(source, s.link_line[s.links[0]], "kinematic cycle through link '" + s.links[0] + "'");
+  if (roots.empty())
+    Fail(source, s.link_line[s.links[0]], "kinematic cycle through link '" + s.links[0] + "'");
   if (roots.size() == 1) {
     // Every link has at most one parent, so a link not reachable from the single root lies on
     // a cycle (or hangs below one). Breadth-first from the root: O(links + joints).

@@ -327,9 +327,9 @@ ScenarioSpec ParseScenarioSpec(const std::string& path,
                                const std::vector<std::string>& search_roots) {
   const nlohmann::json doc = ParseJsonFile(path, "scenario");
   const JsonNode root(doc, path);
-  root.CheckKeys({"name", "description", "robot", "srdf", "package_paths", "objects", "robot_chains", "collision",
-                  "writhe_report", "start", "problem", "tasks", "final_pose", "success", "aico",
-                  "rrt", "check_resolution"});
+  root.CheckKeys({"name", "description", "robot", "srdf", "package_paths", "objects",
+                  "robot_chains", "collision", "writhe_report", "start", "problem", "tasks",
+                  "final_pose", "success", "aico", "rrt", "check_resolution"});
   const std::string dir = fs::path(path).parent_path().string();
   ScenarioSpec s;
   s.source = path;

@@ -242,7 +242,8 @@ struct ScenarioSpec {
   std::string source;  // the scenario file
   std::string robot;   // resolved URDF path
   std::string srdf;    // resolved SRDF path; empty: FindSrdf(robot) at set-up
-  std::vector<std::string> package_paths;  // resolved "package_paths"
+  // Resolved "package_paths".
+  std::vector<std::string> package_paths;
   std::vector<ObjectSpec> objects;
   std::vector<ChainDescription> robot_chains;
   CollisionSpec collision;
