@@ -53,7 +53,9 @@ struct RobotScene {
 
 // What the robot-loading flags add: --package-path (repeatable) and --srdf.
 struct RobotInputOptions {
-  std::vector<std::string> package_paths;  // tried first, then the file's, then $ROS_PACKAGE_PATH
+  // Tried first. Then: for a scene JSON its "package_paths", then $ROS_PACKAGE_PATH; for a
+  // scenario $ROS_PACKAGE_PATH, then its "package_paths"; last the URDF's ancestor folders.
+  std::vector<std::string> package_paths;
   std::string srdf;                        // empty: the file's "srdf", else planning::FindSrdf
 };
 
