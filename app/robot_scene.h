@@ -56,7 +56,7 @@ struct RobotInputOptions {
   // Tried first. Then: for a scene JSON its "package_paths", then $ROS_PACKAGE_PATH; for a
   // scenario $ROS_PACKAGE_PATH, then its "package_paths"; last the URDF's ancestor folders.
   std::vector<std::string> package_paths;
-  std::string srdf;                        // empty: the file's "srdf", else planning::FindSrdf
+  std::string srdf;  // empty: the file's "srdf", else planning::FindSrdf
 };
 
 // Package roots for package:// URIs: `extra` followed by the entries of $ROS_PACKAGE_PATH.
