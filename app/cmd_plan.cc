@@ -12,6 +12,7 @@
 #include "app/command.h"
 #include "app/io.h"
 #include "app/reports.h"
+#include "app/robot_scene.h"
 #include "planning/planner.h"
 #include "planning/scenario.h"
 #include "planning/unwrap_benchmark.h"
@@ -27,6 +28,7 @@ struct PlanArgs {
   unsigned seed = 0;
   double start_wrap = std::numeric_limits<double>::quiet_NaN();
   bool frames = false, json = false;
+  RobotInputOptions robot_input;  // --package-path, --srdf
 };
 
 struct BenchArgs {
@@ -103,6 +105,7 @@ void AddPlanCommands(CLI::App* root, CommandList* commands) {
   plan->add_option("--start-wrap", pa->start_wrap,
                    "start coil of a coil-start scenario (unwrap): angle to unwrap in degrees");
   plan->add_option("-o,--output", pa->output, "output folder")->required();
+  AddRobotInputFlags(plan, &pa->robot_input, nullptr);
   plan->add_flag("--frames", pa->frames,
                  "also render DIR/frames/*.png, DIR/heatmaps/*.png (writhe per frame) and "
                  "DIR/writhe_cost.png");
@@ -123,6 +126,8 @@ void AddPlanCommands(CLI::App* root, CommandList* commands) {
          }
          const planning::Planner planner =
              ParseFlag("--planner", [&] { return planning::ParsePlanner(pa->planner); });
+         overrides.package_paths = PackagePaths(pa->robot_input.package_paths);
+         overrides.srdf = pa->robot_input.srdf;
          const auto scenario = LoadScenarioArg(pa->scenario, overrides);
          const planning::PlanResult result = planning::RunPlanner(
              *scenario, planner, pa->seed,

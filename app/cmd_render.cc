@@ -24,7 +24,8 @@ namespace {
 namespace fs = std::filesystem;
 
 struct RenderArgs {
-  std::string input, output, size, camera, gl, q;
+  std::string input, output, size, camera, gl, q, pose;
+  RobotInputOptions robot_input;
   int msaa = 0;
   bool no_shadows = false;
 };
@@ -43,10 +44,11 @@ struct DiffArgs {
 // What `render` can draw. Dispatch is by extension and content so that other inputs can be
 // added here: a scene file (JSON object with "shapes"/"camera"/...); issue 4 adds URDF robots
 // (".urdf") and scenario files (JSON with a "robot" key).
-SceneDocument LoadRenderInput(const std::string& path, const std::string& q) {
+SceneDocument LoadRenderInput(const std::string& path, const std::string& q, const RenderArgs& a) {
   if (!fs::is_regular_file(path)) throw std::invalid_argument(path + ": file not found");
   const std::string ext = fs::path(path).extension().string();
-  if (IsRobotSceneFile(path)) return RobotSceneDocument(path, q);  // app/scene_builder.h
+  if (IsRobotSceneFile(path)) return RobotSceneDocument(path, q, a.pose, a.robot_input);
+  if (!a.pose.empty()) throw std::invalid_argument("--pose: only for a robot or scenario input");
   if (!q.empty()) throw std::invalid_argument("--q: only for a robot .urdf or scenario input");
   if (ext == ".json") return LoadSceneFile(path);
   throw std::invalid_argument(
@@ -72,6 +74,7 @@ void AddRenderCommands(CLI::App* root, CommandList* commands) {
   render_cmd->add_option("--q", ra->q,
                          "robot configuration v1,v2,... in the `fk` joint order (robot .urdf or "
                          "scenario input; default: the scenario's q, else zeros)");
+  AddRobotInputFlags(render_cmd, &ra->robot_input, &ra->pose);
   render_cmd->add_option("--size", ra->size,
                          "image size WxH (default: the file's \"size\", else 640x480)");
   render_cmd->add_option("--camera", ra->camera,
@@ -87,7 +90,7 @@ void AddRenderCommands(CLI::App* root, CommandList* commands) {
       "Exit codes: 0 ok, 2 bad scene/flags (the message names the JSON path), 3 no GL.");
   commands->push_back(
       {render_cmd, [ra]() {
-         SceneDocument doc = LoadRenderInput(ra->input, ra->q);
+         SceneDocument doc = LoadRenderInput(ra->input, ra->q, *ra);
          int width = doc.width > 0 ? doc.width : 640, height = doc.height > 0 ? doc.height : 480;
          if (!ra->size.empty()) ParseImageSize(ra->size, "--size", &width, &height);
          if (!ra->camera.empty()) {

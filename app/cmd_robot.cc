@@ -28,14 +28,15 @@ Json Rows(const Eigen::Matrix3d& r) {
 }
 
 struct FkArgs {
-  std::string urdf, q;
-  std::vector<std::string> package_paths;
+  std::string urdf, q, pose;
+  RobotInputOptions input;
   bool json = false;
 };
 
 struct CheckArgs {
-  std::string input, q;
-  std::vector<std::string> package_paths, objects;
+  std::string input, q, pose;
+  RobotInputOptions robot_input;
+  std::vector<std::string> objects;
   bool json = false, no_self = false;
   double margin = 0.0;
 };
@@ -65,10 +66,6 @@ Json PairJson(const RobotScene& s, const planning::Environment& env,
   return j;
 }
 
-const char* kPackageHelp =
-    "extra root folder for package://PKG/... mesh URIs (repeatable; $ROS_PACKAGE_PATH and the "
-    "URDF's ancestor folders are searched too)";
-
 }  // namespace
 
 void AddRobotCommands(CLI::App* root, CommandList* commands) {
@@ -79,7 +76,7 @@ void AddRobotCommands(CLI::App* root, CommandList* commands) {
   fk->add_option("ROBOT", fa->urdf, "robot URDF file")->required();
   fk->add_option("--q", fa->q,
                  "configuration v1,v2,... (rad / m) in the order of \"joints\" (default: zeros)");
-  fk->add_option("--package-path", fa->package_paths, kPackageHelp);
+  AddRobotInputFlags(fk, &fa->input, &fa->pose);
   fk->add_flag("--json", fa->json,
                "print {\"joints\": [...], \"links\": {name: {\"position\", \"rotation\"}}}");
   fk->footer(
@@ -88,10 +85,9 @@ void AddRobotCommands(CLI::App* root, CommandList* commands) {
       "lists them. Poses are in the world frame = the root link's frame; \"rotation\" is the 3x3\n"
       "matrix, row-major. A --q of the wrong length is an error (exit 2).");
   commands->push_back({fk, [fa]() {
-                         planning::RobotLoadOptions options;
-                         options.package_paths = PackagePaths(fa->package_paths);
-                         const planning::Robot robot = planning::LoadRobot(fa->urdf, options);
-                         const Eigen::VectorXd q = ParseQ(robot, fa->q);
+                         const RobotScene scene = LoadRobotScene(fa->urdf, fa->input);
+                         const planning::Robot& robot = scene.robot;
+                         const Eigen::VectorXd q = ChooseQ(scene, fa->q, fa->pose);
                          planning::KinematicsData kin(robot);
                          planning::ForwardKinematics(robot, q, &kin);
                          if (fa->json) {
@@ -137,7 +133,7 @@ void AddRobotCommands(CLI::App* root, CommandList* commands) {
   check->add_option("--q", ca->q, "configuration v1,v2,... in the `fk` joint order");
   check->add_option("--object", ca->objects,
                     "add an object: URDF[@x,y,z[,roll,pitch,yaw]] (repeatable; angles in rad)");
-  check->add_option("--package-path", ca->package_paths, kPackageHelp);
+  AddRobotInputFlags(check, &ca->robot_input, &ca->pose);
   check->add_option("--margin", ca->margin,
                     "also list every link pair closer than this distance [m] (default 0)");
   check->add_flag("--no-self", ca->no_self, "skip self-collision (robot vs environment only)");
@@ -148,9 +144,9 @@ void AddRobotCommands(CLI::App* root, CommandList* commands) {
       "the configuration is collision-free, 1 when it collides, 2 on bad input.");
   commands->push_back(
       {check, [ca]() {
-         RobotScene scene = LoadRobotScene(ca->input, PackagePaths(ca->package_paths));
+         RobotScene scene = LoadRobotScene(ca->input, ca->robot_input);
          for (const std::string& spec : ca->objects) AddObjectSpec(spec, &scene);
-         if (!ca->q.empty()) scene.q = ParseQ(scene.robot, ca->q);
+         scene.q = ChooseQ(scene, ca->q, ca->pose);
          planning::CollisionOptions options = scene.collision_options;
          options.self_collision = options.self_collision && !ca->no_self;
          planning::KinematicsData kin(scene.robot);

@@ -11,6 +11,7 @@
 #include <stdexcept>
 
 #include "app/assets.h"
+#include "app/command.h"
 #include "app/io.h"
 #include "planning/robot_io.h"
 #include "planning/scenario.h"
@@ -141,15 +142,47 @@ planning::Environment CollisionEnvironment(const RobotScene& scene) {
   return env;
 }
 
-RobotScene LoadRobotScene(const std::string& path, const std::vector<std::string>& package_paths) {
+namespace {
+
+// Loads the SRDF at `srdf_path` (if not empty) for scene.robot and disables its pairs.
+void AttachSrdf(const std::string& srdf_path, RobotScene* s) {
+  if (srdf_path.empty()) return;
+  s->srdf = planning::LoadSrdf(srdf_path);
+  planning::CheckSrdf(*s->srdf, s->robot);
+  for (const auto& pair : planning::DisabledPairs(*s->srdf)) {
+    s->collision_options.disabled_pairs.push_back(pair);
+  }
+}
+
+// Paths of a scene's "package_paths", relative to its folder.
+std::vector<std::string> ScenePackagePaths(const nlohmann::json& doc, const std::string& path,
+                                           const fs::path& base) {
+  std::vector<std::string> out;
+  if (!doc.contains("package_paths")) return out;
+  const nlohmann::json& pp = doc["package_paths"];
+  if (!pp.is_array()) throw std::invalid_argument(path + ": package_paths: expected an array");
+  for (size_t i = 0; i < pp.size(); ++i) {
+    if (!pp[i].is_string()) {
+      throw std::invalid_argument(path + ": package_paths[" + std::to_string(i) +
+                                  "]: expected a folder (string)");
+    }
+    const fs::path p(pp[i].get<std::string>());
+    out.push_back(p.is_absolute() ? p.string() : (base / p).string());
+  }
+  return out;
+}
+
+RobotScene LoadRobotSceneImpl(const std::string& path, const std::vector<std::string>& flag_paths,
+                              const std::string& srdf_flag, bool add_ros_paths) {
   planning::RobotLoadOptions options;
-  options.package_paths = package_paths;
+  options.package_paths = add_ros_paths ? PackagePaths(flag_paths) : flag_paths;
   RobotScene s;
   s.source = path;
   const std::string ext = Ext(path);
   if (ext == ".urdf") {
     s.robot = planning::LoadRobot(path, options);
     s.q = Eigen::VectorXd::Zero(planning::num_dofs(s.robot));
+    AttachSrdf(srdf_flag.empty() ? planning::FindSrdf(path) : srdf_flag, &s);
     return s;
   }
   if (ext != ".json") {
@@ -166,20 +199,38 @@ RobotScene LoadRobotScene(const std::string& path, const std::vector<std::string
   const fs::path base = fs::path(path).parent_path();
   if (doc.is_object() && doc.contains("robot") && doc.contains("tasks")) {
     // A planning scenario: its own loader decides the start configuration and the collision set.
-    const std::unique_ptr<planning::Scenario> sc = LoadScenarioArg(path);
+    planning::ScenarioOverrides overrides;
+    overrides.search_roots = {AssetRoot()};
+    overrides.package_paths = options.package_paths;
+    overrides.srdf = srdf_flag;
+    const std::unique_ptr<planning::Scenario> sc = LoadScenarioArg(path, overrides);
     s.robot = sc->robot;
     s.q = sc->problem.q0;
     s.env = sc->objects;
     s.collides.assign(s.env.objects.size(), true);
     s.has_collision_env = true;
     s.collision_env = sc->env;
-    s.collision_options = sc->collision;
+    s.collision_options = sc->collision;  // SRDF pairs included
+    const std::string srdf = !srdf_flag.empty()       ? srdf_flag
+                             : !sc->spec.srdf.empty() ? sc->spec.srdf
+                                                      : planning::FindSrdf(sc->spec.robot);
+    if (!srdf.empty()) s.srdf = planning::LoadSrdf(srdf);
     return s;
   }
   if (!doc.is_object() || !doc.contains("robot") || !doc["robot"].is_string()) {
     throw std::invalid_argument(path + ": robot: expected a URDF path (string)");
   }
-  s.robot = planning::LoadRobot(ResolveRelative(doc["robot"].get<std::string>(), base), options);
+  const std::vector<std::string> scene_paths = ScenePackagePaths(doc, path, base);
+  options.package_paths.insert(options.package_paths.begin() + flag_paths.size(),
+                               scene_paths.begin(), scene_paths.end());
+  const std::string urdf = ResolveRelative(doc["robot"].get<std::string>(), base);
+  s.robot = planning::LoadRobot(urdf, options);
+  std::string srdf = srdf_flag;
+  if (srdf.empty() && doc.contains("srdf")) {
+    if (!doc["srdf"].is_string()) throw std::invalid_argument(path + ": srdf: expected a path");
+    srdf = ResolveRelative(doc["srdf"].get<std::string>(), base);
+  }
+  AttachSrdf(srdf.empty() ? planning::FindSrdf(urdf) : srdf, &s);
   const int n = planning::num_dofs(s.robot);
   s.q = Eigen::VectorXd::Zero(n);
   if (doc.contains("q")) {
@@ -205,7 +256,7 @@ RobotScene LoadRobotScene(const std::string& path, const std::vector<std::string
         throw std::invalid_argument(path + ": " + jp + ".urdf: expected a URDF path");
       }
       const planning::Robot object =
-          planning::LoadRobot(ResolveRelative(o["urdf"].get<std::string>(), base));
+          planning::LoadRobot(ResolveRelative(o["urdf"].get<std::string>(), base), options);
       const std::string name =
           o.contains("name") && o["name"].is_string() ? o["name"].get<std::string>() : object.name;
       // "xyz" is the scenario files' spelling (planning/scenario.h), "position" ours.
@@ -226,6 +277,43 @@ RobotScene LoadRobotScene(const std::string& path, const std::vector<std::string
     }
   }
   return s;
+}
+
+}  // namespace
+
+RobotScene LoadRobotScene(const std::string& path, const std::vector<std::string>& package_paths) {
+  return LoadRobotSceneImpl(path, package_paths, "", false);
+}
+
+RobotScene LoadRobotScene(const std::string& path, const RobotInputOptions& options) {
+  return LoadRobotSceneImpl(path, options.package_paths, options.srdf, true);
+}
+
+Eigen::VectorXd ChooseQ(const RobotScene& scene, const std::string& q_text,
+                        const std::string& pose) {
+  if (!q_text.empty() && !pose.empty()) {
+    throw std::invalid_argument("--q and --pose: give at most one of them");
+  }
+  if (!q_text.empty()) return ParseQ(scene.robot, q_text);
+  if (pose.empty()) return scene.q;
+  if (!scene.srdf) {
+    throw std::invalid_argument("--pose " + pose + ": robot '" + scene.robot.name +
+                                "' has no SRDF (give --srdf FILE)");
+  }
+  return planning::NamedPose(scene.robot, *scene.srdf, pose);
+}
+
+void AddRobotInputFlags(CLI::App* cmd, RobotInputOptions* options, std::string* pose) {
+  cmd->add_option("--package-path", options->package_paths,
+                  "extra root folder for package://PKG/... mesh URIs (repeatable; "
+                  "$ROS_PACKAGE_PATH and the URDF's ancestor folders are searched too)");
+  cmd->add_option("--srdf", options->srdf,
+                  "SRDF of the robot: its disable_collisions pairs are not checked, its "
+                  "group_states are --pose names (default: NAME.srdf next to NAME.urdf or in "
+                  "../srdf/)");
+  if (pose) {
+    cmd->add_option("--pose", *pose, "configuration: a group_state of the SRDF (instead of --q)");
+  }
 }
 
 }  // namespace app

@@ -7,6 +7,10 @@
 // Scene JSON (other keys are ignored):
 //   {"robot": "robots/lwr4_sdh.urdf",          // relative to the JSON file, else to assets/
 //    "q": [0, 0.5, ...],                        // optional, fk joint order; default zeros
+//    "srdf": "robots/lwr4_sdh.srdf",           // optional (planning/srdf.h), relative to the JSON;
+//                                               // default: FindSrdf next to the robot's URDF
+//    "package_paths": ["../ros_ws/src"],        // optional extra package:// roots, relative to
+//                                               // the JSON file's folder
 //    "objects": [{"name": "pole", "urdf": "objects/pole.urdf",      // optional
 //                 "position": [x, y, z] (or "xyz"), "rpy": [roll, pitch, yaw],
 //                 "collide": true}, ...],      // false: drawn, but not collision-checked
@@ -16,11 +20,17 @@
 
 #include <Eigen/Core>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "planning/collision.h"
 #include "planning/robot.h"
+#include "planning/srdf.h"
+
+namespace CLI {
+class App;
+}
 
 namespace app {
 
@@ -36,6 +46,17 @@ struct RobotScene {
   planning::Environment collision_env;
   planning::CollisionOptions collision_options;
   nlohmann::json document;  // the JSON document (null for a URDF input), for optional extras
+  // The robot's SRDF (--srdf, the file's "srdf", or found next to the URDF); its disabled pairs
+  // are in collision_options.
+  std::optional<planning::Srdf> srdf;
+};
+
+// What the robot-loading flags add: --package-path (repeatable) and --srdf.
+struct RobotInputOptions {
+  // Tried first. Then: for a scene JSON its "package_paths", then $ROS_PACKAGE_PATH; for a
+  // scenario $ROS_PACKAGE_PATH, then its "package_paths"; last the URDF's ancestor folders.
+  std::vector<std::string> package_paths;
+  std::string srdf;  // empty: the file's "srdf", else planning::FindSrdf
 };
 
 // Package roots for package:// URIs: `extra` followed by the entries of $ROS_PACKAGE_PATH.
@@ -43,10 +64,20 @@ std::vector<std::string> PackagePaths(const std::vector<std::string>& extra);
 
 // Loads `path`: a .urdf robot (q = 0, no objects), or a .json scene with a "robot" key.
 RobotScene LoadRobotScene(const std::string& path, const std::vector<std::string>& package_paths);
+// Same with the flags' options (ROS_PACKAGE_PATH is appended here).
+RobotScene LoadRobotScene(const std::string& path, const RobotInputOptions& options);
+
+// The configuration chosen by `--q` text or `--pose` name (a group_state of scene.srdf); neither:
+// scene.q. Throws std::invalid_argument when both are given or a pose has no SRDF.
+Eigen::VectorXd ChooseQ(const RobotScene& scene, const std::string& q_text,
+                        const std::string& pose);
 
 // True if `path` names something LoadRobotScene accepts: a .urdf file, or a .json whose top-level
 // object has a "robot" key.
 bool IsRobotSceneFile(const std::string& path);
+
+// Adds --package-path (repeatable) and --srdf to `cmd`, and --pose when `pose` is not null.
+void AddRobotInputFlags(CLI::App* cmd, RobotInputOptions* options, std::string* pose);
 
 // Parses "--q v1,...,vn" for `robot`; empty text gives zeros. Throws std::invalid_argument naming
 // the flag and listing the expected joints when the count differs.

@@ -248,8 +248,14 @@ render::Camera FrameSceneCamera(const render::Scene& scene, const Eigen::Vector3
 
 SceneDocument RobotSceneDocument(const std::string& path, const std::string& q_text,
                                  const SceneBuildOptions& options) {
-  RobotScene rs = LoadRobotScene(path, PackagePaths({}));
-  if (!q_text.empty()) rs.q = ParseQ(rs.robot, q_text);
+  return RobotSceneDocument(path, q_text, "", RobotInputOptions{}, options);
+}
+
+SceneDocument RobotSceneDocument(const std::string& path, const std::string& q_text,
+                                 const std::string& pose, const RobotInputOptions& input,
+                                 const SceneBuildOptions& options) {
+  RobotScene rs = LoadRobotScene(path, input);
+  rs.q = ChooseQ(rs, q_text, pose);
   planning::KinematicsData kin(rs.robot);
   planning::ForwardKinematics(rs.robot, rs.q, &kin);
   SceneMeshCache cache;

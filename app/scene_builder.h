@@ -61,5 +61,9 @@ render::Camera FrameSceneCamera(const render::Scene& scene,
 // automatically; the size from the JSON's "size" if present.
 SceneDocument RobotSceneDocument(const std::string& path, const std::string& q_text,
                                  const SceneBuildOptions& options = {});
+// Same with --package-path/--srdf (`input`) and --pose (`pose`, a group_state of the SRDF).
+SceneDocument RobotSceneDocument(const std::string& path, const std::string& q_text,
+                                 const std::string& pose, const RobotInputOptions& input,
+                                 const SceneBuildOptions& options = {});
 
 }  // namespace app

@@ -4,6 +4,7 @@
 #include <fcl/geometry/bvh/BVH_model.h>
 #include <fcl/geometry/shape/box.h>
 #include <fcl/geometry/shape/capsule.h>
+#include <fcl/geometry/shape/convex.h>
 #include <fcl/geometry/shape/cylinder.h>
 #include <fcl/geometry/shape/sphere.h>
 #include <fcl/math/bv/OBBRSS.h>
@@ -14,10 +15,12 @@
 #include <cassert>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <stdexcept>
 #include <tuple>
 
 #include "planning/internal/fcl_scene.h"
+#include "planning/mesh_io.h"
 
 namespace planning {
 namespace {
@@ -26,7 +29,32 @@ using internal::FclPair;
 using internal::FclScene;
 using internal::FclShape;
 
-std::shared_ptr<fcl::CollisionGeometryd> MakeGeometry(const Robot& model, const Geometry& g) {
+// FCL convex shape of a hull (scaled per axis); null when the hull is empty.
+std::shared_ptr<fcl::CollisionGeometryd> MakeConvex(const Mesh& hull,
+                                                    const Eigen::Vector3d& scale) {
+  if (hull.triangles.empty()) return nullptr;
+  auto vertices = std::make_shared<std::vector<fcl::Vector3d>>();
+  vertices->reserve(hull.vertices.size());
+  for (const Eigen::Vector3f& v : hull.vertices) {
+    vertices->push_back(v.cast<double>().cwiseProduct(scale));
+  }
+  auto faces = std::make_shared<std::vector<int>>();
+  faces->reserve(4 * hull.triangles.size());
+  for (const Eigen::Vector3i& t : hull.triangles) {
+    faces->insert(faces->end(), {3, t[0], t[1], t[2]});
+  }
+  return std::make_shared<fcl::Convexd>(vertices, static_cast<int>(hull.triangles.size()), faces);
+}
+
+// `hulls`: per mesh index of `model`, its convex hull (computed on first use) when meshes are
+// collided as hulls; null for exact triangle BVHs.
+std::shared_ptr<fcl::CollisionGeometryd> MakeGeometry(const Robot& model, const Geometry& g,
+                                                      std::map<int, Mesh>* hulls = nullptr) {
+  if (g.kind == Geometry::Kind::kMesh && hulls) {
+    auto it = hulls->find(g.mesh);
+    if (it == hulls->end()) it = hulls->emplace(g.mesh, ConvexHull(model.meshes.at(g.mesh))).first;
+    if (auto convex = MakeConvex(it->second, g.size)) return convex;
+  }
   switch (g.kind) {
     case Geometry::Kind::kBox:
       return std::make_shared<fcl::Boxd>(g.size[0], g.size[1], g.size[2]);
@@ -71,7 +99,7 @@ struct BroadphaseQuery {
 bool Skip(const FclScene& s, const FclShape& a, const FclShape& b) {
   if (a.object >= 0 && b.object >= 0) return true;  // environment vs environment
   if (a.object < 0 && b.object < 0) {
-    return !s.self_collision || s.skip[a.link * s.num_links + b.link] != 0;
+    return !s.self_collision || s.skip[s.geo_row[a.link] * s.num_links + s.geo_row[b.link]] != 0;
   }
   return !s.environment;
 }
@@ -213,6 +241,14 @@ Robot MakePrimitiveObject(const std::string& name, const Geometry& geometry) {
   if (geometry.kind == Geometry::Kind::kMesh) {
     throw std::invalid_argument("MakePrimitiveObject: '" + name + "' must be a primitive");
   }
+  const bool round = geometry.kind != Geometry::Kind::kBox;  // size[0] is a radius
+  for (int i = 0; i < 3; ++i) {
+    if (!std::isfinite(geometry.size[i]) || geometry.size[i] < 0 ||
+        (round && i == 0 && !(geometry.size[0] > 0))) {
+      throw std::invalid_argument("MakePrimitiveObject: '" + name +
+                                  "': sizes must be finite and >= 0, radii > 0");
+    }
+  }
   Robot r;
   r.name = name;
   r.source = "<primitive " + name + ">";
@@ -250,19 +286,28 @@ CollisionData::CollisionData(const Robot& robot, const Environment& env,
   FclScene& s = *scene;
   s.self_collision = options.self_collision;
   s.environment = options.environment;
-  s.num_links = static_cast<int>(robot.links.size());
+  s.geo_row.assign(robot.links.size(), -1);
+  std::vector<int> geo_links;  // links with collision shapes, in link order
+  for (size_t l = 0; l < robot.links.size(); ++l) {
+    if (robot.links[l].collisions.empty()) continue;
+    s.geo_row[l] = static_cast<int>(geo_links.size());
+    geo_links.push_back(static_cast<int>(l));
+  }
+  s.num_links = static_cast<int>(geo_links.size());
   // Robot shapes.
   size_t count = 0;
   for (const Link& l : robot.links) count += l.collisions.size();
   s.robot.resize(count);
   int k = 0;
+  std::map<int, Mesh> hulls;
   for (size_t l = 0; l < robot.links.size(); ++l) {
     for (const Geometry& g : robot.links[l].collisions) {
       FclShape& shape = s.robot[k];
       shape.link = static_cast<int>(l);
       shape.index = k++;
       shape.link_from_shape = g.link_from_geometry;
-      shape.obj = std::make_unique<fcl::CollisionObjectd>(MakeGeometry(robot, g));
+      shape.obj = std::make_unique<fcl::CollisionObjectd>(
+          MakeGeometry(robot, g, options.exact_meshes ? nullptr : &hulls));
       shape.obj->setUserData(&shape);
     }
   }
@@ -296,18 +341,21 @@ CollisionData::CollisionData(const Robot& robot, const Environment& env,
   s.skip.assign(static_cast<size_t>(s.num_links) * s.num_links, 0);
   for (int a = 0; a < s.num_links; ++a) {
     for (int b = 0; b < s.num_links; ++b) {
-      if (AreAdjacent(robot, a, b)) s.skip[a * s.num_links + b] = 1;
+      if (AreAdjacent(robot, geo_links[a], geo_links[b])) s.skip[a * s.num_links + b] = 1;
     }
   }
   for (const auto& [na, nb] : options.disabled_pairs) {
-    const int a = FindLink(robot, na), b = FindLink(robot, nb);
+    const int a = s.geo_row[FindLink(robot, na)], b = s.geo_row[FindLink(robot, nb)];
+    if (a < 0 || b < 0) continue;  // a link without shapes is never checked anyway
     s.skip[a * s.num_links + b] = s.skip[b * s.num_links + a] = 1;
   }
   // Candidate shape pairs for distance queries: self pairs (a < b), then per object.
   if (s.self_collision) {
     for (size_t a = 0; a < s.robot.size(); ++a) {
       for (size_t b = a + 1; b < s.robot.size(); ++b) {
-        if (s.skip[s.robot[a].link * s.num_links + s.robot[b].link]) continue;
+        if (s.skip[s.geo_row[s.robot[a].link] * s.num_links + s.geo_row[s.robot[b].link]]) {
+          continue;
+        }
         s.pairs.push_back({static_cast<int>(a), static_cast<int>(b), false});
       }
     }
@@ -375,14 +423,40 @@ void ComputeProximity(const Robot& robot, const KinematicsData& kin, double marg
 
 double MinDistance(const Robot& robot, const KinematicsData& kin, CollisionData* coll,
                    ProximityPair* closest) {
+  FclScene& s = *coll->scene;
+  assert(kin.world_from_link.size() == robot.links.size());
+  (void)robot;
+  UpdateRobot(kin, &s);
+  ++coll->queries;
+  // Branch and bound: a pair's distance is at least the gap between its bounding boxes, so pairs
+  // are visited by increasing gap until the gap reaches the best distance found. Ties keep the
+  // pair that comes first in the checked-pair order.
+  std::vector<std::pair<double, int>> order;
+  order.reserve(s.pairs.size());
+  for (size_t i = 0; i < s.pairs.size(); ++i) {
+    const FclPair& p = s.pairs[i];
+    const FclShape& b = p.env_pair ? s.env[p.b] : s.robot[p.b];
+    order.emplace_back(AabbGap(*s.robot[p.a].obj, *b.obj), static_cast<int>(i));
+  }
+  std::sort(order.begin(), order.end());
   double best = std::numeric_limits<double>::infinity();
-  ForEachClosePair(robot, kin, std::numeric_limits<double>::infinity(), coll,
-                   [&](const ProximityPair& p) {
-                     if (p.distance < best) {
-                       best = p.distance;
-                       if (closest) *closest = p;
-                     }
-                   });
+  int best_index = -1;
+  for (const auto& [gap, i] : order) {
+    if (gap > best) break;
+    const FclPair& p = s.pairs[i];
+    const FclShape& a = s.robot[p.a];
+    const FclShape& b = p.env_pair ? s.env[p.b] : s.robot[p.b];
+    ProximityPair pair;
+    pair.link_a = a.link;
+    pair.link_b = p.env_pair ? -1 : b.link;
+    pair.object = p.env_pair ? b.object : -1;
+    ShapeDistance(a, b, coll, &pair);
+    if (pair.distance < best || (pair.distance == best && i < best_index)) {
+      best = pair.distance;
+      best_index = i;
+      if (closest) *closest = pair;
+    }
+  }
   return best;
 }
 

@@ -9,9 +9,13 @@
 //   ComputeProximity(robot, kin, 0.05, &coll, &pairs);  // pairs closer than 5 cm, with witnesses
 //   coll.narrow_phase_calls                             // the counter planners/benchmarks read
 //
-// Shapes: box, sphere, cylinder and capsule map to FCL primitives, meshes to an OBBRSS BVH of
-// their triangles (non-convex is fine for collision; distances of penetrating meshes come from the
-// contact's penetration depth). FCL types never appear in this header.
+// Shapes: box, sphere, cylinder and capsule map to FCL primitives. Robot link meshes become FCL
+// convex shapes of their convex hulls (qhull; planning/mesh_io.h ConvexHull) unless
+// CollisionOptions::exact_meshes is set; environment meshes (rings, mugs: not convex) and flat
+// meshes without a solid hull use an OBBRSS BVH of their triangles (distances of penetrating
+// meshes come from the contact's penetration depth). Boolean checks run through dynamic AABB
+// trees (broadphase) and stop at the first colliding pair; distance queries skip pairs whose
+// bounding boxes are farther apart than the margin. FCL types never appear in this header.
 #pragma once
 
 #include <Eigen/Core>
@@ -49,7 +53,8 @@ void AddObject(const Robot& object, const Eigen::Isometry3d& world_from_object,
                const std::string& name, Environment* env);
 
 // A one-link object made of a single primitive (box/sphere/cylinder/capsule), used as both its
-// visual and collision geometry, e.g. for obstacles declared inline in a scenario.
+// visual and collision geometry, e.g. for obstacles declared inline in a scenario. Throws
+// std::invalid_argument for a size that is not finite or negative, or a radius <= 0.
 Robot MakePrimitiveObject(const std::string& name, const Geometry& geometry);
 
 // World positions of chain `chain` of object `object` (3 × ChainSize, closed chains repeat their
@@ -65,6 +70,9 @@ struct CollisionOptions {
   // Further link pairs (by name) never checked against each other, e.g. links that touch by
   // design. Unknown names throw std::invalid_argument at construction.
   std::vector<std::pair<std::string, std::string>> disabled_pairs;
+  // Robot link meshes: false (default) collide as their convex hulls (fast, conservative: a hull
+  // contains the mesh); true as exact triangle BVHs (slow on real robot meshes).
+  bool exact_meshes = false;
 };
 
 // Mutable collision workspace for one robot + environment: one FCL object per collision shape,
@@ -120,7 +128,9 @@ void ComputeProximity(const Robot& robot, const KinematicsData& kin, double marg
                       CollisionData* coll, std::vector<ProximityPair>* out);
 
 // Minimum signed distance over all checked pairs (+∞ if there are none); if `closest` is not null
-// it receives the closest pair. Costs one narrow-phase distance call per checked shape pair.
+// it receives the closest pair (the first in checked-pair order among equal distances). Pairs are
+// visited by increasing bounding-box gap and the search stops when that gap exceeds the best
+// distance found, so far-apart pairs cost no narrow-phase call.
 double MinDistance(const Robot& robot, const KinematicsData& kin, CollisionData* coll,
                    ProximityPair* closest = nullptr);
 

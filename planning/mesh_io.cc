@@ -6,8 +6,15 @@
 #include <assimp/scene.h>
 
 #include <assimp/Importer.hpp>
+#include <cstdio>
 #include <filesystem>
+#include <map>
+#include <memory>
 #include <stdexcept>
+
+extern "C" {
+#include <libqhull_r/qhull_ra.h>
+}
 
 namespace planning {
 namespace {
@@ -66,6 +73,62 @@ Mesh LoadMesh(const std::string& path) {
   }
   if (mesh.triangles.empty()) throw std::invalid_argument(path + ": mesh has no triangles");
   return mesh;
+}
+
+Mesh ConvexHull(const Mesh& mesh) {
+  Mesh hull;
+  hull.path = mesh.path;
+  if (mesh.vertices.size() < 4) return hull;
+  std::vector<coordT> points;
+  points.reserve(3 * mesh.vertices.size());
+  for (const Eigen::Vector3f& v : mesh.vertices) {
+    for (int i = 0; i < 3; ++i) points.push_back(v[i]);
+  }
+  // qhull reports degenerate input on its error stream: keep it quiet, the caller falls back.
+  const std::unique_ptr<FILE, int (*)(FILE*)> quiet(std::fopen("/dev/null", "w"), &std::fclose);
+  qhT qh_storage;
+  qhT* qh = &qh_storage;
+  qh_zero(qh, quiet.get());
+  char options[] = "qhull Qt";  // triangulated output
+  const int status = qh_new_qhull(qh, 3, static_cast<int>(mesh.vertices.size()), points.data(),
+                                  False, options, nullptr, quiet.get());
+  if (status == 0) {
+    std::map<int, int> index;  // input point id → hull vertex
+    auto vertex_of = [&](const vertexT* v) {
+      const int id = qh_pointid(qh, v->point);
+      auto [it, added] = index.emplace(id, static_cast<int>(hull.vertices.size()));
+      if (added) hull.vertices.push_back(mesh.vertices[id]);
+      return it->second;
+    };
+    facetT* facet;
+    FORALLfacets {
+      if (qh_setsize(qh, facet->vertices) != 3) continue;
+      Eigen::Vector3i t(vertex_of(static_cast<vertexT*>(facet->vertices->e[0].p)),
+                        vertex_of(static_cast<vertexT*>(facet->vertices->e[1].p)),
+                        vertex_of(static_cast<vertexT*>(facet->vertices->e[2].p)));
+      const Eigen::Vector3f a = hull.vertices[t[0]], b = hull.vertices[t[1]],
+                            c = hull.vertices[t[2]];
+      const Eigen::Vector3f outward(static_cast<float>(facet->normal[0]),
+                                    static_cast<float>(facet->normal[1]),
+                                    static_cast<float>(facet->normal[2]));
+      if ((b - a).cross(c - a).dot(outward) < 0) std::swap(t[1], t[2]);
+      hull.triangles.push_back(t);
+    }
+  }
+  qh_freeqhull(qh, !qh_ALL);
+  int curlong = 0, totlong = 0;
+  qh_memfreeshort(qh, &curlong, &totlong);
+  if (status != 0) return Mesh{mesh.path, {}, {}, {}};
+  hull.normals.assign(hull.vertices.size(), Eigen::Vector3f::Zero());
+  for (const Eigen::Vector3i& t : hull.triangles) {
+    const Eigen::Vector3f n = (hull.vertices[t[1]] - hull.vertices[t[0]])
+                                  .cross(hull.vertices[t[2]] - hull.vertices[t[0]]);
+    for (int i = 0; i < 3; ++i) hull.normals[t[i]] += n;
+  }
+  for (Eigen::Vector3f& n : hull.normals) {
+    n = n.norm() > 0 ? Eigen::Vector3f(n.normalized()) : Eigen::Vector3f::UnitZ();
+  }
+  return hull;
 }
 
 }  // namespace planning

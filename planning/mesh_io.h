@@ -28,4 +28,11 @@ namespace planning {
 // it, or it has no triangles.
 Mesh LoadMesh(const std::string& path);
 
+// Convex hull of the mesh's vertices (qhull), as a closed triangle mesh with outward
+// counter-clockwise faces; `path` is kept, normals are the face normals averaged per vertex.
+// Returns an empty mesh (no triangles) when the points span less than three dimensions (a flat or
+// degenerate mesh has no solid hull; callers fall back to the triangles themselves).
+// O(v log v) for v vertices.
+Mesh ConvexHull(const Mesh& mesh);
+
 }  // namespace planning

@@ -7,6 +7,8 @@
 #include <urdf_model/model.h>
 #include <urdf_parser/urdf_parser.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -17,6 +19,7 @@
 #include <stdexcept>
 
 #include "planning/chain_json.h"
+#include "planning/internal/xml_text.h"
 #include "planning/json_reader.h"
 #include "planning/mesh_io.h"
 
@@ -49,15 +52,63 @@ struct XmlSummary {
   std::string robot_name;
   std::vector<std::string> links;  // file order
   std::map<std::string, int> link_line;
-  std::vector<XmlJoint> joints;  // file order
+  std::map<std::string, std::array<size_t, 2>> geometry_count;  // link → (visuals, collisions)
+  std::vector<XmlJoint> joints;                                 // file order
 };
 
-std::string Attr(const TiXmlElement* e, const char* name) {
-  const char* v = e->Attribute(name);
-  return v ? std::string(v) : std::string();
+std::string Attr(const TiXmlElement* e, const char* name) { return internal::XmlAttr(e, name); }
+
+// Numbers in attribute `attr` of `e`: exactly `count` finite numbers (any count if 0).
+void CheckNumberAttr(const TiXmlElement* e, const char* attr, int count, bool required,
+                     const std::string& source, const std::string& where) {
+  const char* v = e->Attribute(attr);
+  if (!v) {
+    if (required) Fail(source, e->Row(), where + ": <" + e->Value() + "> needs " + attr + "=");
+    return;
+  }
+  std::vector<double> numbers;
+  if (!internal::ParseNumbers(v, count, &numbers)) {
+    Fail(source, e->Row(),
+         where + ": <" + e->Value() + " " + attr + "=\"" + v + "\">: expected " +
+             (count > 1 ? std::to_string(count) + " finite numbers" : "a finite number"));
+  }
+}
+
+// A <visual> or <collision>: origin numbers and exactly one known shape with valid numbers, so
+// that urdfdom never drops the element (it logs and skips what it cannot parse).
+void ValidateGeometryElement(const TiXmlElement* e, const std::string& source,
+                             const std::string& where) {
+  if (const TiXmlElement* o = e->FirstChildElement("origin")) {
+    CheckNumberAttr(o, "xyz", 3, false, source, where);
+    CheckNumberAttr(o, "rpy", 3, false, source, where);
+  }
+  const TiXmlElement* g = e->FirstChildElement("geometry");
+  if (!g) Fail(source, e->Row(), where + ": missing <geometry>");
+  const TiXmlElement* shape = g->FirstChildElement();
+  if (!shape) Fail(source, g->Row(), where + ": <geometry> is empty");
+  const std::string type = shape->Value();
+  if (type == "box") {
+    CheckNumberAttr(shape, "size", 3, true, source, where);
+  } else if (type == "sphere") {
+    CheckNumberAttr(shape, "radius", 1, true, source, where);
+  } else if (type == "cylinder") {
+    CheckNumberAttr(shape, "radius", 1, true, source, where);
+    CheckNumberAttr(shape, "length", 1, true, source, where);
+  } else if (type == "mesh") {
+    if (Attr(shape, "filename").empty()) {
+      Fail(source, shape->Row(), where + ": <mesh> needs filename=");
+    }
+    CheckNumberAttr(shape, "scale", 3, false, source, where);
+  } else {
+    Fail(source, shape->Row(),
+         where + ": unknown geometry <" + type +
+             "> (expected box, sphere, cylinder or mesh; a capsule is a <cylinder> in an "
+             "element whose name starts with \"capsule\")");
+  }
 }
 
 XmlSummary ValidateXml(const std::string& xml, const std::string& source) {
+  internal::CheckXmlDepth(xml, source);
   TiXmlDocument doc;
   doc.Parse(xml.c_str());
   if (doc.Error()) {
@@ -80,6 +131,17 @@ XmlSummary ValidateXml(const std::string& xml, const std::string& source) {
     }
     s.link_line[name] = e->Row();
     s.links.push_back(name);
+    if (s.links.size() > kMaxUrdfLinks) {
+      Fail(source, e->Row(), "more than " + std::to_string(kMaxUrdfLinks) + " links");
+    }
+    for (int kind = 0; kind < 2; ++kind) {
+      const char* tag = kind == 0 ? "visual" : "collision";
+      size_t& k = s.geometry_count[name][kind];
+      for (const TiXmlElement* v = e->FirstChildElement(tag); v;
+           v = v->NextSiblingElement(tag), ++k) {
+        ValidateGeometryElement(v, source, "link '" + name + "' " + tag + " " + std::to_string(k));
+      }
+    }
   }
   if (s.links.empty()) Fail(source, robot->Row(), "the robot has no <link>");
   std::map<std::string, int> joint_line;
@@ -151,16 +213,24 @@ XmlSummary ValidateXml(const std::string& xml, const std::string& source) {
   for (const std::string& l : s.links) {
     if (!parent_of.count(l)) roots.push_back(l);
   }
-  std::map<std::string, std::string> parent_link;
-  for (const XmlJoint& j : s.joints) parent_link[j.child] = j.parent;
-  for (const std::string& l : s.links) {
-    // Walking up from any link must end at a root within |links| steps.
-    std::string cur = l;
-    for (size_t steps = 0; parent_link.count(cur); ++steps) {
-      if (steps > s.links.size()) {
+  if (roots.empty())
+    Fail(source, s.link_line[s.links[0]], "kinematic cycle through link '" + s.links[0] + "'");
+  if (roots.size() == 1) {
+    // Every link has at most one parent, so a link not reachable from the single root lies on
+    // a cycle (or hangs below one). Breadth-first from the root: O(links + joints).
+    std::map<std::string, std::vector<std::string>> kids;
+    for (const XmlJoint& j : s.joints) kids[j.parent].push_back(j.child);
+    std::set<std::string> reached{roots[0]};
+    std::vector<std::string> queue{roots[0]};
+    for (size_t i = 0; i < queue.size(); ++i) {
+      for (const std::string& c : kids[queue[i]]) {
+        if (reached.insert(c).second) queue.push_back(c);
+      }
+    }
+    for (const std::string& l : s.links) {
+      if (!reached.count(l)) {
         Fail(source, s.link_line[l], "kinematic cycle through link '" + l + "'");
       }
-      cur = parent_link[cur];
     }
   }
   if (roots.size() != 1) {
@@ -175,13 +245,21 @@ XmlSummary ValidateXml(const std::string& xml, const std::string& source) {
   for (const XmlJoint& j : s.joints) {
     if (!j.mimic.empty()) mimic_of[j.name] = j.mimic;
   }
+  // Each joint mimics at most one: follow each chain once (0 new, 1 on the current walk, 2 ends
+  // at an independent joint), O(joints).
+  std::map<std::string, int> state;
   for (const XmlJoint& j : s.joints) {
+    std::vector<std::string> walk;
     std::string cur = j.name;
-    for (size_t steps = 0; mimic_of.count(cur); ++steps) {
-      if (steps > s.joints.size())
-        Fail(source, j.line, "mimic cycle through joint '" + j.name + "'");
+    while (mimic_of.count(cur) && state[cur] == 0) {
+      state[cur] = 1;
+      walk.push_back(cur);
       cur = mimic_of[cur];
     }
+    if (mimic_of.count(cur) && state[cur] == 1) {
+      Fail(source, j.line, "mimic cycle through joint '" + j.name + "'");
+    }
+    for (const std::string& w : walk) state[w] = 2;
   }
   return s;
 }
@@ -213,19 +291,41 @@ struct MeshResolver {
       if (slash == std::string::npos) Fail(source, 0, "malformed mesh URI '" + uri + "'");
       const std::string pkg = rest.substr(0, slash);
       const std::string rel = rest.substr(slash + 1);
+      const fs::path rel_path = fs::path(rel).lexically_normal();
+      if (rel_path.empty() || rel_path.is_absolute() || *rel_path.begin() == "..") {
+        Fail(source, 0, "mesh '" + uri + "' leaves its package '" + pkg + "'");
+      }
       std::vector<fs::path> roots(package_paths.begin(), package_paths.end());
       for (fs::path d = fs::absolute(base_dir); !d.empty(); d = d.parent_path()) {
         roots.push_back(d);
         if (d == d.parent_path()) break;
       }
-      std::string tried;
+      std::string tried, missing;
       for (const fs::path& root : roots) {
-        const fs::path a = root / pkg / rel;
-        if (fs::is_regular_file(a)) return a.lexically_normal().string();
-        if (root.filename() == pkg && fs::is_regular_file(root / rel)) {
-          return (root / rel).lexically_normal().string();
+        for (const fs::path& pkg_root : {root / pkg, root.filename() == pkg ? root : fs::path()}) {
+          if (pkg_root.empty() || !fs::is_directory(pkg_root)) continue;
+          const fs::path file = pkg_root / rel_path;
+          // Symbolic links must not lead out of the package either.
+          std::error_code ec;
+          const fs::path real_root = fs::weakly_canonical(pkg_root, ec);
+          const fs::path real_file = fs::weakly_canonical(file, ec);
+          const auto [end, unused] =
+              std::mismatch(real_root.begin(), real_root.end(), real_file.begin(), real_file.end());
+          (void)unused;
+          if (ec || end != real_root.end()) {
+            Fail(source, 0,
+                 "mesh '" + uri + "' resolves to " + real_file.string() + ", outside package '" +
+                     pkg + "' (" + real_root.string() + ")");
+          }
+          if (fs::is_regular_file(file)) return file.lexically_normal().string();
+          if (missing.size() < 400) {
+            missing += (missing.empty() ? "" : ", ") + file.lexically_normal().string();
+          }
         }
         if (tried.size() < 400) tried += (tried.empty() ? "" : ", ") + root.string();
+      }
+      if (!missing.empty()) {
+        Fail(source, 0, "mesh '" + uri + "' not found: no file " + missing);
       }
       Fail(source, 0,
            "mesh '" + uri + "' not found: package '" + pkg + "' is not under any search root (" +
@@ -286,6 +386,9 @@ struct GeometryBuilder {
         out->mesh = it->second;
         break;
       }
+    }
+    if (out->kind == Geometry::Kind::kCapsule && !(out->size[0] > 0)) {
+      Fail(resolver.source, 0, where + ": a capsule needs a radius > 0");
     }
     for (int i = 0; i < 3; ++i) {
       if (!std::isfinite(out->size[i]) ||
@@ -358,6 +461,11 @@ Robot ParseRobot(const std::string& urdf_xml, const std::string& source_name,
     const urdf::LinkConstSharedPtr ul = model->getLink(link.name);
     if (!ul)
       Fail(source_name, summary.link_line.at(link.name), "urdfdom lost link '" + link.name + "'");
+    const std::array<size_t, 2>& count = summary.geometry_count.at(link.name);
+    if (ul->visual_array.size() != count[0] || ul->collision_array.size() != count[1]) {
+      Fail(source_name, summary.link_line.at(link.name),
+           "link '" + link.name + "': urdfdom dropped a <visual> or <collision> element");
+    }
     for (size_t v = 0; v < ul->visual_array.size(); ++v) {
       const urdf::Visual& vis = *ul->visual_array[v];
       Geometry g;

@@ -11,12 +11,20 @@
 //   - mesh filenames: "package://PKG/rel", "file:///abs", absolute, or relative to the URDF's
 //     folder. package:// URIs are resolved by trying DIR/PKG/rel for each DIR in
 //     RobotLoadOptions::package_paths, then each ancestor folder of the URDF file (so a standard
-//     ROS package layout works without configuration);
+//     ROS package layout works without configuration). The resolved file (symbolic links
+//     followed) must lie inside the package folder: "package://pkg/../../etc/x" is refused;
+//     when a package folder is found but the file is not, the message names every file tried;
 //   - colours from <material><color rgba=>, also by reference to a top-level <material>.
 // Errors (all std::invalid_argument, message starts with the file name and, where known, the
 // line): unreadable file, XML errors, missing or duplicate link/joint names, a joint whose
 // parent or child link does not exist, a link with two parents, cycles, no or several roots,
-// unknown joint types, mimic of an unknown joint, missing mesh files, meshes assimp cannot read.
+// unknown joint types, mimic of an unknown joint, missing mesh files, meshes assimp cannot read,
+// XML nested deeper than 100 elements (checked on the text, before any XML parser runs), more
+// than kMaxUrdfLinks links, and any <visual>/<collision> urdfdom would drop with only a log line:
+// a missing or empty <geometry>, an unknown shape, attributes that are not exactly the expected
+// count of finite numbers (box size, sphere/cylinder radius and length, mesh scale, origin xyz
+// and rpy), a mesh without filename; also a capsule with radius <= 0. Tree checks (roots, cycles,
+// mimic chains) are linear in the number of links and joints.
 //
 // Chain sidecar (optional): `<urdf path without .urdf>.chains.json`, or an explicit path:
 //   {"chains": [{"name": "arm", "closed": false,
@@ -24,12 +32,16 @@
 // Each point is a position in the named link's frame. Errors name the file and JSON path.
 #pragma once
 
+#include <cstddef>
 #include <string>
 #include <vector>
 
 #include "planning/robot.h"
 
 namespace planning {
+
+// Most links a URDF may have.
+inline constexpr size_t kMaxUrdfLinks = 100000;
 
 struct RobotLoadOptions {
   std::vector<std::string> package_paths;  // extra roots for package:// URIs (tried first)

@@ -2,12 +2,14 @@
 
 #include <Eigen/Geometry>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
 #include "planning/grasp_object.h"
 #include "planning/kinematics.h"
 #include "planning/robot_io.h"
+#include "planning/srdf.h"
 #include "topology/winding.h"
 #include "topology/writhe.h"
 
@@ -165,6 +167,7 @@ StartPose ResolveStart(const Scenario& s, const std::optional<double>& wrap_over
     case StartKind::kZero:
       out.q0 = Eigen::VectorXd::Zero(n);
       break;
+    case StartKind::kPose:  // SetUpScenario turned it into kQ
     case StartKind::kQ:
       if (start.q.size() != n) {
         throw std::invalid_argument(start.where + ": expected " + std::to_string(n) +
@@ -362,12 +365,28 @@ std::unique_ptr<Scenario> SetUpScenario(ScenarioSpec spec,
   const ScenarioSpec& sp = s->spec;
   s->name = sp.name;
   s->source = sp.source;
-  s->robot = At(sp.source + ": robot", [&] { return LoadRobot(sp.robot); });
+  RobotLoadOptions load;
+  load.package_paths = sp.package_paths;
+  s->robot = At(sp.source + ": robot", [&] { return LoadRobot(sp.robot, load); });
+  const std::string srdf_path = sp.srdf.empty() ? FindSrdf(sp.robot) : sp.srdf;
+  std::optional<Srdf> srdf;
+  if (!srdf_path.empty()) {
+    srdf = LoadSrdf(srdf_path);
+    CheckSrdf(*srdf, s->robot);
+  }
+  if (sp.start.kind == StartKind::kPose) {
+    if (!srdf) throw std::invalid_argument(sp.start.where + ": a pose start needs an SRDF");
+    s->spec.start.q = At(sp.start.where, [&] { return NamedPose(s->robot, *srdf, sp.start.pose); });
+    s->spec.start.kind = StartKind::kQ;
+  }
   LoadObjects(s.get());
   for (const ChainDescription& c : sp.robot_chains) {
     s->robot.chains.push_back(ResolveChain(c, s->robot));
   }
   SetUpCollision(s.get());
+  if (srdf) {
+    for (const auto& pair : DisabledPairs(*srdf)) s->collision.disabled_pairs.push_back(pair);
+  }
   if (sp.writhe_report) {
     s->report_chain = FindIn(sp.writhe_report->chain, FindChain, s->robot);
     s->report_object_chain =
@@ -407,7 +426,11 @@ std::unique_ptr<Scenario> SetUpScenario(ScenarioSpec spec,
 
 std::unique_ptr<Scenario> LoadScenario(const std::string& path,
                                        const ScenarioOverrides& overrides) {
-  return SetUpScenario(ParseScenarioSpec(path, overrides.search_roots), overrides.start_wrap_deg);
+  ScenarioSpec spec = ParseScenarioSpec(path, overrides.search_roots);
+  spec.package_paths.insert(spec.package_paths.begin(), overrides.package_paths.begin(),
+                            overrides.package_paths.end());
+  if (!overrides.srdf.empty()) spec.srdf = overrides.srdf;
+  return SetUpScenario(std::move(spec), overrides.start_wrap_deg);
 }
 
 }  // namespace planning

@@ -29,6 +29,10 @@ struct ScenarioOverrides {
   std::optional<double> start_wrap_deg;  // replaces start.coil.wrap_deg
   // Where relative robot/object URDF paths are looked up after the scenario's own folder.
   std::vector<std::string> search_roots;
+  // Extra package:// roots (tried before the file's "package_paths"), and an SRDF that replaces
+  // the file's "srdf" (planning/srdf.h) when not empty.
+  std::vector<std::string> package_paths;
+  std::string srdf;
 };
 
 struct SuccessCriteria {

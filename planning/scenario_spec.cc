@@ -86,10 +86,18 @@ CollisionSpec ReadCollision(const JsonNode& n) {
 }
 
 StartSpec ReadStart(const JsonNode& n) {
-  n.CheckKeys({"q", "coil"});
+  n.CheckKeys({"q", "coil", "pose"});
   StartSpec s;
   s.where = n.Where();
-  if (n.Has("q") == n.Has("coil")) n.Fail("expected exactly one of \"q\" or \"coil\"");
+  if (n.Has("q") + n.Has("coil") + n.Has("pose") != 1) {
+    n.Fail("expected exactly one of \"q\", \"coil\" or \"pose\"");
+  }
+  if (n.Has("pose")) {
+    s.kind = StartKind::kPose;
+    s.where = n.At("pose").Where();
+    s.pose = n.At("pose").String();
+    return s;
+  }
   if (n.Has("q")) {
     const JsonNode qn = n.At("q");
     s.where = qn.Where();
@@ -329,9 +337,9 @@ ScenarioSpec ParseScenarioSpec(const std::string& path,
                                const std::vector<std::string>& search_roots) {
   const nlohmann::json doc = ParseJsonFile(path, "scenario");
   const JsonNode root(doc, path);
-  root.CheckKeys({"name", "description", "robot", "objects", "robot_chains", "collision",
-                  "writhe_report", "start", "problem", "tasks", "final_pose", "success", "aico",
-                  "rrt", "check_resolution"});
+  root.CheckKeys({"name", "description", "robot", "srdf", "package_paths", "objects",
+                  "robot_chains", "collision", "writhe_report", "start", "problem", "tasks",
+                  "final_pose", "success", "aico", "rrt", "check_resolution"});
   const std::string dir = fs::path(path).parent_path().string();
   ScenarioSpec s;
   s.source = path;
@@ -340,6 +348,15 @@ ScenarioSpec ParseScenarioSpec(const std::string& path,
   {
     const JsonNode rn = root.At("robot");
     s.robot = ResolveDataFile(rn.String(), dir, search_roots, rn.Where());
+  }
+  if (root.Has("srdf")) {
+    const JsonNode sn = root.At("srdf");
+    s.srdf = ResolveDataFile(sn.String(), dir, search_roots, sn.Where());
+  }
+  if (root.Has("package_paths")) {
+    for (const std::string& p : root.At("package_paths").Strings()) {
+      s.package_paths.push_back(fs::path(p).is_absolute() ? p : (fs::path(dir) / p).string());
+    }
   }
   if (root.Has("objects")) {
     const JsonNode objs = root.At("objects");

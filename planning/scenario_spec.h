@@ -14,6 +14,11 @@
 //   name            string   default: the file's stem
 //   description     string   free text, ignored by the planner
 //   robot           string   URDF path (required; its "<stem>.chains.json" sidecar is loaded too)
+//   srdf            string   SRDF path (planning/srdf.h): its disable_collisions pairs are added to
+//                            collision.disabled_pairs and its group_states are start poses.
+//                            Default: the robot's NAME.srdf or ../srdf/NAME.srdf if one exists
+//   package_paths   [string] extra roots for package:// mesh URIs of the robot (relative ones
+//                            are relative to the scenario's folder), tried before the defaults
 //   objects         array    of objects, default []:
 //     name          string   required, unique
 //     urdf          string   URDF path (required)
@@ -30,6 +35,7 @@
 //                            object_chain: chain of that object} (all strings, required)
 //   start           object   required; exactly one of
 //     q             [n] | "zero"   the start configuration
+//     pose          string   a group_state of the robot's SRDF
 //     coil          object   writhe continuation from q = 0 (needs writhe_report): small damped
 //                            Gauss–Newton steps that move the report pair's total writhe by `step`
 //                            under collision and joint-limit tasks until 360°·|writhe| = wrap_deg.
@@ -132,10 +138,11 @@ struct WritheReportSpec {
   SpecName chain, object, object_chain;
 };
 
-enum class StartKind { kQ, kZero, kCoil };
+enum class StartKind { kQ, kZero, kCoil, kPose };
 struct StartSpec {
   StartKind kind = StartKind::kZero;
   Eigen::VectorXd q;  // kQ (size checked against the robot at set-up)
+  std::string pose;   // kPose: group_state name (checked against the SRDF at set-up)
   double wrap_deg = 720.0;
   double step = 0.05;
   double margin = 0.05;
@@ -246,6 +253,9 @@ struct ScenarioSpec {
   std::string name;
   std::string source;  // the scenario file
   std::string robot;   // resolved URDF path
+  std::string srdf;    // resolved SRDF path; empty: FindSrdf(robot) at set-up
+  // Resolved "package_paths".
+  std::vector<std::string> package_paths;
   std::vector<ObjectSpec> objects;
   std::vector<ChainDescription> robot_chains;
   CollisionSpec collision;

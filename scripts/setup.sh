@@ -14,7 +14,7 @@ REQUIRED=(
   libplplot-dev plplot-driver-cairo               # plots
   fonts-dejavu-core                               # font for labels
   libassimp-dev liburdfdom-dev libtinyxml-dev     # meshes, URDF (+ TinyXML, used directly)
-  libfcl-dev libccd-dev                           # collision
+  libfcl-dev libccd-dev libqhull-dev              # collision, convex hulls of meshes
   libode-dev                                      # physics
   libqhull-dev                                    # convex hulls (grasp quality)
   libgtest-dev libgmock-dev libbenchmark-dev      # tests, benchmarks

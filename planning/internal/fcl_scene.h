@@ -30,7 +30,11 @@ struct FclPair {
 struct FclScene {
   std::vector<FclShape> robot;  // pointers to elements are used as FCL user data: never resized
   std::vector<FclShape> env;
-  std::vector<char> skip;  // links × links: 1 if the self pair is not checked
+  // Self pairs that are never checked, over the links that have collision shapes only (a robot
+  // with many geometry-free frames stays small): geo_row[link] is the link's row (−1 without
+  // shapes); skip is num_links × num_links over those rows.
+  std::vector<int> geo_row;
+  std::vector<char> skip;
   int num_links = 0;
   bool self_collision = true;
   bool environment = true;

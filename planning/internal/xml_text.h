@@ -1,0 +1,28 @@
+// Private: checks on XML text before it reaches TinyXML (whose parser recurses once per nesting
+// level), and strict number lists from attributes. Used by the URDF and SRDF readers.
+#pragma once
+
+#include <string>
+#include <vector>
+
+class TiXmlElement;
+
+namespace planning::internal {
+
+// Deepest element nesting accepted in URDF and SRDF files (robot > link > collision > geometry >
+// mesh is 5; 100 leaves room for extensions).
+inline constexpr int kMaxXmlDepth = 100;
+
+// Scans `xml` (comments, CDATA, declarations and quoted attribute values skipped) and throws
+// std::invalid_argument "SOURCE:LINE: XML elements nested deeper than N" at the first element
+// deeper than `max_depth`. O(size), no recursion.
+void CheckXmlDepth(const std::string& xml, const std::string& source, int max_depth = kMaxXmlDepth);
+
+// Parses `text` as whitespace-separated finite numbers. Returns false on anything else (an empty
+// text, a non-number token, inf or nan, or a count other than `count` when count > 0).
+bool ParseNumbers(const std::string& text, int count, std::vector<double>* out);
+
+// Attribute value or "" when absent.
+std::string XmlAttr(const TiXmlElement* e, const char* name);
+
+}  // namespace planning::internal
