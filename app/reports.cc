@@ -307,6 +307,7 @@ nlohmann::json GraspReportJson(const phys::GraspTrialsResult& result) {
       for (const Eigen::VectorXd& v : t.robot_phalanx_winding) ph.push_back(VecJson(v));
       j["robot_phalanx_winding"] = ph;
       j["winding_error"] = Round(trial.winding_error);
+      j["epsilon_quality"] = Round(trial.epsilon_quality);
       j["min_clearance_m"] = Round(t.min_clearance);
       j["solver"] = t.solver;
       j["solver_iterations"] = t.iterations;
@@ -346,10 +347,12 @@ std::string GraspSummaryMarkdown(const phys::GraspTrialsResult& result) {
   std::ostringstream md;
   md << "# Grasp transfer to the SDH: ODE stability (mu = " << result.stability.sim.mu << ")\n\n"
      << "Directions passed out of 6 (gravity along +-x, +-y, +-z of the palm, 2 s each at 1 kHz); "
-        "a grasp is stable when it passes all 6.\n\n| grasp |";
+        "a grasp is stable when it passes all 6. eps: Ferrari-Canny epsilon of the contacts at "
+        "the end of closing.\n\n| grasp |";
   for (planning::TransferMethod m : result.methods) md << " " << planning::ToString(m) << " |";
+  for (planning::TransferMethod m : result.methods) md << " eps " << planning::ToString(m) << " |";
   md << "\n|---|";
-  for (size_t i = 0; i < result.methods.size(); ++i) md << "---|";
+  for (size_t i = 0; i < 2 * result.methods.size(); ++i) md << "---|";
   md << "\n";
   for (size_t gi = 0; gi < result.grasps.size(); ++gi) {
     md << "| " << result.grasps[gi].name << " |";
@@ -357,12 +360,18 @@ std::string GraspSummaryMarkdown(const phys::GraspTrialsResult& result) {
       md << " " << trial.stability.directions_passed << "/6"
          << (trial.stability.stable ? " stable" : "") << " |";
     }
+    for (const phys::GraspTrial& trial : result.trials[gi]) {
+      char eps[32];
+      std::snprintf(eps, sizeof eps, " %.4f |", trial.epsilon_quality);
+      md << eps;
+    }
     md << "\n";
   }
   md << "| **success rate** |";
   for (const phys::GraspMethodSummary& s : result.summary) {
     md << " " << s.stable << "/" << s.grasps << " |";
   }
+  for (size_t i = 0; i < result.summary.size(); ++i) md << " |";
   md << "\n";
   return md.str();
 }
