@@ -1,6 +1,6 @@
 // Transfer of a human grasp to the Schunk SDH: finger correspondence, the winding-number method
-// (AICO on a floating SDH) and the two classical baselines (linear joint mapping, fingertip
-// mapping).
+// (AICO on a floating SDH), its ablations (winding_only, contact_only) and the two classical
+// baselines (fingertip mapping, linear joint mapping), all through the same AICO pipeline.
 //
 // Finger correspondence (documented in README "Grasp transfer"): SDH thumb ← human thumb (the
 // opposing finger); SDH finger_2 (the rotating finger on the radial side once the SDH palm is
@@ -13,8 +13,8 @@
 // thumb sits on the wrist side, as the human thumb's base does); the palm origin lies on the line
 // along z_SDH through the grasp centre (the reference-axis point nearest the human palm centre,
 // or the reference loop's centroid), max(0.12, 0.095 + object depth) m before it so the knuckles
-// clear the object. All three methods start there; the winding and fingertip methods then
-// optimise the palm pose (6 DOF, with a prior towards the placement) together with the fingers.
+// clear the object. All SDH methods start there and optimise the palm pose (6 DOF, with a prior
+// towards the placement) together with the fingers.
 #pragma once
 
 #include <Eigen/Core>
