@@ -378,9 +378,12 @@ std::string GraspSummaryMarkdown(const phys::GraspTrialsResult& result) {
 
 render::Image GraspSummaryFigure(const phys::GraspTrialsResult& result) {
   std::vector<render::PlotSeries> series;
-  const render::Marker markers[3] = {render::Marker::kCircle, render::Marker::kSquare,
-                                     render::Marker::kTriangle};
+  const render::Marker markers[4] = {render::Marker::kCircle, render::Marker::kSquare,
+                                     render::Marker::kTriangle, render::Marker::kDiamond};
   const size_t n = result.grasps.size();
+  // Methods side by side within ±0.36 of the grasp (0.12 apart for up to 6 methods).
+  const double methods = static_cast<double>(result.methods.size());
+  const double spacing = std::min(0.12, 0.72 / std::max(1.0, methods));
   for (size_t mi = 0; mi < result.methods.size(); ++mi) {
     const phys::GraspMethodSummary& s = result.summary[mi];
     render::PlotSeries ps;
@@ -388,11 +391,12 @@ render::Image GraspSummaryFigure(const phys::GraspTrialsResult& result) {
     label << planning::ToString(s.method) << " (" << s.stable << "/" << n << " stable)";
     ps.label = label.str();
     for (size_t gi = 0; gi < n; ++gi) {
-      ps.x.push_back(static_cast<double>(gi + 1) + 0.12 * (static_cast<double>(mi) - 1.0));
+      ps.x.push_back(static_cast<double>(gi + 1) +
+                     spacing * (static_cast<double>(mi) - (methods - 1.0) / 2.0));
       ps.y.push_back(result.trials[gi][mi].stability.directions_passed);
     }
     ps.line = false;
-    ps.marker = markers[mi % 3];
+    ps.marker = markers[mi % 4];
     series.push_back(ps);
   }
   render::PlotOptions po;
