@@ -78,8 +78,7 @@ int RunTransfer(const TransferArgs& a) {
   if (a.out_dir.empty()) throw std::invalid_argument("-o: output folder required");
   std::vector<planning::TransferMethod> methods;
   if (a.method == "all") {
-    methods = {planning::TransferMethod::kWinding, planning::TransferMethod::kJointMapping,
-               planning::TransferMethod::kFingertip};
+    methods = planning::AllTransferMethods();
   } else {
     methods = {ParseFlag("--method", [&] { return planning::ParseTransferMethod(a.method); })};
   }
@@ -119,14 +118,17 @@ void AddGraspCommands(CLI::App* root, CommandList* commands) {
   CLI::App* transfer = grasp->add_subcommand(
       "transfer",
       "Transfer human grasps (assets/grasps/*.json) to the Schunk SDH by winding numbers (AICO) "
-      "and by the joint-mapping and fingertip-mapping baselines, then test each transferred "
-      "grasp in ODE: close with gravity off, then gravity along the 6 palm axes for 2 s each. "
+      "and by the ablations and baselines (all methods differ only in their target term), and "
+      "test each transferred grasp and the human demonstration itself in ODE: close with "
+      "gravity off, then gravity along the 6 palm axes for 2 s each. "
       "Writes DIR/report.json, DIR/summary.md, DIR/summary.png. Exit 0 if every tested grasp is "
       "stable, 1 if some is not, 2 for bad input.");
   transfer
       ->add_option("--grasp", ta->grasp, "grasp name (file stem in assets/grasps), a path, or all")
       ->capture_default_str();
-  transfer->add_option("--method", ta->method, "winding | joint | fingertip | all")
+  transfer
+      ->add_option("--method", ta->method,
+                   "winding | winding_only | contact_only | fingertip | joint | human | all")
       ->capture_default_str();
   transfer->add_option("--mu", ta->mu, "Coulomb friction coefficient (friction pyramid)")
       ->capture_default_str();

@@ -315,6 +315,7 @@ nlohmann::json GraspReportJson(const phys::GraspTrialsResult& result) {
       for (const Eigen::VectorXd& v : t.robot_phalanx_winding) ph.push_back(VecJson(v));
       j["robot_phalanx_winding"] = ph;
       j["winding_error"] = Round(trial.winding_error);
+      j["epsilon_quality"] = Round(trial.epsilon_quality);
       j["min_clearance_m"] = Round(t.min_clearance);
       j["solver"] = t.solver;
       j["solver_iterations"] = t.iterations;
@@ -354,10 +355,12 @@ std::string GraspSummaryMarkdown(const phys::GraspTrialsResult& result) {
   std::ostringstream md;
   md << "# Grasp transfer to the SDH: ODE stability (mu = " << result.stability.sim.mu << ")\n\n"
      << "Directions passed out of 6 (gravity along +-x, +-y, +-z of the palm, 2 s each at 1 kHz); "
-        "a grasp is stable when it passes all 6.\n\n| grasp |";
+        "a grasp is stable when it passes all 6. eps: Ferrari-Canny epsilon of the contacts at "
+        "the end of closing.\n\n| grasp |";
   for (planning::TransferMethod m : result.methods) md << " " << planning::ToString(m) << " |";
+  for (planning::TransferMethod m : result.methods) md << " eps " << planning::ToString(m) << " |";
   md << "\n|---|";
-  for (size_t i = 0; i < result.methods.size(); ++i) md << "---|";
+  for (size_t i = 0; i < 2 * result.methods.size(); ++i) md << "---|";
   md << "\n";
   for (size_t gi = 0; gi < result.grasps.size(); ++gi) {
     md << "| " << result.grasps[gi].name << " |";
@@ -365,21 +368,30 @@ std::string GraspSummaryMarkdown(const phys::GraspTrialsResult& result) {
       md << " " << trial.stability.directions_passed << "/6"
          << (trial.stability.stable ? " stable" : "") << " |";
     }
+    for (const phys::GraspTrial& trial : result.trials[gi]) {
+      char eps[32];
+      std::snprintf(eps, sizeof eps, " %.4f |", trial.epsilon_quality);
+      md << eps;
+    }
     md << "\n";
   }
   md << "| **success rate** |";
   for (const phys::GraspMethodSummary& s : result.summary) {
     md << " " << s.stable << "/" << s.grasps << " |";
   }
+  for (size_t i = 0; i < result.summary.size(); ++i) md << " |";
   md << "\n";
   return md.str();
 }
 
 render::Image GraspSummaryFigure(const phys::GraspTrialsResult& result) {
   std::vector<render::PlotSeries> series;
-  const render::Marker markers[3] = {render::Marker::kCircle, render::Marker::kSquare,
-                                     render::Marker::kTriangle};
+  const render::Marker markers[4] = {render::Marker::kCircle, render::Marker::kSquare,
+                                     render::Marker::kTriangle, render::Marker::kDiamond};
   const size_t n = result.grasps.size();
+  // Methods side by side within ±0.36 of the grasp (0.12 apart for up to 6 methods).
+  const double methods = static_cast<double>(result.methods.size());
+  const double spacing = std::min(0.12, 0.72 / std::max(1.0, methods));
   for (size_t mi = 0; mi < result.methods.size(); ++mi) {
     const phys::GraspMethodSummary& s = result.summary[mi];
     render::PlotSeries ps;
@@ -387,11 +399,12 @@ render::Image GraspSummaryFigure(const phys::GraspTrialsResult& result) {
     label << planning::ToString(s.method) << " (" << s.stable << "/" << n << " stable)";
     ps.label = label.str();
     for (size_t gi = 0; gi < n; ++gi) {
-      ps.x.push_back(static_cast<double>(gi + 1) + 0.12 * (static_cast<double>(mi) - 1.0));
+      ps.x.push_back(static_cast<double>(gi + 1) +
+                     spacing * (static_cast<double>(mi) - (methods - 1.0) / 2.0));
       ps.y.push_back(result.trials[gi][mi].stability.directions_passed);
     }
     ps.line = false;
-    ps.marker = markers[mi % 3];
+    ps.marker = markers[mi % 4];
     series.push_back(ps);
   }
   render::PlotOptions po;

@@ -73,11 +73,13 @@ std::string UnwrapHtmlTable(const planning::UnwrapBenchmarkResult& result);
 // --- grasp transfer -----------------------------------------------------------------------------
 
 // report.json of `grasp transfer`: mu, protocol, per grasp (name, type, object, file, human
-// windings, per method: windings, winding_error, clearance, solver, q, stability) and per-method
-// summary (stable, grasps, success_rate). Values rounded to 1e-6 (rotations 1e-3, rates 1e-4).
+// windings, per method: windings, winding_error, epsilon_quality, clearance, solver, q,
+// stability) and per-method summary (stable, grasps, success_rate). Values rounded to 1e-6
+// (rotations 1e-3, rates 1e-4).
 nlohmann::json GraspReportJson(const planning::physics::GraspTrialsResult& result);
 
-// summary.md: directions passed out of 6 per grasp and method, and the success-rate row.
+// summary.md: directions passed out of 6 per grasp and method, then one "eps METHOD" column per
+// method (GraspTrial::epsilon_quality, 4 decimals), and the success-rate row.
 std::string GraspSummaryMarkdown(const planning::physics::GraspTrialsResult& result);
 
 // summary.png: directions held per grasp, one marker series per method.

@@ -213,6 +213,38 @@ std::vector<int> LinksWithPrefix(const Robot& robot, const std::string& prefix) 
   return out;
 }
 
+// SDH finger link prefixes: thumb, finger_1, finger_2.
+const char* const kSdhFingers[3] = {"sdh_thumb", "sdh_finger_1", "sdh_finger_2"};
+
+// Linear joint mapping (Rohling et al. 1993) with the finger correspondence: per SDH finger the
+// proximal joint = mean of the corresponding human proximal flexions, the distal joint = mean of
+// the distal ones (clamped to the limits); other dofs of q_place unchanged.
+Eigen::VectorXd JointMapping(const TransferSetup& s, const Eigen::VectorXd& q_place) {
+  const HumanGrasp& g = s.grasp;
+  auto mean = [](std::initializer_list<double> v) {
+    double sum = 0;
+    for (double x : v) sum += x;
+    return sum / static_cast<double>(v.size());
+  };
+  const double prox[3] = {
+      mean({HumanAngle(g, "thumb_cmc_flex"), HumanAngle(g, "thumb_mcp")}),
+      mean({HumanAngle(g, "ring_mcp_flex"), HumanAngle(g, "little_mcp_flex")}),
+      mean({HumanAngle(g, "index_mcp_flex"), HumanAngle(g, "middle_mcp_flex")})};
+  const double dist[3] = {HumanAngle(g, "thumb_ip"),
+                          mean({HumanAngle(g, "ring_pip"), HumanAngle(g, "ring_dip"),
+                                HumanAngle(g, "little_pip"), HumanAngle(g, "little_dip")}),
+                          mean({HumanAngle(g, "index_pip"), HumanAngle(g, "index_dip"),
+                                HumanAngle(g, "middle_pip"), HumanAngle(g, "middle_dip")})};
+  Eigen::VectorXd q = q_place;
+  for (int f = 0; f < 3; ++f) {
+    const int p = Dof(s.sdh, std::string(kSdhFingers[f]) + "_proximal_joint");
+    const int d = Dof(s.sdh, std::string(kSdhFingers[f]) + "_distal_joint");
+    q[p] = Clamp(s.sdh, p, prox[f]);
+    q[d] = Clamp(s.sdh, d, dist[f]);
+  }
+  return q;
+}
+
 }  // namespace
 
 Eigen::MatrixXd FingerCorrespondence() {
@@ -368,12 +400,127 @@ TransferSetup MakeTransferSetup(const Robot& human_hand, const Robot& sdh_source
   return s;
 }
 
+std::vector<TransferMethod> AllTransferMethods() {
+  std::vector<TransferMethod> out;
+  for (const EnumName<TransferMethod>& e : kTransferMethodNames) out.push_back(e.value);
+  return out;
+}
+
+Eigen::VectorXd PlacementConfiguration(const TransferSetup& s) {
+  Eigen::VectorXd q = Eigen::VectorXd::Zero(num_dofs(s.sdh));
+  q.head<3>() = s.sdh_placement.translation();
+  const int spread = Dof(s.sdh, "sdh_knuckle_joint");
+  q[spread] = Clamp(s.sdh, spread, s.grasp.sdh_spread);
+  return q;
+}
+
+std::vector<Task> SharedTransferTasks(const TransferSetup& s, const TransferOptions& o, int T,
+                                      std::vector<Task> target, bool contact) {
+  const Robot& sdh = s.sdh;
+  const int n = num_dofs(sdh);
+  std::vector<Task> tasks;
+  const HandSpheres all = SampleHandSpheres(sdh, {}, 0.006);
+  std::vector<int> no_group(all.link.size(), -1);
+  tasks.push_back(ConstantTask(
+      "clearance",
+      std::make_unique<ClearanceFeature>(all, no_group, 0, s.object, s.grasp.world_from_object,
+                                         o.clearance_margin, ClearanceFeature::Mode::kHinge),
+      Eigen::VectorXd::Zero(static_cast<int>(all.link.size())), o.clearance_precision, T));
+  tasks.push_back(ConstantTask("joint_limits", MakeJointLimitFeature(sdh, 0.0),
+                               Eigen::VectorXd::Zero(n), 1e3, T));
+  tasks.push_back(FinalTask("palm", std::make_unique<PalmPoseFeature>(),
+                            PlacementConfiguration(s).head<6>(), o.palm_precision, T));
+  for (Task& t : target) tasks.push_back(std::move(t));
+  if (contact) {
+    // Contact groups: the proximal and distal link of each finger.
+    std::vector<int> finger_links;
+    std::vector<int> group_of_link(sdh.links.size(), -1);
+    for (int f = 0; f < 3; ++f) {
+      for (int li : LinksWithPrefix(sdh, kSdhFingers[f])) {
+        finger_links.push_back(li);
+        const std::string& name = sdh.links[li].name;
+        if (name.find("proximal") != std::string::npos) group_of_link[li] = 2 * f;
+        if (name.find("distal") != std::string::npos) group_of_link[li] = 2 * f + 1;
+      }
+    }
+    const HandSpheres fs = SampleHandSpheres(sdh, finger_links, 0.006);
+    std::vector<int> groups(fs.link.size());
+    for (size_t k = 0; k < fs.link.size(); ++k) groups[k] = group_of_link[fs.link[k]];
+    tasks.push_back(FinalTask(
+        "contact",
+        std::make_unique<ClearanceFeature>(fs, groups, 6, s.object, s.grasp.world_from_object, 0.0,
+                                           ClearanceFeature::Mode::kMin),
+        Eigen::VectorXd::Zero(6), o.contact_precision, T));
+  }
+  return tasks;
+}
+
+MotionProblem MakeTransferProblem(const TransferSetup& s, TransferMethod method,
+                                  const TransferOptions& o) {
+  if (method == TransferMethod::kHuman) {
+    throw std::invalid_argument(
+        "transfer method 'human' is the demonstration itself, not an SDH transfer");
+  }
+  const Robot& sdh = s.sdh;
+  const int n = num_dofs(sdh);
+  const int T = o.num_steps;
+  MotionProblem problem;
+  problem.robot = &sdh;
+  problem.dynamic = false;
+  problem.num_steps = T;
+  problem.duration = 1.0;
+  problem.q0 = PlacementConfiguration(s);
+  problem.metric = Eigen::VectorXd::Ones(n);
+  problem.metric.head<3>().setConstant(100.0);  // 1 cm of palm motion ~ 0.1 rad
+
+  std::vector<Task> target;
+  bool contact = true;
+  if (method == TransferMethod::kJointMapping) {
+    problem.q0 = JointMapping(s, problem.q0);
+    contact = false;
+  } else {
+    // Approach from a retracted hand.
+    problem.q0.head<3>() -= o.retreat * s.sdh_placement.linear().col(2);
+  }
+  if (method == TransferMethod::kWinding || method == TransferMethod::kWindingOnly) {
+    KinematicsData hkin(s.human);
+    ForwardKinematics(s.human, s.human_q, &hkin);
+    const Eigen::VectorXd y =
+        FingerCorrespondence() * EncodeGrasp(s.human, hkin, s.human_chains, s.reference).finger;
+    target.push_back(FinalTask("winding",
+                               std::make_unique<GraspWindingFeature>(s.sdh_chains, s.reference), y,
+                               o.winding_precision, T));
+    contact = method == TransferMethod::kWinding;
+  } else if (method == TransferMethod::kFingertip) {
+    // Fingertip mapping: SDH tips to the human tips of the corresponding fingers.
+    KinematicsData hkin(s.human);
+    ForwardKinematics(s.human, s.human_q, &hkin);
+    const std::vector<std::vector<std::string>> human_tips = {
+        {"thumb"}, {"ring", "little"}, {"index", "middle"}};
+    for (int f = 0; f < 3; ++f) {
+      Eigen::Vector3d tip = Eigen::Vector3d::Zero();
+      for (const std::string& h : human_tips[f]) {
+        Eigen::Matrix3Xd pts;
+        ChainPoints(s.human, hkin, FindChain(s.human, "grasp_" + h), &pts);
+        tip += pts.col(pts.cols() - 1) / static_cast<double>(human_tips[f].size());
+      }
+      const int distal = FindLink(sdh, std::string(kSdhFingers[f]) + "_distal");
+      target.push_back(FinalTask(std::string("tip_") + kSdhFingers[f],
+                                 MakePositionFeature(sdh, distal, Eigen::Vector3d(0, 0, 0.0685)),
+                                 tip, o.tip_precision, T));
+    }
+  }
+  problem.tasks = SharedTransferTasks(s, o, T, std::move(target), contact);
+  return problem;
+}
+
 TransferResult TransferGrasp(const TransferSetup& s, TransferMethod method,
                              const TransferOptions& o) {
   const Robot& sdh = s.sdh;
-  const int n = num_dofs(sdh);
   TransferResult res;
   res.method = method;
+  MotionProblem problem = MakeTransferProblem(s, method, o);
+  const int T = problem.num_steps;
 
   // Human encoding and the mapped target.
   KinematicsData hkin(s.human);
@@ -383,128 +530,29 @@ TransferResult TransferGrasp(const TransferSetup& s, TransferMethod method,
   res.human_phalanx_winding = human_enc.phalanx;
   res.target_winding = FingerCorrespondence() * res.human_winding;
 
-  // Placement configuration: palm at the nominal pose, spread from the grasp type.
-  Eigen::VectorXd q_place = Eigen::VectorXd::Zero(n);
-  q_place.head<3>() = s.sdh_placement.translation();
-  const int spread = Dof(sdh, "sdh_knuckle_joint");
-  q_place[spread] = Clamp(sdh, spread, s.grasp.sdh_spread);
-  const char* fingers[3] = {"sdh_thumb", "sdh_finger_1", "sdh_finger_2"};
-
-  if (method == TransferMethod::kJointMapping) {
-    // Linear joint mapping (Rohling et al. 1993) with the finger correspondence above.
-    const HumanGrasp& g = s.grasp;
-    auto mean = [](std::initializer_list<double> v) {
-      double sum = 0;
-      for (double x : v) sum += x;
-      return sum / static_cast<double>(v.size());
-    };
-    const double prox[3] = {
-        mean({HumanAngle(g, "thumb_cmc_flex"), HumanAngle(g, "thumb_mcp")}),
-        mean({HumanAngle(g, "ring_mcp_flex"), HumanAngle(g, "little_mcp_flex")}),
-        mean({HumanAngle(g, "index_mcp_flex"), HumanAngle(g, "middle_mcp_flex")})};
-    const double dist[3] = {HumanAngle(g, "thumb_ip"),
-                            mean({HumanAngle(g, "ring_pip"), HumanAngle(g, "ring_dip"),
-                                  HumanAngle(g, "little_pip"), HumanAngle(g, "little_dip")}),
-                            mean({HumanAngle(g, "index_pip"), HumanAngle(g, "index_dip"),
-                                  HumanAngle(g, "middle_pip"), HumanAngle(g, "middle_dip")})};
-    Eigen::VectorXd q = q_place;
-    for (int f = 0; f < 3; ++f) {
-      const int p = Dof(sdh, std::string(fingers[f]) + "_proximal_joint");
-      const int d = Dof(sdh, std::string(fingers[f]) + "_distal_joint");
-      q[p] = Clamp(sdh, p, prox[f]);
-      q[d] = Clamp(sdh, d, dist[f]);
+  // Multi-start (deterministic): one AICO run per initial flexion, keep the lowest cost. The
+  // joint method runs once from its mapped posture.
+  AicoWorkspace ws(problem);
+  const Eigen::VectorXd q0 = problem.q0;
+  const bool mapped = method == TransferMethod::kJointMapping;
+  const std::vector<double> flexions = mapped ? std::vector<double>{0.0} : o.initial_flexions;
+  double best_cost = std::numeric_limits<double>::infinity();
+  for (double flex : flexions) {
+    problem.q0 = q0;
+    for (int f = 0; f < 3 && !mapped; ++f) {
+      problem.q0[Dof(sdh, std::string(kSdhFingers[f]) + "_proximal_joint")] = flex;
+      problem.q0[Dof(sdh, std::string(kSdhFingers[f]) + "_distal_joint")] = flex;
     }
-    res.q = q;
-    res.trajectory.q = q.replicate(1, 2);
-    res.trajectory.q.col(0) = q_place;
-    res.trajectory.dt = 1.0;
-    res.solver = "direct";
-  } else {
-    // AICO on the floating SDH: approach from a retracted, open hand.
-    const int T = o.num_steps;
-    MotionProblem problem;
-    problem.robot = &sdh;
-    problem.dynamic = false;
-    problem.num_steps = T;
-    problem.duration = 1.0;
-    problem.q0 = q_place;
-    problem.q0.head<3>() -= o.retreat * s.sdh_placement.linear().col(2);
-    problem.metric = Eigen::VectorXd::Ones(n);
-    problem.metric.head<3>().setConstant(100.0);  // 1 cm of palm motion ~ 0.1 rad
-
-    std::vector<int> finger_links;
-    std::vector<int> group_of_link(sdh.links.size(), -1);
-    for (int f = 0; f < 3; ++f) {
-      for (int li : LinksWithPrefix(sdh, fingers[f])) {
-        finger_links.push_back(li);
-        // Contact groups: the proximal and distal link of each finger.
-        const std::string& name = sdh.links[li].name;
-        if (name.find("proximal") != std::string::npos) group_of_link[li] = 2 * f;
-        if (name.find("distal") != std::string::npos) group_of_link[li] = 2 * f + 1;
-      }
+    const AicoResult r = SolveAico(problem, o.aico, &ws);
+    if (r.cost < best_cost) {
+      best_cost = r.cost;
+      res.trajectory = r.trajectory;
+      res.q = r.trajectory.q.col(T);
+      res.status = r.status;
+      res.iterations = r.iterations;
     }
-    const HandSpheres all = SampleHandSpheres(sdh, {}, 0.006);
-    std::vector<int> no_group(all.link.size(), -1);
-    problem.tasks.push_back(ConstantTask(
-        "clearance",
-        std::make_unique<ClearanceFeature>(all, no_group, 0, s.object, s.grasp.world_from_object,
-                                           o.clearance_margin, ClearanceFeature::Mode::kHinge),
-        Eigen::VectorXd::Zero(static_cast<int>(all.link.size())), o.clearance_precision, T));
-    problem.tasks.push_back(ConstantTask("joint_limits", MakeJointLimitFeature(sdh, 0.0),
-                                         Eigen::VectorXd::Zero(n), 1e3, T));
-    problem.tasks.push_back(FinalTask("palm", std::make_unique<PalmPoseFeature>(),
-                                      q_place.head<6>(), o.palm_precision, T));
-    if (method == TransferMethod::kWinding) {
-      problem.tasks.push_back(
-          FinalTask("winding", std::make_unique<GraspWindingFeature>(s.sdh_chains, s.reference),
-                    res.target_winding, o.winding_precision, T));
-      const HandSpheres fs = SampleHandSpheres(sdh, finger_links, 0.006);
-      std::vector<int> groups(fs.link.size());
-      for (size_t k = 0; k < fs.link.size(); ++k) groups[k] = group_of_link[fs.link[k]];
-      problem.tasks.push_back(FinalTask(
-          "contact",
-          std::make_unique<ClearanceFeature>(fs, groups, 6, s.object, s.grasp.world_from_object,
-                                             0.0, ClearanceFeature::Mode::kMin),
-          Eigen::VectorXd::Zero(6), o.contact_precision, T));
-    } else {
-      // Fingertip mapping: SDH tips to the human tips of the corresponding fingers.
-      const std::vector<std::vector<std::string>> human_tips = {
-          {"thumb"}, {"ring", "little"}, {"index", "middle"}};
-      for (int f = 0; f < 3; ++f) {
-        Eigen::Vector3d target = Eigen::Vector3d::Zero();
-        for (const std::string& h : human_tips[f]) {
-          Eigen::Matrix3Xd pts;
-          ChainPoints(s.human, hkin, FindChain(s.human, "grasp_" + h), &pts);
-          target += pts.col(pts.cols() - 1) / static_cast<double>(human_tips[f].size());
-        }
-        const int distal = FindLink(sdh, std::string(fingers[f]) + "_distal");
-        problem.tasks.push_back(
-            FinalTask(std::string("tip_") + fingers[f],
-                      MakePositionFeature(sdh, distal, Eigen::Vector3d(0, 0, 0.0685)), target,
-                      o.tip_precision, T));
-      }
-    }
-    // Multi-start (deterministic): one AICO run per initial flexion, keep the lowest cost.
-    AicoWorkspace ws(problem);
-    const Eigen::VectorXd q0 = problem.q0;
-    double best_cost = std::numeric_limits<double>::infinity();
-    for (double flex : o.initial_flexions) {
-      problem.q0 = q0;
-      for (int f = 0; f < 3; ++f) {
-        problem.q0[Dof(sdh, std::string(fingers[f]) + "_proximal_joint")] = flex;
-        problem.q0[Dof(sdh, std::string(fingers[f]) + "_distal_joint")] = flex;
-      }
-      const AicoResult r = SolveAico(problem, o.aico, &ws);
-      if (r.cost < best_cost) {
-        best_cost = r.cost;
-        res.trajectory = r.trajectory;
-        res.q = r.trajectory.q.col(T);
-        res.status = r.status;
-        res.iterations = r.iterations;
-      }
-    }
-    res.solver = "aico";
   }
+  res.solver = "aico";
 
   // Encoding and clearance of the result.
   KinematicsData kin(sdh);

@@ -1,6 +1,6 @@
 // Transfer of a human grasp to the Schunk SDH: finger correspondence, the winding-number method
-// (AICO on a floating SDH) and the two classical baselines (linear joint mapping, fingertip
-// mapping).
+// (AICO on a floating SDH), its ablations (winding_only, contact_only) and the two classical
+// baselines (fingertip mapping, linear joint mapping), all through the same AICO pipeline.
 //
 // Finger correspondence (documented in README "Grasp transfer"): SDH thumb ← human thumb (the
 // opposing finger); SDH finger_2 (the rotating finger on the radial side once the SDH palm is
@@ -13,8 +13,8 @@
 // thumb sits on the wrist side, as the human thumb's base does); the palm origin lies on the line
 // along z_SDH through the grasp centre (the reference-axis point nearest the human palm centre,
 // or the reference loop's centroid), max(0.12, 0.095 + object depth) m before it so the knuckles
-// clear the object. All three methods start there; the winding and fingertip methods then
-// optimise the palm pose (6 DOF, with a prior towards the placement) together with the fingers.
+// clear the object. All SDH methods start there and optimise the palm pose (6 DOF, with a prior
+// towards the placement) together with the fingers.
 #pragma once
 
 #include <Eigen/Core>
@@ -27,25 +27,45 @@
 #include "planning/grasp.h"
 #include "planning/grasp_object.h"
 #include "planning/robot.h"
+#include "planning/task.h"
 #include "planning/trajectory.h"
 
 namespace planning {
 
-enum class TransferMethod { kWinding, kJointMapping, kFingertip };
+// Methods (README "Grasp transfer"). Every SDH method runs the same pipeline (MakeTransferProblem:
+// AICO on the floating SDH with the shared terms of SharedTransferTasks) and differs only in its
+// target term:
+//   winding       windings + the shared terms (non-penetration and contact)
+//   winding_only  windings + non-penetration only (no contact term)
+//   contact_only  the shared terms alone (no target term)
+//   fingertip     fingertip positions + the shared terms
+//   joint         linear joint mapping as the start posture, then non-penetration only
+//   human         the demonstrated human grasp itself; not an SDH transfer: TransferGrasp and
+//                 MakeTransferProblem reject it, physics::RunGraspTrials runs RunHumanTrial.
+enum class TransferMethod {
+  kWinding,
+  kWindingOnly,
+  kContactOnly,
+  kFingertip,
+  kJointMapping,
+  kHuman
+};
 inline constexpr EnumName<TransferMethod> kTransferMethodNames[] = {
-    {TransferMethod::kWinding, "winding"},
-    {TransferMethod::kJointMapping, "joint"},
-    {TransferMethod::kFingertip, "fingertip"},
+    {TransferMethod::kWinding, "winding"},          {TransferMethod::kWindingOnly, "winding_only"},
+    {TransferMethod::kContactOnly, "contact_only"}, {TransferMethod::kFingertip, "fingertip"},
+    {TransferMethod::kJointMapping, "joint"},       {TransferMethod::kHuman, "human"},
 };
 constexpr std::span<const EnumName<TransferMethod>> EnumNames(TransferMethod) {
   return kTransferMethodNames;
 }
 inline const char* ToString(TransferMethod method) { return ToName(method); }
-// "winding" | "joint" | "fingertip"; throws std::invalid_argument "unknown transfer method 'x'
-// (winding, joint, fingertip)" otherwise.
+// One of the names above; throws std::invalid_argument "unknown transfer method 'x' (winding,
+// winding_only, ...)" otherwise.
 inline TransferMethod ParseTransferMethod(const std::string& text) {
   return ParseEnum<TransferMethod>(text, "transfer method");
 }
+// All six methods in the order above (`--method all`).
+std::vector<TransferMethod> AllTransferMethods();
 
 // A floating copy of a robot's subtree: 6 joints (hand_tx, hand_ty, hand_tz prismatic along the
 // world axes, then hand_rz, hand_ry, hand_rx revolute) carry `root_link` and everything below it.
@@ -74,14 +94,14 @@ struct TransferOptions {
 struct TransferResult {
   TransferMethod method = TransferMethod::kWinding;
   Eigen::VectorXd q;              // final SDH configuration (floating hand robot)
-  Trajectory trajectory;          // approach motion (winding/fingertip: AICO; joint: 2 points)
+  Trajectory trajectory;          // AICO motion (joint: from the mapped posture)
   Eigen::VectorXd human_winding;  // 5: thumb, index, middle, ring, little
   std::vector<Eigen::VectorXd> human_phalanx_winding;  // per finger, per chain segment
   Eigen::VectorXd target_winding;                      // 3: M · human_winding
   Eigen::VectorXd robot_winding;                       // 3: SDH thumb, finger_1, finger_2 at q
   std::vector<Eigen::VectorXd> robot_phalanx_winding;
   double min_clearance = 0.0;  // hand vs object at q [m] (negative = penetration)
-  std::string solver;          // "aico" or "direct"
+  std::string solver;          // "aico" ("demonstration" for the human reference)
   SolveStatus status = SolveStatus::kConverged;
   int iterations = 0;
 };
@@ -107,7 +127,39 @@ TransferSetup MakeTransferSetup(const Robot& human_hand, const Robot& sdh_source
 // Correspondence matrix M (3 × 5), see the file comment.
 Eigen::MatrixXd FingerCorrespondence();
 
-// Runs one method. Deterministic.
+// SDH palm at the placement (6 floating dofs = (placement translation, 0, 0, 0)), the spread
+// joint at grasp.sdh_spread (clamped), every other joint 0. Size = num_dofs(setup.sdh).
+Eigen::VectorXd PlacementConfiguration(const TransferSetup& setup);
+
+// The shared terms, built for every SDH method by this one function, in this order:
+//   "clearance"    every slice, clearance_precision: hinge max(0, margin − d_k) on every hand
+//                  sphere k (d_k = object distance − sphere radius) — non-penetration;
+//   "joint_limits" every slice, 1e3: joint-limit hinge;
+//   "palm"         final slice, palm_precision: the 6 floating dofs towards the placement;
+//   then the method's `target` tasks (moved in, order kept);
+//   "contact"      (if `contact`) final slice, contact_precision: per SDH finger the proximal and
+//                  the distal link's nearest sphere distance to the surface → 0 (6 outputs).
+// T = number of AICO steps (tasks have T + 1 slices).
+std::vector<Task> SharedTransferTasks(const TransferSetup& setup, const TransferOptions& options,
+                                      int T, std::vector<Task> target, bool contact);
+
+// The AICO problem TransferGrasp solves for an SDH method (kinematic, T = options.num_steps,
+// duration 1 s, palm translation metric 100): SharedTransferTasks with the method's target term
+//   winding: "winding" (final slice, winding_precision, target M·y_human) + contact;
+//   winding_only: "winding", no contact; contact_only: no target + contact;
+//   fingertip: "tip_sdh_thumb", "tip_sdh_finger_1", "tip_sdh_finger_2" (final slice,
+//     tip_precision, the mean human fingertip of the corresponding fingers) + contact;
+//   joint: no target, no contact (non-penetration projection of the mapped posture).
+// q0: the joint method starts at the linear joint mapping of the human angles (palm at the
+// placement); the others at the placement retracted by options.retreat along −z_SDH (their
+// finger flexions are then set per start in options.initial_flexions). Throws
+// std::invalid_argument for kHuman.
+MotionProblem MakeTransferProblem(const TransferSetup& setup, TransferMethod method,
+                                  const TransferOptions& options = {});
+
+// Runs one SDH method: MakeTransferProblem, then AICO (winding, winding_only, contact_only,
+// fingertip: one run per initial flexion, the lowest cost wins; joint: one run from the mapped
+// posture). Deterministic. Throws std::invalid_argument for kHuman (see physics::RunHumanTrial).
 TransferResult TransferGrasp(const TransferSetup& setup, TransferMethod method,
                              const TransferOptions& options = {});
 

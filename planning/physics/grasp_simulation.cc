@@ -626,4 +626,14 @@ void GraspSimulation::RestoreState(const SimSnapshot& snap) {
   m.ReadState(&state_);
 }
 
+ObjectMass ObjectMassProperties(const SimObject& object) {
+  ObjectMass out;
+  const dMass mass = CentredMass(object.shapes, object.mass, &out.com);
+  out.mass = mass.mass;
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c) out.inertia(r, c) = mass.I[4 * r + c];
+  }
+  return out;
+}
+
 }  // namespace planning::physics

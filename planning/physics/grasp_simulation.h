@@ -80,6 +80,16 @@ struct SimObject {
   Eigen::Isometry3d world_from_object = Eigen::Isometry3d::Identity();
 };
 
+// The object's mass properties as the simulation gives them to ODE (see SimObject): mass [kg],
+// centre of mass in the object frame [m], inertia about the centre of mass in object-frame axes
+// [kg m²].
+struct ObjectMass {
+  double mass = 0.0;
+  Eigen::Vector3d com = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();
+};
+ObjectMass ObjectMassProperties(const SimObject& object);
+
 enum class HandMode { kMotorized, kKinematic };
 enum class Stepper { kWorldStep, kQuickStep };
 

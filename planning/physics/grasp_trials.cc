@@ -4,10 +4,25 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "planning/grasp_quality.h"
 #include "planning/kinematics.h"
 
 namespace planning::physics {
 namespace {
+
+// GraspTrial::epsilon_quality of a finished stability test.
+double ClosureEpsilon(const SimObject& object, const StabilityResult& r, double mu) {
+  if (r.status == StabilityStatus::kBlownUp && r.message.rfind("closing", 0) == 0) return 0.0;
+  std::vector<GraspContact> contacts;
+  for (const SimContact& c : r.closure_contacts) {
+    if (!c.position.allFinite() || !c.normal.allFinite() || !(c.normal.norm() > 1e-12)) continue;
+    contacts.push_back({c.position, -c.normal});
+  }
+  const ObjectMass mass = ObjectMassProperties(object);
+  EpsilonOptions eo;
+  eo.radius_of_gyration = std::sqrt(mass.inertia.trace() / (3.0 * mass.mass));
+  return EpsilonQuality(contacts, r.closure_world_from_object * mass.com, mu, eo);
+}
 
 // Runs the stability test on trial->hand and trial->object, with the hooks around it.
 void Simulate(const OdeRuntime& runtime, const TransferSetup& setup,
@@ -15,6 +30,7 @@ void Simulate(const OdeRuntime& runtime, const TransferSetup& setup,
   StepCallback on_step;
   if (hooks.on_start) on_step = hooks.on_start(setup, trial->transfer, trial->hand, trial->object);
   trial->stability = TestGraspStability(runtime, trial->hand, trial->object, options, on_step);
+  trial->epsilon_quality = ClosureEpsilon(trial->object, trial->stability, options.sim.mu);
   if (hooks.on_done) hooks.on_done(setup, *trial);
 }
 
@@ -23,6 +39,7 @@ void Simulate(const OdeRuntime& runtime, const TransferSetup& setup,
 GraspTrial RunGraspTrial(const OdeRuntime& runtime, const TransferSetup& setup,
                          TransferMethod method, const StabilityOptions& options,
                          const GraspTrialHooks& hooks) {
+  if (method == TransferMethod::kHuman) return RunHumanTrial(runtime, setup, options, hooks);
   GraspTrial trial;
   trial.transfer = TransferGrasp(setup, method);
   trial.winding_error = (trial.transfer.robot_winding - trial.transfer.target_winding).norm();
@@ -37,6 +54,7 @@ GraspTrial RunHumanTrial(const OdeRuntime& runtime, const TransferSetup& setup,
   GraspTrial trial;
   trial.human = true;
   TransferResult& t = trial.transfer;
+  t.method = TransferMethod::kHuman;
   t.q = setup.human_q;
   KinematicsData kin(setup.human);
   ForwardKinematics(setup.human, setup.human_q, &kin);

@@ -22,8 +22,14 @@ struct GraspTrial {
   SimObject object;            // ODE description of the object at the grasp's world_from_object
   StabilityResult stability;   // closing phase + 6 gravity directions
   double winding_error = 0.0;  // |robot_winding − target_winding| (Euclidean, turns)
+  // Ferrari–Canny ε (EpsilonQuality: L1, 8 pyramid edges, friction μ of the protocol) of the
+  // contacts at the end of the closing phase (stability.closure_contacts, normals flipped to
+  // point into the object) about the object's centre of mass there, torques scaled by the
+  // radius of gyration ρ = sqrt(trace(I) / (3 m)) of the simulated object (ObjectMassProperties).
+  // 0 without force closure, with fewer than 2 contacts or when the closing phase blew up.
+  double epsilon_quality = 0.0;
   // RunHumanTrial: the demonstration itself; `transfer` then describes the human hand (q =
-  // setup.human_q, all three windings = the human's, solver "demonstration", method unused) and
+  // setup.human_q, all three windings = the human's, solver "demonstration", method kHuman) and
   // `hand` is the human hand (palm link "hand_palm").
   bool human = false;
 };
@@ -40,6 +46,7 @@ struct GraspTrialHooks {
 
 // Transfers setup.grasp to the SDH with `method` (TransferGrasp), builds the ODE hand at the
 // transferred q and the object at setup.grasp.world_from_object, and runs TestGraspStability.
+// method kHuman runs RunHumanTrial instead.
 GraspTrial RunGraspTrial(const OdeRuntime& runtime, const TransferSetup& setup,
                          TransferMethod method, const StabilityOptions& options,
                          const GraspTrialHooks& hooks = {});
@@ -69,10 +76,11 @@ struct GraspTrialsResult {
   bool all_stable = true;                       // every trial stable
 };
 
-// Runs RunGraspTrial for every grasp × method with Coulomb friction `mu` (default protocol
-// otherwise), grasp-major. Each grasp's object is looked up by name in `objects`; `human_hand` and
-// `sdh_source` are the robots MakeTransferSetup takes. Throws std::invalid_argument for an
-// unknown object or bad grasp (as MakeTransferSetup) and for mu < 0 or non-finite.
+// Runs RunGraspTrial (kHuman: RunHumanTrial) for every grasp × method with Coulomb friction `mu`
+// (default protocol otherwise), grasp-major. Each grasp's object is looked up by name in `objects`;
+// `human_hand` and `sdh_source` are the robots MakeTransferSetup takes. Throws
+// std::invalid_argument for an unknown object or bad grasp (as MakeTransferSetup) and for mu < 0 or
+// non-finite.
 GraspTrialsResult RunGraspTrials(const OdeRuntime& runtime, const Robot& human_hand,
                                  const Robot& sdh_source, const std::vector<GraspObject>& objects,
                                  const std::vector<HumanGrasp>& grasps,

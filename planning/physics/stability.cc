@@ -51,6 +51,8 @@ StabilityResult TestGraspStability(const OdeRuntime& runtime, const SimHand& han
   }
   result.closure_contact_links = sim.state().num_contact_links;
   result.closure_max_depth = sim.state().max_depth;
+  result.closure_contacts = sim.state().contacts;
+  result.closure_world_from_object = sim.state().world_from_object;
   if (sim.state().blown_up) {
     result.status = StabilityStatus::kBlownUp;
     result.message = "closing phase: " + sim.state().blowup_reason;

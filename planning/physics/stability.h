@@ -3,6 +3,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <functional>
 #include <string>
 #include <vector>
@@ -56,7 +57,11 @@ struct StabilityResult {
   double max_rotation_deg = 0.0;   // max over directions of rotation_deg
   int closure_contact_links = 0;   // links touching after the closing phase
   double closure_max_depth = 0.0;  // deepest penetration after closing [m]
-  std::string message;             // human-readable reason for kNoGrasp / kBlownUp
+  // State at the end of the closing phase (the state every gravity direction starts from):
+  // hand–object contacts (normals from the object towards the hand) and the object pose.
+  std::vector<SimContact> closure_contacts;
+  Eigen::Isometry3d closure_world_from_object = Eigen::Isometry3d::Identity();
+  std::string message;  // human-readable reason for kNoGrasp / kBlownUp
   long total_steps = 0;
 };
 

@@ -166,6 +166,7 @@ TEST(ReportsTest, GraspTableMatchesReportJson) {
       t.transfer.method = result.methods[m];
       t.stability.directions_passed = passed[g][m];
       t.stability.stable = passed[g][m] == 6;
+      t.epsilon_quality = 0.01 * (3 * g + m);
       row.push_back(t);
     }
   }
@@ -194,6 +195,8 @@ TEST(ReportsTest, GraspTableMatchesReportJson) {
       ASSERT_TRUE(std::regex_match(rows[g][m], sm, kCell)) << rows[g][m];
       EXPECT_EQ(std::stoi(sm[1].str()), mj["directions_passed"].get<int>());
       EXPECT_EQ(sm[2].matched, mj["stable"].get<bool>());
+      EXPECT_DOUBLE_EQ(mj["epsilon_quality"].get<double>(),
+                       0.01 * static_cast<double>(3 * g + m - 1));
     }
   }
   for (size_t m = 1; m < header.size(); ++m) {
@@ -203,7 +206,10 @@ TEST(ReportsTest, GraspTableMatchesReportJson) {
   }
   // summary.md carries the same cells.
   const std::string md = GraspSummaryMarkdown(result);
-  EXPECT_NE(md.find("| grasp_1 | 6/6 stable | 0/6 | 3/6 |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| grasp_1 | 6/6 stable | 0/6 | 3/6 | 0.0300 | 0.0400 | 0.0500 |"),
+            std::string::npos)
+      << md;
+  EXPECT_NE(md.find("| eps winding | eps joint | eps fingertip |"), std::string::npos) << md;
   EXPECT_NE(md.find("| **success rate** | 2/3 | 1/3 | 1/3 |"), std::string::npos) << md;
 }
 

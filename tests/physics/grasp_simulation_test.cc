@@ -41,6 +41,26 @@ TEST_F(PhysicsTest, EnvelopingClawHoldsTheBottleInAllSixDirections) {
   EXPECT_EQ(r.directions_passed, 6);
   EXPECT_TRUE(r.stable);
   EXPECT_LT(r.max_slip_m, 0.02);
+  // The end-of-closing state is kept: contacts with unit normals, the object where it was put.
+  ASSERT_GE(r.closure_contacts.size(), 5u);
+  for (const SimContact& c : r.closure_contacts) EXPECT_NEAR(c.normal.norm(), 1.0, 1e-9);
+  EXPECT_LT((r.closure_world_from_object.translation() -
+             testing_hands::Bottle().world_from_object.translation())
+                .norm(),
+            0.02);
+}
+
+TEST_F(PhysicsTest, ObjectMassPropertiesOfACylinderAreTheTextbookValues) {
+  // Solid cylinder (radius r, length l, axis along x after the shape rotation), mass m:
+  // I_axis = m r²/2, I_perp = m (3r² + l²)/12, centre at the shape origin.
+  const SimObject bottle = testing_hands::Bottle();
+  const ObjectMass m = ObjectMassProperties(bottle);
+  const double r = 0.0325, l = 0.205, mass = 0.52;
+  EXPECT_NEAR(m.mass, mass, 1e-12);
+  EXPECT_LT(m.com.norm(), 1e-12);
+  EXPECT_NEAR(m.inertia(0, 0), mass * r * r / 2, 1e-9);
+  EXPECT_NEAR(m.inertia(1, 1), mass * (3 * r * r + l * l) / 12, 1e-9);
+  EXPECT_NEAR(m.inertia(2, 2), mass * (3 * r * r + l * l) / 12, 1e-9);
 }
 
 TEST_F(PhysicsTest, EnvelopeAlsoHoldsAtLowerFriction) {

@@ -93,6 +93,10 @@ TEST(HumanHandTest, HumanHandStaysFiniteAndHoldsThePowerGrasp) {
   EXPECT_EQ(trial.winding_error, 0.0);
   ASSERT_EQ(trial.transfer.human_winding.size(), 5);
   EXPECT_GT(trial.transfer.human_winding.cwiseAbs().maxCoeff(), 0.3);  // fingers wrap the bottle
+  EXPECT_EQ(trial.transfer.method, TransferMethod::kHuman);
+  // Five fingers around the bottle with mu = 1: force closure at the end of closing.
+  EXPECT_GT(trial.epsilon_quality, 0.0);
+  EXPECT_LT(trial.epsilon_quality, 1.0);
 }
 
 }  // namespace

@@ -202,9 +202,74 @@ TEST(GraspTransferTest, PowerGraspTransfersToTheSdhWithMatchingWindings) {
   EXPECT_EQ((again.q - r.q).cwiseAbs().maxCoeff(), 0.0);
   // Baseline: linear joint mapping keeps the human angles and ignores the object.
   const TransferResult joint = TransferGrasp(setup, TransferMethod::kJointMapping);
-  EXPECT_EQ(joint.solver, "direct");
+  EXPECT_EQ(joint.solver, "aico");
+  // The non-penetration projection moves the mapped posture out of the object.
+  EXPECT_GE(joint.min_clearance, -0.003);
   EXPECT_GT((joint.robot_winding - joint.target_winding).norm(),
             (r.robot_winding - r.target_winding).norm());
+}
+
+// Fairness: every SDH method's problem is SharedTransferTasks plus its own target term; the
+// shared terms (names, targets, precisions per slice) are identical across methods.
+TEST(GraspTransferTest, MethodsDifferOnlyInTheirTargetTerm) {
+  const HumanGrasp g = LoadHumanGrasp(kAssets + "grasps/power_bottle.json");
+  const TransferSetup setup =
+      MakeTransferSetup(Human(), LwrSdh(), FindGraspObject(Objects(), "bottle"), g);
+  const TransferOptions o;
+  const std::vector<std::string> base = {"clearance", "joint_limits", "palm"};
+  struct Expected {
+    TransferMethod method;
+    std::vector<std::string> target;
+    bool contact;
+  };
+  const std::vector<Expected> expected = {
+      {TransferMethod::kWinding, {"winding"}, true},
+      {TransferMethod::kWindingOnly, {"winding"}, false},
+      {TransferMethod::kContactOnly, {}, true},
+      {TransferMethod::kFingertip, {"tip_sdh_thumb", "tip_sdh_finger_1", "tip_sdh_finger_2"}, true},
+      {TransferMethod::kJointMapping, {}, false},
+  };
+  const MotionProblem reference = MakeTransferProblem(setup, TransferMethod::kWinding, o);
+  auto same_task = [](const Task& a, const Task& b) {
+    return a.name == b.name && a.precision == b.precision && a.target == b.target &&
+           a.feature->dim() == b.feature->dim() && a.feature->name() == b.feature->name();
+  };
+  const Task& ref_contact = reference.tasks.back();
+  ASSERT_EQ(ref_contact.name, "contact");
+  for (const Expected& e : expected) {
+    SCOPED_TRACE(ToString(e.method));
+    const MotionProblem p = MakeTransferProblem(setup, e.method, o);
+    std::vector<std::string> names;
+    for (const Task& t : p.tasks) names.push_back(t.name);
+    std::vector<std::string> want = base;
+    want.insert(want.end(), e.target.begin(), e.target.end());
+    if (e.contact) want.push_back("contact");
+    EXPECT_EQ(names, want);
+    ASSERT_EQ(p.tasks.size(), want.size());
+    for (size_t k = 0; k < base.size(); ++k) {
+      EXPECT_TRUE(same_task(p.tasks[k], reference.tasks[k])) << base[k];
+    }
+    if (e.contact) {
+      EXPECT_TRUE(same_task(p.tasks.back(), ref_contact));
+    }
+    // Target terms act at the final slice only, with the method's precision.
+    for (size_t k = base.size(); k < base.size() + e.target.size(); ++k) {
+      const Task& t = p.tasks[k];
+      const double rho = t.name == "winding" ? o.winding_precision : o.tip_precision;
+      EXPECT_EQ(t.precision[o.num_steps], rho) << t.name;
+      EXPECT_EQ(t.precision.head(o.num_steps).cwiseAbs().maxCoeff(), 0.0) << t.name;
+    }
+    EXPECT_EQ(p.num_steps, o.num_steps);
+    EXPECT_EQ(p.metric, reference.metric);
+  }
+  // The joint method starts from the mapped posture at the placement, the others retracted.
+  const Eigen::VectorXd place = PlacementConfiguration(setup);
+  const MotionProblem joint = MakeTransferProblem(setup, TransferMethod::kJointMapping, o);
+  EXPECT_EQ((joint.q0.head<6>() - place.head<6>()).norm(), 0.0);
+  EXPECT_NEAR((reference.q0.head<3>() - place.head<3>()).norm(), o.retreat, 1e-12);
+  EXPECT_THROW(MakeTransferProblem(setup, TransferMethod::kHuman, o), std::invalid_argument);
+  EXPECT_THROW(TransferGrasp(setup, TransferMethod::kHuman, o), std::invalid_argument);
+  EXPECT_EQ(AllTransferMethods().size(), 6u);
 }
 
 TEST(GraspTransferTest, CorrespondenceAveragesFingerPairs) {
@@ -219,7 +284,9 @@ TEST(GraspTransferTest, CorrespondenceAveragesFingerPairs) {
     ParseTransferMethod("magic");
     FAIL();
   } catch (const std::invalid_argument& e) {
-    EXPECT_STREQ(e.what(), "unknown transfer method 'magic' (winding, joint, fingertip)");
+    EXPECT_STREQ(e.what(),
+                 "unknown transfer method 'magic' (winding, winding_only, contact_only, "
+                 "fingertip, joint, human)");
   }
   for (const auto& e : kTransferMethodNames) {
     EXPECT_EQ(ParseTransferMethod(ToString(e.value)), e.value);
