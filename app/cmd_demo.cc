@@ -277,9 +277,7 @@ class Demo {
     const fs::path dir = out_ / "grasp";
     namespace phys = planning::physics;
     const GraspInputs in = LoadGraspInputs(SelectGraspFiles("all"));
-    const std::vector<planning::TransferMethod> methods = {planning::TransferMethod::kWinding,
-                                                           planning::TransferMethod::kJointMapping,
-                                                           planning::TransferMethod::kFingertip};
+    const std::vector<planning::TransferMethod> methods = planning::AllTransferMethods();
     phys::OdeRuntime ode;
     GraspFrameWriter frames;
     const phys::GraspTrialsResult result =
@@ -289,9 +287,13 @@ class Demo {
     // Unstable baseline grasps are results, not errors.
     html_ << "<h2>5. Grasp transfer: human hand &rarr; Schunk SDH, tested in ODE</h2>\n"
              "<p>Each human grasp is encoded as winding numbers of the finger chains about the "
-             "object; AICO finds an SDH posture with the mapped winding target. Baselines: linear "
-             "joint mapping and fingertip mapping. Stability: gravity along &plusmn;x, &plusmn;y, "
-             "&plusmn;z for 2 s each at 1 kHz; cells are gravity directions held out of 6.</p>\n"
+             "object; AICO finds an SDH posture with the mapped winding target. Every SDH method "
+             "solves the same AICO problem and differs only in its target term: winding, "
+             "winding_only (windings + non-penetration only), contact_only (the shared contact "
+             "and non-penetration terms alone), fingertip, joint (linear joint mapping, then the "
+             "same non-penetration projection); human is the demonstration itself under the same "
+             "protocol. Stability: gravity along &plusmn;x, &plusmn;y, &plusmn;z for 2 s each at "
+             "1 kHz; cells are gravity directions held out of 6.</p>\n"
              "<p><img src=\"grasp/summary.png\" width=\"640\"></p>\n"
           << GraspHtmlTable(result)
           << "<p><a href=\"grasp/report.json\">report.json</a></p>\n"
