@@ -15,9 +15,10 @@ def circle(n, center=(0, 0, 0), radius=1.0, plane="xy"):
 
 
 def torus_knot(p, q, n, R=2.0, r=0.8, phase=0.0):
-    """Closed curve on a torus winding p times around the hole, q times around the tube."""
+    """Closed curve on a torus winding p times around the hole, q times around the tube
+    (`phase` shifts the angle around the tube)."""
     t = np.linspace(0.0, 2 * np.pi, n + 1)
-    phi, theta = p * t + phase, q * t
+    phi, theta = p * t, q * t + phase
     return np.stack(
         [(R + r * np.cos(theta)) * np.cos(phi), (R + r * np.cos(theta)) * np.sin(phi), r * np.sin(theta)],
         axis=1,
@@ -41,7 +42,8 @@ def test_unlinked_circles_have_zero_linking():
 
 
 def test_torus_link_linking_number():
-    # Two parallel (1, 2) curves on a torus: the T(2, 4) torus link, linking number 2.
+    # Two disjoint parallel (1, 2) curves on a torus: the T(2, 4) torus link, linking number
+    # p * q = 2.
     a = torus_knot(1, 2, 400)
     b = torus_knot(1, 2, 400, phase=np.pi)
     total = topoplan.writhe_matrix(a, b).sum()
