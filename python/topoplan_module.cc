@@ -28,6 +28,7 @@
 #include "app/robot_scene.h"
 #include "app/scene_builder.h"
 #include "planning/collision.h"
+#include "planning/grasp_object.h"
 #include "planning/kinematics.h"
 #include "planning/physics/grasp_trials.h"
 #include "planning/planner.h"
@@ -120,6 +121,13 @@ void RequireFile(const std::string& path, const std::string& arg) {
   if (!std::filesystem::is_regular_file(path)) {
     ThrowPy(PyExc_FileNotFoundError, arg + ": no such file: " + path);
   }
+}
+
+template <typename T>
+std::vector<std::string> Names(const std::vector<T>& items) {
+  std::vector<std::string> names;
+  for (const T& item : items) names.push_back(item.name);
+  return names;
 }
 
 std::string Join(const std::vector<std::string>& names) {
@@ -252,18 +260,14 @@ struct PyRobot {
     for (size_t i = 0; i < robot.links.size(); ++i) {
       if (robot.links[i].name == name) return static_cast<int>(i);
     }
-    std::vector<std::string> names;
-    for (const auto& l : robot.links) names.push_back(l.name);
-    ThrowValue("link: unknown link '" + name + "' (links: " + Join(names) + ")");
+    ThrowValue("link: unknown link '" + name + "' (links: " + Join(Names(robot.links)) + ")");
   }
 
   int Chain(const std::string& name) const {
     for (size_t i = 0; i < robot.chains.size(); ++i) {
       if (robot.chains[i].name == name) return static_cast<int>(i);
     }
-    std::vector<std::string> names;
-    for (const auto& c : robot.chains) names.push_back(c.name);
-    ThrowValue("chain: unknown chain '" + name + "' (chains: " + Join(names) + ")");
+    ThrowValue("chain: unknown chain '" + name + "' (chains: " + Join(Names(robot.chains)) + ")");
   }
 
   void Fk(const py::handle& q) { planning::ForwardKinematics(robot, Q(q), kin.get()); }
@@ -490,20 +494,9 @@ PYBIND11_MODULE(_core, m) {
           "joint_names", [](const PyRobot& r) { return planning::DofNames(r.robot); },
           "Names of the joints driven by q, in q order.")
       .def_property_readonly(
-          "link_names",
-          [](const PyRobot& r) {
-            std::vector<std::string> n;
-            for (const auto& l : r.robot.links) n.push_back(l.name);
-            return n;
-          },
-          "Link names.")
+          "link_names", [](const PyRobot& r) { return Names(r.robot.links); }, "Link names.")
       .def_property_readonly(
-          "chain_names",
-          [](const PyRobot& r) {
-            std::vector<std::string> n;
-            for (const auto& c : r.robot.chains) n.push_back(c.name);
-            return n;
-          },
+          "chain_names", [](const PyRobot& r) { return Names(r.robot.chains); },
           "Names of the robot's chains (sidecar file).")
       .def_property_readonly(
           "limits",
@@ -567,12 +560,7 @@ PYBIND11_MODULE(_core, m) {
             const Eigen::Vector3d xyz = ToVector(position, "position", 3);
             const Eigen::Vector3d e = ToVector(rpy, "rpy", 3);
             planning::Robot object = planning::LoadRobot(urdf);
-            Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-            T.translation() = xyz;
-            T.linear() = (Eigen::AngleAxisd(e[2], Eigen::Vector3d::UnitZ()) *
-                          Eigen::AngleAxisd(e[1], Eigen::Vector3d::UnitY()) *
-                          Eigen::AngleAxisd(e[0], Eigen::Vector3d::UnitX()))
-                             .toRotationMatrix();
+            const Eigen::Isometry3d T = planning::PoseFromXyzRpy(xyz, e);
             r.coll.reset();
             planning::AddObject(object, T, name.empty() ? object.name : name, &r.env);
           },
