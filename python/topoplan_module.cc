@@ -55,6 +55,16 @@ using Array = py::array_t<double, py::array::c_style | py::array::forcecast>;
 
 [[noreturn]] void ThrowValue(const std::string& message) { ThrowPy(PyExc_ValueError, message); }
 
+// f(), with a std::invalid_argument it throws raised as `type` "arg: <message>".
+template <typename F>
+auto Named(const std::string& arg, F f, PyObject* type = PyExc_ValueError) -> decltype(f()) {
+  try {
+    return f();
+  } catch (const std::invalid_argument& e) {
+    ThrowPy(type, arg + ": " + e.what());
+  }
+}
+
 // A float64 array from any array-like; ValueError naming `arg` when it is not numeric.
 Array ToArray(const py::handle& obj, const std::string& arg) {
   Array a;
@@ -299,12 +309,8 @@ struct CallbackStop {};
 
 py::tuple PlanPy(PyScenario& s, const std::string& planner_name, unsigned seed,
                  const py::object& callback) {
-  planning::Planner planner;
-  try {
-    planner = planning::ParsePlanner(planner_name);
-  } catch (const std::invalid_argument& e) {
-    ThrowValue(std::string("planner: ") + e.what());
-  }
+  const planning::Planner planner =
+      Named("planner", [&] { return planning::ParsePlanner(planner_name); });
   std::optional<py::error_already_set> callback_error;
   bool cancelled = false;
   int cancelled_sweep = -1;
@@ -645,12 +651,8 @@ PYBIND11_MODULE(_core, m) {
       "load_scenario",
       [](const std::string& arg, std::optional<double> start_wrap, long rrt_budget) {
         if (start_wrap && !std::isfinite(*start_wrap)) ThrowValue("start_wrap: must be finite");
-        std::string path;
-        try {
-          path = app::ResolveScenarioPath(arg);
-        } catch (const std::invalid_argument& e) {
-          ThrowPy(PyExc_FileNotFoundError, std::string("path_or_name: ") + e.what());
-        }
+        const std::string path = Named(
+            "path_or_name", [&] { return app::ResolveScenarioPath(arg); }, PyExc_FileNotFoundError);
         planning::ScenarioOverrides overrides;
         overrides.start_wrap_deg = start_wrap;
         PyScenario s;
@@ -727,18 +729,10 @@ PYBIND11_MODULE(_core, m) {
       "grasp_transfer",
       [](const std::string& grasp, const std::string& method, double mu) {
         if (!(mu >= 0.0) || !std::isfinite(mu)) ThrowValue("mu: must be finite and >= 0");
-        planning::TransferMethod tm;
-        try {
-          tm = planning::ParseTransferMethod(method);
-        } catch (const std::invalid_argument& e) {
-          ThrowValue(std::string("method: ") + e.what());
-        }
-        std::vector<std::string> files;
-        try {
-          files = app::SelectGraspFiles(grasp);
-        } catch (const std::invalid_argument& e) {
-          ThrowPy(PyExc_FileNotFoundError, std::string("grasp: ") + e.what());
-        }
+        const planning::TransferMethod tm =
+            Named("method", [&] { return planning::ParseTransferMethod(method); });
+        const std::vector<std::string> files = Named(
+            "grasp", [&] { return app::SelectGraspFiles(grasp); }, PyExc_FileNotFoundError);
         if (files.size() != 1) ThrowValue("grasp: name one grasp (a name or a file), not 'all'");
         nlohmann::json report;
         {
