@@ -18,6 +18,9 @@ REQUIRED=(
   libode-dev                                      # physics
   libqhull-dev                                    # convex hulls (grasp quality)
   libgtest-dev libgmock-dev libbenchmark-dev      # tests, benchmarks
+  pybind11-dev python3-dev python3-pybind11       # Python module (python/)
+  python3-numpy python3-pytest                    # its arrays and tests
+  python3-dask python3-distributed                # sweeps on Dask (topoplan.sweep)
   xvfb xauth xdotool imagemagick                  # headless window tests
 )
 OPTIONAL=(ffmpeg libompl-dev)

@@ -1,0 +1,126 @@
+"""Every error path: ValueError naming the argument, FileNotFoundError, RuntimeError for GL."""
+
+import os
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+import topoplan
+
+ASSETS = topoplan.asset_root()
+ARM = os.path.join(ASSETS, "robots", "arm20_sdh.urdf")
+
+
+@pytest.fixture(scope="module")
+def robot():
+    return topoplan.Robot.load(ARM)
+
+
+def test_writhe_shape_nan_and_type_errors():
+    good = np.zeros((3, 3))
+    good[:, 0] = [0, 1, 2]
+    with pytest.raises(ValueError, match=r"A: expected shape \(N, 3\)"):
+        topoplan.writhe_matrix(np.zeros((4, 2)), good)
+    with pytest.raises(ValueError, match="B: needs at least 2 points"):
+        topoplan.writhe_matrix(good, np.zeros((1, 3)))
+    bad = good.copy()
+    bad[1, 1] = np.nan
+    with pytest.raises(ValueError, match="B: non-finite"):
+        topoplan.writhe_matrix(good, bad)
+    with pytest.raises(ValueError, match="A: expected an array of numbers"):
+        topoplan.writhe_matrix("abc", good)
+    with pytest.raises(ValueError, match="A:"):
+        topoplan.writhe_jacobian(np.zeros(3), good)
+
+
+def test_winding_errors():
+    chain = np.array([[1.0, 0, 0], [0, 1.0, 0]])
+    with pytest.raises(ValueError, match="axis_dir: must be non-zero"):
+        topoplan.winding(chain, [0, 0, 0], [0, 0, 0])
+    with pytest.raises(ValueError, match="axis_point"):
+        topoplan.winding(chain, [0, 0], [0, 0, 1])
+    with pytest.raises(ValueError, match="chain"):
+        topoplan.winding(chain[:1], [0, 0, 0], [0, 0, 1])
+
+
+def test_robot_errors(robot, tmp_path):
+    n = len(robot.joint_names)
+    with pytest.raises(FileNotFoundError, match="urdf"):
+        topoplan.Robot.load(str(tmp_path / "missing.urdf"))
+    bad = tmp_path / "bad.urdf"
+    bad.write_text("<robot name='x'><link name='a'/><joint name='j' type='revolute'/></robot>")
+    with pytest.raises(ValueError, match="bad.urdf"):
+        topoplan.Robot.load(str(bad))
+    with pytest.raises(ValueError, match=rf"q: expected shape \({n},\)"):
+        robot.fk(np.zeros(n + 1))
+    q = np.zeros(n)
+    q[3] = np.inf
+    with pytest.raises(ValueError, match="q: non-finite"):
+        robot.fk(q)
+    with pytest.raises(ValueError, match="q: unknown joint 'elbow'"):
+        robot.fk({"elbow": 0.3})
+    with pytest.raises(ValueError, match="link: unknown link 'hand'"):
+        robot.fk(np.zeros(n), link="hand")
+    with pytest.raises(ValueError, match="chain: unknown chain 'tail'"):
+        robot.chain_points(np.zeros(n), "tail")
+    with pytest.raises(ValueError, match="point"):
+        robot.point_jacobian(np.zeros(n), "arm_link_1", [0, 0])
+    with pytest.raises(FileNotFoundError, match="urdf"):
+        robot.add_object(str(tmp_path / "nothing.urdf"))
+    with pytest.raises(ValueError, match="margin"):
+        robot.distances(np.zeros(n), margin=-1)
+
+
+def test_scenario_errors(tmp_path):
+    with pytest.raises(FileNotFoundError, match="path_or_name"):
+        topoplan.load_scenario("no_such_scenario")
+    bad = tmp_path / "bad.json"
+    bad.write_text('{"name": "x", "robot": "nowhere.urdf", "tasks": []}')
+    with pytest.raises(ValueError, match="bad.json"):
+        topoplan.load_scenario(str(bad))
+    with pytest.raises(ValueError, match="start_wrap"):
+        topoplan.load_scenario("unwrap", start_wrap=float("nan"))
+    s = topoplan.load_scenario("reach_through_ring")
+    with pytest.raises(ValueError, match="planner: unknown planner 'prm'"):
+        s.plan("prm")
+
+
+def test_image_errors(tmp_path):
+    with pytest.raises(ValueError, match="size"):
+        topoplan.render(ARM, size=(4, 4))
+    with pytest.raises(FileNotFoundError, match="scene"):
+        topoplan.render(str(tmp_path / "none.json"))
+    with pytest.raises(ValueError, match="scene"):
+        topoplan.render(12)
+    with pytest.raises(ValueError, match="W"):
+        topoplan.heatmap(np.zeros(3))
+    with pytest.raises(FileNotFoundError, match="path"):
+        topoplan.read_png(str(tmp_path / "none.png"))
+
+
+def test_grasp_errors():
+    with pytest.raises(ValueError, match="method: unknown transfer method 'magic'"):
+        topoplan.grasp_transfer("power_bottle", "magic")
+    with pytest.raises(ValueError, match="mu"):
+        topoplan.grasp_transfer("power_bottle", "winding", mu=-1)
+    with pytest.raises(FileNotFoundError, match="grasp"):
+        topoplan.grasp_transfer("no_such_grasp", "winding")
+
+
+def test_no_gl_is_runtime_error(tmp_path):
+    # A GL backend that cannot start: an EGL device that does not exist, or OSMesa without its
+    # library. The render call must raise RuntimeError (topoplan.EnvironmentError).
+    code = (
+        "import topoplan, sys\n"
+        "try:\n"
+        f"    topoplan.render({ARM!r}, size=(32, 32))\n"
+        "except RuntimeError as e:\n"
+        "    print('RuntimeError', isinstance(e, topoplan.EnvironmentError)); sys.exit(0)\n"
+        "print('rendered'); sys.exit(0)\n"
+    )
+    env = dict(os.environ, TOPOPLAN_GL="nonsense")
+    r = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr
+    assert r.stdout.startswith("RuntimeError True"), r.stdout

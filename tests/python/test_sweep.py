@@ -1,0 +1,84 @@
+"""`python3 -m topoplan.sweep unwrap`: the same runs as `topoplan bench unwrap`, reruns skip
+finished runs, bad input exits 2 and writes nothing."""
+
+import csv
+import os
+import subprocess
+import sys
+import time
+
+import pytest
+
+import topoplan
+
+SWEEP = [sys.executable, "-m", "topoplan.sweep", "unwrap"]
+ARGS = ["--angles", "0:90:90", "--seeds", "2", "--planners", "aico,birrt,rrt", "--budget", "3000"]
+
+
+def rows(path):
+    with open(path) as f:
+        return list(csv.DictReader(f))
+
+
+def key(row):
+    return (float(row["angle_deg"]), row["planner"], int(row["seed"]))
+
+
+def without_time(row):
+    return {k: v for k, v in row.items() if k != "time_s"}
+
+
+def run_sweep(*args, timeout=600):
+    return subprocess.run([*SWEEP, *args], capture_output=True, text=True, timeout=timeout)
+
+
+def test_sweep_equals_bench_unwrap(cli, tmp_path):
+    out = tmp_path / "sweep"
+    r = run_sweep(*ARGS, "--workers", "2", "-o", out)
+    assert r.returncode == 0, r.stderr
+    cli("bench", "unwrap", *ARGS, "-o", tmp_path / "bench")
+    got = {key(x): without_time(x) for x in rows(out / "unwrap.csv")}
+    want = {key(x): without_time(x) for x in rows(tmp_path / "bench" / "unwrap.csv")}
+    assert len(rows(out / "unwrap.csv")) == len(got) == 2 * 3 * 2
+    assert got == want
+    assert topoplan.read_png(str(out / "unwrap.png")).shape == topoplan.read_png(
+        str(tmp_path / "bench" / "unwrap.png")
+    ).shape
+    assert (topoplan.read_png(str(out / "unwrap.png")) == topoplan.read_png(
+        str(tmp_path / "bench" / "unwrap.png"))).all()
+
+    # A rerun finds every run in the CSV and starts no cluster.
+    before = (out / "unwrap.csv").read_text()
+    t0 = time.monotonic()
+    r = run_sweep(*ARGS, "-o", out)
+    assert r.returncode == 0, r.stderr
+    assert (out / "unwrap.csv").read_text() == before
+    assert time.monotonic() - t0 < 60
+
+    # A torn last line (a crash mid-write) is dropped and that run redone, once.
+    lines = before.splitlines(keepends=True)
+    (out / "unwrap.csv").write_text("".join(lines[:-1]) + lines[-1][:5])
+    r = run_sweep(*ARGS, "--workers", "1", "-o", out)
+    assert r.returncode == 0, r.stderr
+    again = rows(out / "unwrap.csv")
+    assert len(again) == 12 and {key(x): without_time(x) for x in again} == want
+
+
+@pytest.mark.parametrize(
+    "args, message",
+    [
+        (["--angles", "90:0:10"], "--angles"),
+        (["--angles", "a:b"], "--angles"),
+        (["--planners", "aico,prm"], "unknown planner 'prm'"),
+        (["--seeds", "0"], "--seeds"),
+        (["--scheduler", "tcp://127.0.0.1:9", "--timeout", "2"], "--scheduler: cannot reach"),
+    ],
+)
+def test_bad_input_exits_2_and_writes_nothing(tmp_path, args, message):
+    out = tmp_path / "out"
+    t0 = time.monotonic()
+    r = run_sweep(*args, "-o", out, timeout=120)
+    assert r.returncode == 2, r.stderr
+    assert message in r.stderr
+    assert not out.exists()
+    assert time.monotonic() - t0 < 60
