@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# interrupt.sh SIGNAL TOPOPLAN DIR: sends SIGNAL to `topoplan bench unwrap` (10 runs) once its first run has
-# finished and checks that it exits with 130, that DIR/unwrap.csv holds the header and the
+# interrupt.sh SIGNAL TOPOPLAN DIR: sends SIGNAL to `topoplan bench unwrap` (10 runs) once its
+# first run has finished and checks that it exits with 130, that DIR/unwrap.csv holds the header and the
 # finished rows only, and that no partial output (unwrap.png, the staging folder) is left.
 set -u
 sig=$1 bin=$2 out=$3
