@@ -34,6 +34,7 @@ struct DemoArgs {
   std::string out_dir = "demo-out";
   bool full = false;      // the whole Figure 4.5 sweep (0..900 deg, 5 seeds)
   bool no_grasp = false;  // skip the grasp-transfer stage
+  double timeout = 0.0;   // --timeout: seconds, 0 = none
 };
 
 // Example chain pairs shipped in assets/chains/ and what their total writhe should be.
@@ -83,6 +84,9 @@ class Demo {
   explicit Demo(const DemoArgs& args) : args_(args), out_(args.out_dir) {}
 
   int Run() {
+    CheckOutputDir(out_.string(), "-o");
+    const StopCheck stop(args_.timeout);  // the commands of each stage see the same deadline
+    stop_ = &stop;
     fs::create_directories(out_);
     std::printf("topoplan demo -> %s\n", fs::absolute(out_).c_str());
     Stage("writhe matrices of the example chains", [&] { return Writhe(); });
@@ -97,6 +101,10 @@ class Demo {
     Stage("interactive viewer, headless screenshot", [&] { return Viewer(); });
     WriteIndex();
     std::printf("wrote %s\n", (out_ / "index.html").c_str());
+    if (stopped_) {
+      std::printf("status: %s\n", stopped_timeout_ ? "timeout" : "interrupted");
+      return stopped_timeout_ ? kExitFailed : kExitInterrupted;
+    }
     return worst_;
   }
 
@@ -105,6 +113,14 @@ class Demo {
   template <typename F>
   void Stage(const std::string& title, F body) {
     ++stage_;
+    try {
+      stop_->Poll();
+    } catch (const StopRequested& e) {  // the remaining stages are skipped
+      stopped_ = true;
+      stopped_timeout_ = e.timeout;
+      stage_status_.push_back({title + " (skipped: " + e.what() + ")", e.timeout ? 1 : 130});
+      return;
+    }
     std::printf("\n[%d] %s\n", stage_, title.c_str());
     std::fflush(stdout);
     const auto t0 = std::chrono::steady_clock::now();
@@ -249,9 +265,10 @@ class Demo {
     options.planners = {planning::Planner::kAico, planning::Planner::kRrt,
                         planning::Planner::kBiRrt};
     options.seeds = args_.full ? 5 : 1;
-    options.progress = [](int done, int total, const planning::UnwrapRun& run) {
+    options.progress = [this](int done, int total, const planning::UnwrapRun& run) {
       std::fprintf(stderr, "\r  %d/%d runs (%s @ %.0f deg seed %d)   ", done, total,
                    planning::PlannerName(run.planner), run.angle_deg, run.seed);
+      stop_->Poll();  // a stopped benchmark stage ends (as a failed stage) at a run boundary
       if (done == total) std::fprintf(stderr, "\n");
     };
     const planning::UnwrapBenchmarkResult result = planning::RunUnwrapBenchmark(options);
@@ -355,6 +372,8 @@ class Demo {
   std::ostringstream html_;
   int stage_ = 0;
   int worst_ = kExitOk;
+  const StopCheck* stop_ = nullptr;
+  bool stopped_ = false, stopped_timeout_ = false;
   std::vector<std::pair<std::string, int>> stage_status_;
 };
 
@@ -367,6 +386,7 @@ void AddDemoCommand(CLI::App* root, CommandList* commands) {
   demo->add_option("-o,--out", args->out_dir, "output folder")->capture_default_str();
   demo->add_flag("--full", args->full, "the whole Fig. 4.5 sweep (0..900 deg, 5 seeds)");
   demo->add_flag("--no-grasp", args->no_grasp, "skip the grasp-transfer stage");
+  AddTimeoutFlag(demo, &args->timeout);
   commands->push_back({demo, [args]() { return Demo(*args).Run(); }});
 }
 

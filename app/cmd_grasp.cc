@@ -67,6 +67,7 @@ struct TransferArgs {
   std::string method = "all";
   double mu = 1.0;
   std::string out_dir;
+  double timeout = 0.0;
   bool frames = false;
   bool json = false;
 };
@@ -75,13 +76,14 @@ int RunTransfer(const TransferArgs& a) {
   if (!(a.mu >= 0) || !std::isfinite(a.mu)) {
     throw std::invalid_argument("--mu: must be a finite number >= 0");
   }
-  if (a.out_dir.empty()) throw std::invalid_argument("-o: output folder required");
   std::vector<planning::TransferMethod> methods;
   if (a.method == "all") {
     methods = planning::AllTransferMethods();
   } else {
     methods = {ParseFlag("--method", [&] { return planning::ParseTransferMethod(a.method); })};
   }
+  OutputDir out(a.out_dir, "-o");  // checked before any work
+  const StopCheck stop(a.timeout);
   // Load everything first so that a bad file fails before any simulation runs.
   const GraspInputs in = LoadGraspInputs(SelectGraspFiles(a.grasp));
 
@@ -89,11 +91,28 @@ int RunTransfer(const TransferArgs& a) {
   phys::OdeRuntime ode;
   std::unique_ptr<GraspFrameWriter> frames;
   if (a.frames) frames = std::make_unique<GraspFrameWriter>();
-  const phys::GraspTrialHooks hooks = GraspTransferHooks(a.out_dir, frames.get());
-  const phys::GraspTrialsResult result =
-      phys::RunGraspTrials(ode, in.human, in.lwr_sdh, in.objects, in.grasps, methods, a.mu, hooks);
+  phys::GraspTrialHooks hooks = GraspTransferHooks(out.staging(), frames.get());
+  // Stops between trials; a stopped run leaves a report.json with its status only.
+  hooks.on_start = [&stop, start = hooks.on_start](const auto& setup, const auto& transfer,
+                                                   const auto& hand, const auto& object) {
+    stop.Poll();
+    return start ? start(setup, transfer, hand, object) : phys::StepCallback{};
+  };
+  phys::GraspTrialsResult result;
+  try {
+    result = phys::RunGraspTrials(ode, in.human, in.lwr_sdh, in.objects, in.grasps, methods, a.mu,
+                                  hooks);
+  } catch (const StopRequested& e) {
+    const nlohmann::json report = StoppedReportJson(e, {{"mu", a.mu}});
+    WriteFileAtomic((std::filesystem::path(out.staging()) / "report.json").string(),
+                    report.dump(1) + "\n");
+    out.Commit();
+    std::fprintf(stderr, "%s: wrote %s/report.json\n", e.what(), a.out_dir.c_str());
+    return e.timeout ? kExitFailed : kExitInterrupted;
+  }
 
-  const std::string text = WriteGraspOutputs(result, a.out_dir);
+  const std::string text = WriteGraspOutputs(result, out.staging());
+  out.Commit();
   if (a.json) std::cout << text;
   std::fprintf(stderr, "wrote %s/report.json, summary.md, summary.png\n", a.out_dir.c_str());
   return result.all_stable ? kExitOk : kExitFailed;
@@ -133,6 +152,7 @@ void AddGraspCommands(CLI::App* root, CommandList* commands) {
   transfer->add_option("--mu", ta->mu, "Coulomb friction coefficient (friction pyramid)")
       ->capture_default_str();
   transfer->add_option("-o,--output", ta->out_dir, "output folder")->required();
+  AddTimeoutFlag(transfer, &ta->timeout);
   transfer->add_flag("--frames", ta->frames,
                      "also write frames of the transfer and stability test");
   transfer->add_flag("--json", ta->json, "print report.json to stdout");

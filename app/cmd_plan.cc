@@ -26,7 +26,8 @@ namespace fs = std::filesystem;
 struct PlanArgs {
   std::string scenario, planner = "aico", output;
   unsigned seed = 0;
-  double start_wrap = std::numeric_limits<double>::quiet_NaN();
+  double start_wrap = std::numeric_limits<double>::quiet_NaN();  // NaN: not given
+  double timeout = 0.0;
   bool frames = false, json = false;
   RobotInputOptions robot_input;  // --package-path, --srdf
 };
@@ -36,7 +37,11 @@ struct BenchArgs {
   int seeds = 3;
   long budget = -1;
   double perturb = 0.0;
+  double timeout = 0.0;
 };
+
+// Largest number of angles in --angles.
+constexpr int kMaxAngles = 10000;
 
 // "a:b:step" → a, a+step, ..., ≤ b.
 std::vector<double> ParseRange(const std::string& text, const std::string& flag) {
@@ -50,11 +55,14 @@ std::vector<double> ParseRange(const std::string& text, const std::string& flag)
   if (!(v[2] > 0.0) || !(v[1] >= v[0]) || !(v[0] >= 0.0) || !(v[1] <= 2000.0)) {
     throw std::invalid_argument(flag + ": expected a:b:step with 0 <= a <= b <= 2000, step > 0");
   }
-  if ((v[1] - v[0]) / v[2] >= 10000.0) {
-    throw std::invalid_argument(flag + ": more than 10000 points; use a larger step");
+  // The count is computed (and bounded) first: a tiny step must not loop for ever.
+  const double count = std::floor((v[1] - v[0]) / v[2] + 1e-9) + 1.0;
+  if (count > kMaxAngles) {
+    throw std::invalid_argument(flag + ": more than " + std::to_string(kMaxAngles) +
+                                " angles (use a larger step)");
   }
   std::vector<double> out;
-  for (double a = v[0]; a <= v[1] + 1e-9; a += v[2]) out.push_back(a);
+  for (int i = 0; i < static_cast<int>(count); ++i) out.push_back(v[0] + i * v[2]);
   return out;
 }
 
@@ -103,7 +111,9 @@ void AddPlanCommands(CLI::App* root, CommandList* commands) {
                        "libompl-dev)");
   plan->add_option("--seed", pa->seed, "seed of the RRTs' random generator (default 0)");
   plan->add_option("--start-wrap", pa->start_wrap,
-                   "start coil of a coil-start scenario (unwrap): angle to unwrap in degrees");
+                   "start coil of a coil-start scenario (unwrap): angle to unwrap in degrees")
+      ->check(FiniteIn(0.0, 2000.0));
+  AddTimeoutFlag(plan, &pa->timeout);
   plan->add_option("-o,--output", pa->output, "output folder")->required();
   AddRobotInputFlags(plan, &pa->robot_input, nullptr);
   plan->add_flag("--frames", pa->frames,
@@ -118,28 +128,42 @@ void AddPlanCommands(CLI::App* root, CommandList* commands) {
   commands->push_back(
       {plan, [pa]() {
          planning::ScenarioOverrides overrides;
-         if (!std::isnan(pa->start_wrap)) {
-           if (!(pa->start_wrap >= 0.0 && pa->start_wrap <= 2000.0)) {
-             throw std::invalid_argument("--start-wrap: expected degrees in [0, 2000]");
-           }
-           overrides.start_wrap_deg = pa->start_wrap;
-         }
+         if (!std::isnan(pa->start_wrap)) overrides.start_wrap_deg = pa->start_wrap;
          const planning::Planner planner =
              ParseFlag("--planner", [&] { return planning::ParsePlanner(pa->planner); });
          overrides.package_paths = PackagePaths(pa->robot_input.package_paths);
          overrides.srdf = pa->robot_input.srdf;
+         OutputDir out(pa->output, "-o");  // checked before any work
+         const StopCheck stop(pa->timeout);
          const auto scenario = LoadScenarioArg(pa->scenario, overrides);
-         const planning::PlanResult result = planning::RunPlanner(
-             *scenario, planner, pa->seed,
-             [](int sweep, double cost, bool accepted, const planning::Trajectory&) {
-               std::fprintf(stderr, "\rsweep %3d  cost %-12.6g %s", sweep, cost,
-                            accepted ? "accepted" : "rejected");
-             });
-         if (planner == planning::Planner::kAico) std::fprintf(stderr, "\n");
-         const nlohmann::json report = WritePlanOutputs(*scenario, result, pa->seed, pa->output);
-         if (pa->frames && result.trajectory.num_points() > 0) {
-           WritePlanFrames(*scenario, result.trajectory, pa->output);
+         planning::PlanResult result;
+         try {
+           result = planning::RunPlanner(
+               *scenario, planner, pa->seed,
+               [&stop](int sweep, double cost, bool accepted, const planning::Trajectory&) {
+                 std::fprintf(stderr, "\rsweep %3d  cost %-12.6g %s", sweep, cost,
+                              accepted ? "accepted" : "rejected");
+                 stop.Poll();
+               });
+         } catch (const StopRequested& e) {
+           const nlohmann::json report =
+               StoppedReportJson(e, {{"scenario", scenario->name},
+                                     {"planner", planning::PlannerName(planner)},
+                                     {"seed", pa->seed}});
+           WriteFileAtomic((fs::path(out.staging()) / "report.json").string(),
+                           report.dump(2) + "\n");
+           out.Commit();
+           std::fprintf(stderr, "\n%s: wrote %s/report.json\n", e.what(), pa->output.c_str());
+           if (pa->json) std::printf("%s\n", report.dump(2).c_str());
+           return e.timeout ? kExitFailed : kExitInterrupted;
          }
+         if (planner == planning::Planner::kAico) std::fprintf(stderr, "\n");
+         const nlohmann::json report = WritePlanOutputs(*scenario, result, pa->seed, out.staging());
+         if (pa->frames && result.trajectory.num_points() > 0) {
+           WritePlanFrames(*scenario, result.trajectory, out.staging(),
+                           [&stop](const render::Image&, const render::Image*) { stop.Poll(); });
+         }
+         out.Commit();
          if (pa->json) {
            std::printf("%s\n", report.dump(2).c_str());
          } else {
@@ -161,11 +185,14 @@ void AddPlanCommands(CLI::App* root, CommandList* commands) {
       ->check(CLI::Range(1, 1000));
   unwrap->add_option("--planners", ba->planners,
                      "comma-separated subset of aico,rrt,birrt,ompl-rrt,ompl-rrtconnect");
-  unwrap->add_option("--budget", ba->budget,
-                     "collision-check budget of the RRTs (default: the scenario's, 100000)");
+  unwrap
+      ->add_option("--budget", ba->budget,
+                   "collision-check budget of the RRTs (default: the scenario's, 100000)")
+      ->check(CLI::Range(1L, 1000000000L));
   unwrap->add_option("--perturb", ba->perturb,
                      "move the pole of each seed by a random offset of at most M metres "
                      "perpendicular to its axis (seeded, reproducible; default 0)");
+  AddTimeoutFlag(unwrap, &ba->timeout);
   unwrap->add_option("-o,--output", ba->output, "output folder")->required();
   unwrap->footer(
       "Writes DIR/unwrap.csv (angle_deg,planner,seed,success,failure_reason,collision_checks,\n"
@@ -186,20 +213,36 @@ void AddPlanCommands(CLI::App* root, CommandList* commands) {
            throw std::invalid_argument("--perturb: expected a finite distance >= 0 in metres");
          }
          options.perturb_m = ba->perturb;
-         options.progress = [](int done, int total, const planning::UnwrapRun& run) {
+         OutputDir out(ba->output, "-o");  // checked before any work
+         const StopCheck stop(ba->timeout);
+         planning::UnwrapBenchmarkResult finished;  // the runs completed so far
+         options.progress = [&](int done, int total, const planning::UnwrapRun& run) {
            char what[96];
            std::snprintf(what, sizeof(what), "%s @ %.0f deg seed %d",
                          planning::PlannerName(run.planner), run.angle_deg, run.seed);
            ProgressBar(done, total, what);
+           finished.runs.push_back(run);
+           stop.Poll();
          };
          const int total =
              static_cast<int>(options.angles_deg.size() * options.planners.size()) * ba->seeds;
          ProgressBar(0, total, "");
-         const planning::UnwrapBenchmarkResult result = planning::RunUnwrapBenchmark(options);
-         WriteFileAtomic((fs::path(ba->output) / "unwrap.csv").string(), UnwrapCsv(result));
-         if (const auto figure = UnwrapFigure(result)) {
-           render::WritePng((fs::path(ba->output) / "unwrap.png").string(), *figure);
+         planning::UnwrapBenchmarkResult result;
+         try {
+           result = planning::RunUnwrapBenchmark(options);
+         } catch (const StopRequested& e) {
+           // Keep the finished rows: unwrap.csv only (no figure of a partial sweep).
+           WriteFileAtomic((fs::path(out.staging()) / "unwrap.csv").string(), UnwrapCsv(finished));
+           out.Commit();
+           std::fprintf(stderr, "\n%s: wrote %s/unwrap.csv (%zu of %d runs)\n", e.what(),
+                        ba->output.c_str(), finished.runs.size(), total);
+           return e.timeout ? kExitFailed : kExitInterrupted;
          }
+         WriteFileAtomic((fs::path(out.staging()) / "unwrap.csv").string(), UnwrapCsv(result));
+         if (const auto figure = UnwrapFigure(result)) {
+           render::WritePng((fs::path(out.staging()) / "unwrap.png").string(), *figure);
+         }
+         out.Commit();
          std::printf("wrote %s/unwrap.csv and %s/unwrap.png (%d runs)\n", ba->output.c_str(),
                      ba->output.c_str(), total);
          return kExitOk;

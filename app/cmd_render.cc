@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <memory>
 #include <nlohmann/json.hpp>
 
@@ -90,11 +91,12 @@ void AddRenderCommands(CLI::App* root, CommandList* commands) {
       "Exit codes: 0 ok, 2 bad scene/flags (the message names the JSON path), 3 no GL.");
   commands->push_back(
       {render_cmd, [ra]() {
+         CheckOutputFile(ra->output, "-o");
          SceneDocument doc = LoadRenderInput(ra->input, ra->q, *ra);
          int width = doc.width > 0 ? doc.width : 640, height = doc.height > 0 ? doc.height : 480;
          if (!ra->size.empty()) ParseImageSize(ra->size, "--size", &width, &height);
          if (!ra->camera.empty()) {
-           const std::vector<double> c = ParseNumberList(ra->camera, "--camera", 7);
+           const std::vector<double> c = ParseNumberList(ra->camera, "--camera", 7, 1e6);
            doc.camera.eye = Eigen::Vector3d(c[0], c[1], c[2]).cast<float>();
            doc.camera.target = Eigen::Vector3d(c[3], c[4], c[5]).cast<float>();
            doc.camera.fovy_deg = static_cast<float>(c[6]);
@@ -137,8 +139,10 @@ void AddRenderCommands(CLI::App* root, CommandList* commands) {
       {heatmap, [ha]() {
          int width = 0, height = 0;
          ParseImageSize(ha->size, "--size", &width, &height);
+         CheckOutputFile(ha->output, "-o");
          const topology::Chain a = topology::ReadChainCsv(ha->a_path);
          const topology::Chain b = topology::ReadChainCsv(ha->b_path);
+         CheckWrithePairs(a.cols(), b.cols());
          topology::WritheOptions options;
          if (ha->unsigned_variant) options.variant = topology::WritheVariant::kUnsignedSolidAngle;
          const Eigen::MatrixXd w = topology::WritheMatrix(a, b, options);
@@ -159,14 +163,16 @@ void AddRenderCommands(CLI::App* root, CommandList* commands) {
   diff->add_option("-o,--output", da->output,
                    "write a diff image (differing pixels red, anti-aliasing yellow)");
   diff->add_option("--threshold", da->threshold, "YIQ threshold in [0,1] (default 0.1)")
-      ->check(CLI::Range(0.0, 1.0));
+      ->check(FiniteIn(0.0, 1.0));
   diff->add_option("--max-pixels", da->max_pixels,
-                   "allowed differing pixels (default max(10, 0.005% of the pixels))");
+                   "allowed differing pixels (default max(10, 0.005% of the pixels))")
+      ->check(CLI::Range(0L, std::numeric_limits<long>::max()));
   diff->footer(
       "Exit codes: 0 within tolerance, 1 images differ, 2 bad input (missing file, not "
       "a PNG, sizes differ).");
   commands->push_back(
       {diff, [da]() {
+         if (!da->output.empty()) CheckOutputFile(da->output, "-o");
          const render::Image a = render::ReadPng(da->expected);
          const render::Image b = render::ReadPng(da->actual);
          render::DiffOptions options;

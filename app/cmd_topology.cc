@@ -80,6 +80,12 @@ void AddTopologyCommands(CLI::App* root, CommandList* commands) {
       {writhe, [wa]() {
          const topology::Chain a = topology::ReadChainCsv(wa->a_path);
          const topology::Chain b = topology::ReadChainCsv(wa->b_path);
+         CheckWrithePairs(a.cols(), b.cols());
+         int width = 0, height = 0;
+         if (!wa->heatmap_path.empty()) {
+           ParseImageSize(wa->heatmap_size, "--heatmap-size", &width, &height);
+           CheckOutputFile(wa->heatmap_path, "--heatmap");
+         }
          topology::WritheOptions options;
          if (wa->unsigned_variant) options.variant = topology::WritheVariant::kUnsignedSolidAngle;
          const Eigen::MatrixXd w = topology::WritheMatrix(a, b, options);
@@ -98,8 +104,6 @@ void AddTopologyCommands(CLI::App* root, CommandList* commands) {
            PrintTable(w, total, wa->unsigned_variant);
          }
          if (!wa->heatmap_path.empty()) {
-           int width = 0, height = 0;
-           ParseImageSize(wa->heatmap_size, "--heatmap-size", &width, &height);
            const auto stem = [](const std::string& p) {
              return std::filesystem::path(p).stem().string();
            };
@@ -126,10 +130,11 @@ void AddTopologyCommands(CLI::App* root, CommandList* commands) {
   winding->add_flag("--segments", na->per_segment, "also print the per-segment contributions");
   commands->push_back(
       {winding, [na]() {
-         const std::vector<double> ax = ParseNumberList(na->axis_text, "--axis", 6);
+         // Coordinates up to 1e6 keep |direction|² and the chain's offsets finite.
+         const std::vector<double> ax = ParseNumberList(na->axis_text, "--axis", 6, 1e6);
          topology::Axis axis{{ax[0], ax[1], ax[2]}, {ax[3], ax[4], ax[5]}};
-         if (axis.direction.norm() == 0.0) {
-           throw std::invalid_argument("--axis: direction dx,dy,dz must be non-zero");
+         if (!(axis.direction.norm() >= 1e-9)) {
+           throw std::invalid_argument("--axis: direction dx,dy,dz must be non-zero (|d| >= 1e-9)");
          }
          const topology::Chain chain = topology::ReadChainCsv(na->chain_path);
          topology::WindingOptions options;

@@ -3,11 +3,16 @@
 #include <cstdio>
 #include <exception>
 
+#include "app/io.h"
+
 namespace app {
 
 int RunGuarded(const std::string& name, const std::function<int()>& run) {
   try {
     return run();
+  } catch (const StopRequested& e) {  // a command that does not report its own stop
+    std::fprintf(stderr, "topoplan %s: %s\n", name.c_str(), e.what());
+    return e.timeout ? kExitFailed : kExitInterrupted;
   } catch (const EnvironmentError& e) {  // render::EnvironmentError and its ContextError
     std::fprintf(stderr, "topoplan %s: environment error: %s\n", name.c_str(), e.what());
     return kExitEnvironment;

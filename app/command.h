@@ -12,8 +12,15 @@
 namespace app {
 
 // Exit codes: 0 success; 1 ran but the task failed (no path, not converged, unstable
-// grasp, images differ); 2 bad input or usage; 3 environment error (no GL context, missing asset).
-enum ExitCode : int { kExitOk = 0, kExitFailed = 1, kExitBadInput = 2, kExitEnvironment = 3 };
+// grasp, images differ) or hit its --timeout; 2 bad input or usage; 3 environment error (no GL
+// context, missing asset); 130 stopped by SIGINT/SIGTERM (app/io.h StopCheck).
+enum ExitCode : int {
+  kExitOk = 0,
+  kExitFailed = 1,
+  kExitBadInput = 2,
+  kExitEnvironment = 3,
+  kExitInterrupted = 130
+};
 
 // Environment problems (no GL context, no system font, a missing installed asset): exit code 3.
 // The one class is render's (where a GL context fails); app code throws and RunGuarded catches it

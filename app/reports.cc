@@ -83,6 +83,12 @@ nlohmann::json WritePlanOutputs(const planning::Scenario& s, const planning::Pla
   return report;
 }
 
+nlohmann::json StoppedReportJson(const StopRequested& stop, nlohmann::json fields) {
+  fields["success"] = false;
+  fields["status"] = stop.timeout ? "timeout" : "interrupted";
+  return fields;
+}
+
 std::string PlanSummaryLine(const planning::Scenario& s, const planning::PlanReport& r) {
   char line[512];
   std::snprintf(line, sizeof(line),

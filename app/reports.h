@@ -7,6 +7,7 @@
 #include <optional>
 #include <string>
 
+#include "app/io.h"
 #include "planning/physics/grasp_trials.h"
 #include "planning/planner.h"
 #include "planning/unwrap_benchmark.h"
@@ -34,6 +35,10 @@ std::string TrajectoryCsv(const planning::Scenario& scenario,
 nlohmann::json WritePlanOutputs(const planning::Scenario& scenario,
                                 const planning::PlanResult& result, unsigned seed,
                                 const std::string& dir);
+
+// report.json of a run stopped before it finished (--timeout or SIGINT/SIGTERM): `fields` plus
+// "success": false and "status": "timeout" or "interrupted".
+nlohmann::json StoppedReportJson(const StopRequested& stop, nlohmann::json fields);
 
 // One human-readable line: planner, scenario, start wrap, success/status, checks, iterations,
 // time, writhe start -> final, min clearance (no trailing newline).

@@ -98,7 +98,28 @@ Eigen::VectorXd ParseQ(const planning::Robot& robot, const std::string& text) {
     throw std::invalid_argument(std::string(e.what()) + " (robot '" + robot.name + "' takes " +
                                 std::to_string(n) + " values: " + names + ")");
   }
-  return Eigen::Map<const Eigen::VectorXd>(v.data(), n);
+  const Eigen::VectorXd q = Eigen::Map<const Eigen::VectorXd>(v.data(), n);
+  CheckJointValues(robot, q, "--q");
+  return q;
+}
+
+void CheckJointValues(const planning::Robot& robot, const Eigen::VectorXd& q,
+                      const std::string& where) {
+  const Eigen::VectorXd lo = planning::LowerLimits(robot), hi = planning::UpperLimits(robot);
+  const std::vector<std::string> names = planning::DofNames(robot);
+  for (Eigen::Index k = 0; k < q.size(); ++k) {
+    const std::string at = where + "[" + std::to_string(k) + "] (" + names[k] + ")";
+    if (!std::isfinite(q[k]) || std::fabs(q[k]) > kMaxJointValue) {
+      throw std::invalid_argument(at + ": " + std::to_string(q[k]) +
+                                  " is not a joint value (|q| <= 1e6)");
+    }
+    // A small tolerance keeps values printed at limited precision (e.g. 1.5708) usable.
+    if (q[k] < lo[k] - 1e-6 || q[k] > hi[k] + 1e-6) {
+      throw std::invalid_argument(at + ": " + std::to_string(q[k]) +
+                                  " is outside the joint limits [" + std::to_string(lo[k]) + ", " +
+                                  std::to_string(hi[k]) + "]");
+    }
+  }
 }
 
 void AddObjectSpec(const std::string& spec, RobotScene* scene) {
@@ -245,6 +266,7 @@ RobotScene LoadRobotSceneImpl(const std::string& path, const std::vector<std::st
       }
       s.q[k] = q[k].get<double>();
     }
+    CheckJointValues(s.robot, s.q, path + ": q");
   }
   if (doc.contains("objects")) {
     const nlohmann::json& objs = doc["objects"];

@@ -83,6 +83,15 @@ void AddRobotInputFlags(CLI::App* cmd, RobotInputOptions* options, std::string* 
 // the flag and listing the expected joints when the count differs.
 Eigen::VectorXd ParseQ(const planning::Robot& robot, const std::string& text);
 
+// Largest |q| accepted from a file or flag (rad or m); larger values break the collision library.
+inline constexpr double kMaxJointValue = 1e6;
+
+// Throws std::invalid_argument "<where>[k] (<joint>): ..." when q[k] is not finite, |q[k]| >
+// kMaxJointValue or q[k] is outside the joint's limits (1e-6 tolerance). Called for every q read
+// from a flag or file, before any collision query.
+void CheckJointValues(const planning::Robot& robot, const Eigen::VectorXd& q,
+                      const std::string& where);
+
 // Adds an object from "URDF[@x,y,z[,roll,pitch,yaw]]" (the `--object` flag).
 void AddObjectSpec(const std::string& spec, RobotScene* scene);
 

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <limits>
 
+#include "planning/json_reader.h"
+
 namespace app {
 namespace {
 
@@ -267,12 +269,10 @@ SceneDocument RobotSceneDocument(const std::string& path, const std::string& q_t
     doc.has_camera = true;
   }
   if (rs.document.is_object() && rs.document.contains("size")) {
-    const nlohmann::json& s = rs.document["size"];
-    if (!s.is_array() || s.size() != 2 || !s[0].is_number_integer() || !s[1].is_number_integer()) {
-      throw std::invalid_argument(path + ": size: expected [width, height]");
-    }
-    doc.width = s[0].get<int>();
-    doc.height = s[1].get<int>();
+    const planning::JsonNode s(rs.document["size"], path, "size");
+    if (!s.IsArray() || s.Size() != 2) s.Fail("expected [width, height]");
+    doc.width = static_cast<int>(s.At(size_t{0}).Integer(16, 8192));
+    doc.height = static_cast<int>(s.At(size_t{1}).Integer(16, 8192));
   }
   return doc;
 }

@@ -52,7 +52,8 @@ class Reader {
   const json& Required(const json& obj, const std::string& path, const std::string& key) const {
     return Node(obj, path).At(key).json();
   }
-  double Number(const json& j, const std::string& path) const { return Node(j, path).Number(); }
+  // Every scene number becomes a float: finite doubles beyond FLT_MAX are refused here.
+  double Number(const json& j, const std::string& path) const { return Node(j, path).Float(); }
   double Positive(const json& j, const std::string& path) const {
     const double v = Number(j, path);
     if (!(v > 0.0)) Fail(source_, path, "expected a positive number, got " + j.dump());
@@ -69,7 +70,7 @@ class Reader {
              " numbers, got " + std::to_string(j.size()));
     }
     std::vector<double> out;
-    for (size_t i = 0; i < j.size(); ++i) out.push_back(n.At(i).Number());
+    for (size_t i = 0; i < j.size(); ++i) out.push_back(n.At(i).Float());
     return out;
   }
   Eigen::Vector3f Vec3(const json& j, const std::string& path) const {

@@ -1,8 +1,10 @@
 #include "app/session.h"
 
 #include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 
@@ -11,6 +13,7 @@
 #include "planning/grasp_transfer.h"
 #include "planning/physics/grasp_trials.h"
 #include "planning/physics/ode_runtime.h"
+#include "topology/input_limits.h"
 
 namespace app {
 namespace {
@@ -254,9 +257,56 @@ Eigen::MatrixXd Session::WritheAt(const Eigen::VectorXd& q) const {
   return w;
 }
 
+namespace {
+
+// The numeric arguments of a script line, checked when the script is read (the viewer converts
+// them later): "frames" an integer in [1, kMaxScriptFrames] (and all frames lines together at
+// most kMaxScriptTotalFrames), "seed" an integer in [0, 2^32 − 1], "joint" an index in [0, 1e6]
+// and a finite value, camera/seek/grasp_step finite numbers that fit a float.
+void CheckScriptNumbers(const std::string& path, const ScriptLine& l, long long* total_frames) {
+  const auto where = [&](size_t i) {
+    return path + ":" + std::to_string(l.line) + ": '" + l.args[i] + "'";
+  };
+  const auto number = [&](size_t i, double lo, double hi) {
+    const std::optional<double> v = topology::ParseFiniteDouble(l.args[i]);
+    if (!v) throw std::invalid_argument(where(i) + " is not a finite number");
+    if (*v < lo || *v > hi) {
+      std::ostringstream range;
+      range << "[" << lo << ", " << hi << "]";
+      throw std::invalid_argument(where(i) + " is out of range " + range.str());
+    }
+    return *v;
+  };
+  const auto integer = [&](size_t i, double lo, double hi) {
+    const double v = number(i, lo, hi);
+    if (v != std::floor(v)) throw std::invalid_argument(where(i) + " is not an integer");
+    return static_cast<long long>(v);
+  };
+  if (l.verb == "frames") {
+    *total_frames += integer(0, 1, kMaxScriptFrames);
+    if (*total_frames > kMaxScriptTotalFrames) {
+      throw std::invalid_argument(path + ":" + std::to_string(l.line) + ": more than " +
+                                  std::to_string(kMaxScriptTotalFrames) +
+                                  " frames in the script (limit)");
+    }
+  } else if (l.verb == "seed") {
+    integer(0, 0, 4294967295.0);
+  } else if (l.verb == "joint") {
+    integer(0, 0, 1e6);
+    number(1, -1e6, 1e6);
+  } else if (l.verb == "camera") {
+    number(0, -1e6, 1e6);
+    number(1, -1e6, 1e6);
+    number(2, 1e-6, 1e6);
+  } else if (l.verb == "seek" || l.verb == "grasp_step") {
+    number(0, -1e9, 1e9);
+  }
+}
+
+}  // namespace
+
 std::vector<ScriptLine> ParseScript(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw std::invalid_argument(path + ": cannot open script file");
+  std::istringstream in(topology::ReadFileBounded(path, "script"));
   static const std::vector<std::pair<std::string, int>> kVerbs = {
       {"load", 1}, {"plan", 0},   {"step", 0},      {"play", 0},       {"pause", 0},
       {"seek", 1}, {"joint", 2},  {"reset", 0},     {"toggle", 1},     {"planner", 1},
@@ -265,6 +315,7 @@ std::vector<ScriptLine> ParseScript(const std::string& path) {
   std::vector<ScriptLine> lines;
   std::string raw;
   int n = 0;
+  long long total_frames = 0;
   while (std::getline(in, raw)) {
     ++n;
     std::istringstream ss(raw);
@@ -282,6 +333,7 @@ std::vector<ScriptLine> ParseScript(const std::string& path) {
       throw std::invalid_argument(path + ":" + std::to_string(n) + ": '" + l.verb + "' takes " +
                                   std::to_string(it->second) + " argument(s)");
     }
+    CheckScriptNumbers(path, l, &total_frames);
     lines.push_back(std::move(l));
   }
   return lines;

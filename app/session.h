@@ -125,7 +125,12 @@ class Session {
 //   camera YAW PITCH DISTANCE | frames N (render N frames) | screenshot PATH |
 //   click WIDGET (press a named widget, e.g. "Plan", "chains") | quit
 // Session commands come back as Commands; view-only lines are applied to `settings` at the
-// right moment by RunScript (viewer). Throws std::invalid_argument naming file and line.
+// right moment by RunScript (viewer). Throws std::invalid_argument naming file and line, also for
+// numbers out of range: frames N in [1, kMaxScriptFrames] (all frames lines together <=
+// kMaxScriptTotalFrames), seed in [0, 2^32 − 1], finite numbers elsewhere; files larger than
+// topology::kMaxInputFileBytes are refused.
+inline constexpr int kMaxScriptFrames = 100000;
+inline constexpr long long kMaxScriptTotalFrames = 1000000;
 struct ScriptLine {
   int line = 0;
   std::string verb;

@@ -451,7 +451,8 @@ AicoWorkspace::AicoWorkspace(const MotionProblem& problem) : tasks(problem) {
   vtmp2.setZero(d);
   q.setZero(n);
   qdot.setZero(n);
-  llt = Eigen::LLT<Eigen::MatrixXd>(d);
+  // Preallocates by factorising I_d (assigning a fresh LLT(d) would copy its uninitialised info).
+  llt.compute(Eigen::MatrixXd::Identity(d, d));
 }
 
 AicoResult SolveAico(const MotionProblem& problem, const AicoOptions& options, AicoWorkspace* ws,

@@ -141,6 +141,7 @@ GraspPrimitive ReadPrimitive(const JsonNode& pj) {
   }
   const JsonNode sn = pj.At("size");
   prim.size = sn.Vec3();
+  if (prim.size.cwiseAbs().maxCoeff() > 10.0) sn.Fail("sizes must be at most 10 m");
   if (prim.size.x() <= 0 || (prim.kind != GraspPrimitive::Kind::kSphere &&
                              prim.kind != GraspPrimitive::Kind::kTorus && prim.size.y() < 0)) {
     sn.Fail("must be positive");
@@ -169,7 +170,7 @@ ReferenceCurve ReadReference(const JsonNode& r) {
     r.CheckKeys({"type", "points"});
     ref.kind = ReferenceCurve::Kind::kLoop;
     const JsonNode pts = r.At("points");
-    if (pts.Size() < 3) pts.Fail("need at least 3 points");
+    if (pts.Size() < 3 || pts.Size() > 100000) pts.Fail("need 3 to 100000 points");
     ref.loop.resize(3, static_cast<int>(pts.Size()) + 1);
     for (size_t k = 0; k < pts.Size(); ++k) ref.loop.col(k) = pts.At(k).Vec3();
     ref.loop.col(pts.Size()) = ref.loop.col(0);
@@ -178,7 +179,7 @@ ReferenceCurve ReadReference(const JsonNode& r) {
     ref.kind = ReferenceCurve::Kind::kLoop;
     const Eigen::Vector3d c = r.At("center").Vec3();
     Eigen::Vector3d n = r.At("normal").Vec3();
-    const double radius = r.Number("radius", 0.0);
+    const double radius = r.Number("radius", 0.0, 0.0, 10.0);
     const int segments =
         r.Has("segments") ? static_cast<int>(r.At("segments").Integer(3, 100000)) : 24;
     if (n.norm() < 1e-9 || !(radius > 0)) {
@@ -211,8 +212,9 @@ std::vector<GraspObject> LoadGraspObjects(const std::string& path) {
     o.CheckKeys({"name", "mass", "description", "primitives", "reference"});
     GraspObject obj;
     obj.name = o.At("name").String();
-    obj.mass = o.At("mass").Number();
-    if (!(obj.mass > 0)) o.At("mass").Fail("expected a positive number");
+    // Limits keep the ODE simulation in range: a hand holds objects of at most 1000 kg.
+    obj.mass = o.At("mass").Number(0.0, 1000.0);
+    if (!(obj.mass >= 1e-6)) o.At("mass").Fail("expected a mass in [1e-06, 1000] kg");
     obj.description = o.String("description", "");
     const JsonNode prims = o.At("primitives");
     if (prims.Size() == 0) prims.Fail("missing or empty");

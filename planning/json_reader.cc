@@ -2,10 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <limits>
 #include <sstream>
 #include <stdexcept>
+
+#include "topology/input_limits.h"
 
 namespace planning {
 namespace {
@@ -95,11 +96,7 @@ json ParseJsonText(const std::string& text, const std::string& source) {
 }
 
 json ParseJsonFile(const std::string& path, const std::string& what) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::invalid_argument(path + ": cannot open " + what + " file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return ParseJsonText(text.str(), path);
+  return ParseJsonText(topology::ReadFileBounded(path, what), path);
 }
 
 std::string DidYouMean(const std::string& word, const std::vector<std::string>& candidates) {
@@ -173,6 +170,34 @@ double JsonNode::Number() const {
 
 double JsonNode::Number(const std::string& key, double fallback) const {
   return Has(key) ? At(key).Number() : fallback;
+}
+
+namespace {
+std::string Shortest(double v) {
+  std::ostringstream out;
+  out << v;
+  return out.str();
+}
+}  // namespace
+
+double JsonNode::Number(double lo, double hi) const {
+  const double v = Number();
+  if (v < lo || v > hi) {
+    Fail(Shortest(v) + " out of range [" + Shortest(lo) + ", " + Shortest(hi) + "]");
+  }
+  return v;
+}
+
+double JsonNode::Number(const std::string& key, double fallback, double lo, double hi) const {
+  return Has(key) ? At(key).Number(lo, hi) : fallback;
+}
+
+float JsonNode::Float() const {
+  const double v = Number();
+  if (std::fabs(v) > static_cast<double>(std::numeric_limits<float>::max())) {
+    Fail(Shortest(v) + " is too large for single precision");
+  }
+  return static_cast<float>(v);
 }
 
 long long JsonNode::Integer(long long lo, long long hi) const {

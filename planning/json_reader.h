@@ -18,7 +18,8 @@ namespace planning {
 // Parses JSON text. Syntax errors and out-of-range numbers (e.g. 1e400) throw
 // "<source>: invalid JSON at <path>: ..." where <path> is the JSON path being read.
 nlohmann::json ParseJsonText(const std::string& text, const std::string& source);
-// Reads and parses a file; "<path>: cannot open <what> file" when it cannot be read.
+// Reads (at most topology::kMaxInputFileBytes) and parses a file; "<path>: cannot open <what>
+// file" when it cannot be read, "<path>: <what> file is larger than ..." beyond the limit.
 nlohmann::json ParseJsonFile(const std::string& path, const std::string& what);
 
 // " (did you mean 'x'?)" for the candidate closest to `word` in edit distance (at most 2 edits
@@ -57,6 +58,11 @@ class JsonNode {
   // Typed reads; the (key, fallback) forms return the fallback when the key is absent.
   double Number() const;  // finite
   double Number(const std::string& key, double fallback) const;
+  // A finite number in [lo, hi] ("<file>: <path>: 1e-07 out of range [1e-05, 10]").
+  double Number(double lo, double hi) const;
+  double Number(const std::string& key, double fallback, double lo, double hi) const;
+  // A finite number that is also finite as a float (|v| <= FLT_MAX), for render data.
+  float Float() const;
   // An integer in [lo, hi] (no silent truncation: 4294967297 is not an int).
   long long Integer(long long lo, long long hi) const;
   int Int() const;

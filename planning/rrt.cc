@@ -5,6 +5,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "planning/random.h"
+
 namespace planning {
 namespace {
 
@@ -46,11 +48,10 @@ EdgeResult CheckEdge(const Eigen::VectorXd& from, const Eigen::VectorXd& to, dou
                      Checker* check, Eigen::VectorXd* tmp) {
   if (check->exhausted()) return EdgeResult::kBudget;
   if (!(*check)(to)) return EdgeResult::kInvalid;
-  const double d = (to - from).norm();
-  const int steps = std::max(1, static_cast<int>(std::ceil(d / resolution)));
-  for (int i = 1; i < steps; ++i) {
+  const std::int64_t steps = EdgeSteps((to - from).norm(), resolution);
+  for (std::int64_t i = 1; i < steps; ++i) {
     if (check->exhausted()) return EdgeResult::kBudget;
-    const double s = static_cast<double>(i) / steps;
+    const double s = static_cast<double>(i) / static_cast<double>(steps);
     tmp->noalias() = (1.0 - s) * from + s * to;
     if (!(*check)(*tmp)) return EdgeResult::kInvalid;
   }
@@ -71,9 +72,8 @@ int Nearest(const std::vector<RrtNode>& tree, const Eigen::VectorXd& q) {
 }
 
 void SampleUniform(const RrtProblem& p, std::mt19937* rng, Eigen::VectorXd* q) {
-  std::uniform_real_distribution<double> u(0.0, 1.0);
   for (Eigen::Index i = 0; i < q->size(); ++i) {
-    (*q)[i] = p.lower[i] + u(*rng) * (p.upper[i] - p.lower[i]);
+    (*q)[i] = p.lower[i] + UniformUnit(rng) * (p.upper[i] - p.lower[i]);
   }
 }
 
@@ -123,7 +123,12 @@ bool Prepare(const RrtProblem& problem, const RrtOptions& options, Setup* s, Rrt
   const double diag = Diagonal(problem);
   s->n = static_cast<int>(problem.start.size());
   s->range = options.range > 0 ? options.range : 0.2 * diag;
-  s->resolution = options.resolution > 0 ? options.resolution : 0.01 * diag;
+  // A zero-volume box (diag = 0) has only zero-length edges: any resolution checks them.
+  s->resolution = options.resolution > 0 ? options.resolution : (diag > 0 ? 0.01 * diag : 1.0);
+  if (!std::isfinite(s->range) || !std::isfinite(s->resolution)) {
+    throw std::invalid_argument("RRT: range and resolution must be finite");
+  }
+  EdgeSteps(s->range, s->resolution);  // the longest edge must be checkable (throws)
   s->q_rand.resize(s->n);
   s->q_new.resize(s->n);
   s->tmp.resize(s->n);
@@ -153,11 +158,10 @@ RrtResult PlanRrt(const RrtProblem& problem, const RrtOptions& options, const Va
 
   std::vector<RrtNode> tree;
   tree.push_back({problem.start, -1});
-  std::uniform_real_distribution<double> coin(0.0, 1.0);
   result.status = SolveStatus::kBudgetExhausted;
   while (!setup.check.exhausted() && result.iterations < options.max_iterations) {
     ++result.iterations;
-    const bool to_goal = coin(*rng) < options.goal_bias;
+    const bool to_goal = UniformUnit(rng) < options.goal_bias;
     if (to_goal) {
       setup.q_rand = problem.goal;
     } else {
@@ -192,7 +196,6 @@ RrtResult PlanBiRrt(const RrtProblem& problem, const RrtOptions& options, const 
   std::vector<RrtNode> trees[2];
   trees[0].push_back({problem.start, -1});
   trees[1].push_back({problem.goal, -1});
-  std::uniform_real_distribution<double> coin(0.0, 1.0);
   int grow = 0;  // index of the tree that grows this iteration
   result.status = SolveStatus::kBudgetExhausted;
   while (!setup.check.exhausted() && result.iterations < options.max_iterations) {
@@ -200,9 +203,8 @@ RrtResult PlanBiRrt(const RrtProblem& problem, const RrtOptions& options, const 
     std::vector<RrtNode>& a = trees[grow];
     std::vector<RrtNode>& b = trees[1 - grow];
     // Target: a random node of the other tree (goal_bias) or a uniform sample.
-    if (coin(*rng) < options.goal_bias) {
-      std::uniform_int_distribution<int> pick(0, static_cast<int>(b.size()) - 1);
-      setup.q_rand = b[pick(*rng)].q;
+    if (UniformUnit(rng) < options.goal_bias) {
+      setup.q_rand = b[UniformIndex(rng, static_cast<std::uint32_t>(b.size()))].q;
     } else {
       SampleUniform(problem, rng, &setup.q_rand);
     }
@@ -244,6 +246,15 @@ RrtResult PlanBiRrt(const RrtProblem& problem, const RrtOptions& options, const 
 bool PathIsValid(const Trajectory& path, double resolution, const ValidityFn& valid,
                  std::int64_t* checks) {
   if (!(resolution > 0.0)) throw std::invalid_argument("PathIsValid: resolution must be > 0");
+  std::int64_t states = 1;  // the number of checks is bounded before any is made
+  for (int t = 0; t + 1 < path.num_points(); ++t) {
+    states += EdgeSteps((path.q.col(t + 1) - path.q.col(t)).norm(), resolution);
+    if (states > kMaxEdgeSteps) {
+      throw std::invalid_argument("PathIsValid: resolution " + std::to_string(resolution) +
+                                  " would need more than " + std::to_string(kMaxEdgeSteps) +
+                                  " validity checks");
+    }
+  }
   Checker check{valid, std::numeric_limits<std::int64_t>::max()};
   bool ok = path.num_points() == 0 || check(path.q.col(0));
   Eigen::VectorXd tmp(path.num_dofs());

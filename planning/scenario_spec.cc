@@ -33,6 +33,13 @@ constexpr std::span<const EnumName<FinalPoseInit>> EnumNames(FinalPoseInit) {
 
 namespace {
 
+// Value limits checked where each number is read (documented in scenario_spec.h).
+constexpr double kMaxLength = 10.0;              // radii, margins, tolerances (m or rad)
+constexpr double kMaxWeight = 1e12;              // precisions, rates, damping, priors
+constexpr double kMinResolution = 1e-6;          // edge-check resolutions (rad)
+constexpr int kMaxIterations = 100000;           // AICO sweeps and roll-out iterations
+constexpr std::int64_t kMaxChecks = 1000000000;  // RRT collision-check budget
+
 namespace fs = std::filesystem;
 
 // The enum named by a string node; the error (with the JSON path) lists the valid names.
@@ -59,7 +66,7 @@ ObjectSpec ReadObject(const JsonNode& n, const std::string& dir,
     const JsonNode cn = n.At("capsules");
     cn.CheckKeys({"chain", "radius"});
     o.capsule_chain = Name(cn, "chain");
-    o.capsule_radius = cn.At("radius").Number();
+    o.capsule_radius = cn.At("radius").Number(0.0, kMaxLength);
     if (!(o.capsule_radius > 0)) cn.At("radius").Fail("expected a positive radius");
   }
   return o;
@@ -116,8 +123,8 @@ StartSpec ReadStart(const JsonNode& n) {
   s.where = cn.Where();
   s.wrap_deg = cn.Number("wrap_deg", s.wrap_deg);
   if (!(s.wrap_deg >= 0.0 && s.wrap_deg <= 2000.0)) cn.Fail("wrap_deg must be in [0, 2000]");
-  s.step = cn.Number("step", s.step);
-  s.margin = cn.Number("margin", s.margin);
+  s.step = cn.Number("step", s.step, 1e-3, 10.0);
+  s.margin = cn.Number("margin", s.margin, 0.0, kMaxLength);
   return s;
 }
 
@@ -125,11 +132,11 @@ ProblemSpec ReadProblem(const JsonNode& n) {
   n.CheckKeys({"T", "duration", "dynamic", "h_rate", "w_rate", "q_rate"});
   ProblemSpec p;
   if (n.Has("T")) p.num_steps = static_cast<int>(n.At("T").Integer(1, 10000));
-  p.duration = n.Number("duration", p.duration);
+  p.duration = n.Number("duration", p.duration, 1e-3, 1e4);
   p.dynamic = n.Bool("dynamic", p.dynamic);
-  p.h_rate = n.Number("h_rate", p.h_rate);
-  p.w_rate = n.Number("w_rate", p.w_rate);
-  p.q_rate = n.Number("q_rate", p.q_rate);
+  p.h_rate = n.Number("h_rate", p.h_rate, 1e-12, kMaxWeight);
+  p.w_rate = n.Number("w_rate", p.w_rate, 1e-12, kMaxWeight);
+  p.q_rate = n.Number("q_rate", p.q_rate, 0.0, kMaxWeight);
   return p;
 }
 
@@ -192,8 +199,8 @@ TaskSpec ReadTask(const JsonNode& n) {
   t.name = n.String("name", t.name);
   t.feature = ReadFeature(n.At("feature"));
   if (n.Has("order")) t.order = static_cast<int>(n.At("order").Integer(0, 1));
-  t.precision = n.Number("precision", 0.0);
-  t.final_precision = n.Number("final_precision", t.precision);
+  t.precision = n.Number("precision", 0.0, 0.0, kMaxWeight);
+  t.final_precision = n.Number("final_precision", t.precision, 0.0, kMaxWeight);
   if (t.precision < 0 || t.final_precision < 0) n.Fail("precisions must be >= 0");
   t.target.where = n.Where() + ".target";
   if (n.Has("target")) {
@@ -239,7 +246,7 @@ SuccessSpec ReadSuccess(const JsonNode& n) {
     const JsonNode pn = n.At("position");
     pn.CheckKeys({"task", "tolerance"});
     s.position_task = Name(pn, "task");
-    s.position_tolerance = pn.Number("tolerance", s.position_tolerance);
+    s.position_tolerance = pn.Number("tolerance", s.position_tolerance, 0.0, kMaxLength);
   }
   if (n.Has("inside_box")) s.box_task = Name(n, "inside_box");
   if (n.Has("winding")) {
@@ -259,15 +266,15 @@ void ReadAico(const JsonNode& n, ScenarioSpec* spec) {
   n.CheckKeys({"max_iterations", "tolerance", "damping", "sweep_mode", "max_step", "rollout_init",
                "rollout_prior", "rollout_iterations", "retry"});
   AicoOptions& a = spec->aico;
-  const int kMax = std::numeric_limits<int>::max();
+  const int kMax = kMaxIterations;
   if (n.Has("max_iterations"))
     a.max_iterations = static_cast<int>(n.At("max_iterations").Integer(1, kMax));
-  a.tolerance = n.Number("tolerance", a.tolerance);
-  a.damping = n.Number("damping", a.damping);
+  a.tolerance = n.Number("tolerance", a.tolerance, 1e-12, 1e6);
+  a.damping = n.Number("damping", a.damping, 0.0, kMaxWeight);
   if (n.Has("sweep_mode")) a.sweep_mode = Parse<SweepMode>(n.At("sweep_mode"), "sweep mode");
-  a.max_step = n.Number("max_step", a.max_step);
+  a.max_step = n.Number("max_step", a.max_step, 1e-9, 1e3);
   a.rollout_init = n.Bool("rollout_init", a.rollout_init);
-  a.rollout_prior = n.Number("rollout_prior", a.rollout_prior);
+  a.rollout_prior = n.Number("rollout_prior", a.rollout_prior, 0.0, kMaxWeight);
   if (n.Has("rollout_iterations")) {
     a.rollout_iterations = static_cast<int>(n.At("rollout_iterations").Integer(1, kMax));
   }
@@ -284,7 +291,7 @@ void ReadAico(const JsonNode& n, ScenarioSpec* spec) {
     const JsonNode sc = rn.At("precision_scale");
     if (!sc.IsObject()) sc.Fail("expected {\"task name\": factor, ...}");
     for (const auto& [task, fn] : sc.Members()) {
-      const double f = fn.Number();
+      const double f = fn.Number(0.0, kMaxWeight);
       if (!(f > 0.0)) fn.Fail("expected a positive factor");
       retry.precision_scale.push_back({{task, fn.Where()}, f});
     }
@@ -295,12 +302,13 @@ void ReadAico(const JsonNode& n, ScenarioSpec* spec) {
 RrtOptions ReadRrt(const JsonNode& n) {
   n.CheckKeys({"range", "resolution", "goal_bias", "max_checks"});
   RrtOptions r;
-  r.range = n.Number("range", r.range);
-  r.resolution = n.Number("resolution", r.resolution);
-  r.goal_bias = n.Number("goal_bias", r.goal_bias);
-  if (n.Has("max_checks")) {
-    r.max_checks = n.At("max_checks").Integer(1, std::numeric_limits<std::int64_t>::max());
+  r.range = n.Number("range", r.range, 0.0, 1e3);
+  r.resolution = n.Number("resolution", r.resolution, 0.0, 1e3);
+  if (r.resolution > 0.0 && r.resolution < kMinResolution) {
+    n.At("resolution").Fail("must be 0 (the default) or >= 1e-06 rad");
   }
+  r.goal_bias = n.Number("goal_bias", r.goal_bias, 0.0, 1.0);
+  if (n.Has("max_checks")) r.max_checks = n.At("max_checks").Integer(1, kMaxChecks);
   return r;
 }
 
@@ -393,8 +401,8 @@ ScenarioSpec ParseScenarioSpec(const std::string& path,
   s.aico_attempts[0].max_iterations = s.aico.max_iterations;
   if (root.Has("aico")) ReadAico(root.At("aico"), &s);
   if (root.Has("rrt")) s.rrt = ReadRrt(root.At("rrt"));
-  s.check_resolution =
-      root.Number("check_resolution", s.rrt.resolution > 0 ? s.rrt.resolution : 0.02);
+  s.check_resolution = root.Number(
+      "check_resolution", s.rrt.resolution > 0 ? s.rrt.resolution : 0.02, kMinResolution, 10.0);
   return s;
 }
 

@@ -83,6 +83,13 @@
 //   check_resolution number  edge resolution (rad) for validating output paths, default
 //                            rrt.resolution if > 0, else 0.02
 //
+// Value limits (checked when read; the message names the JSON path): every number is finite;
+// check_resolution and a non-zero rrt.resolution >= 1e-6 (check_resolution <= 10); rrt.range and
+// rrt.resolution <= 1000; goal_bias in [0, 1]; max_checks <= 1e9; aico max_iterations and
+// rollout_iterations <= 100000; precisions, rates, damping, priors and retry factors <= 1e12
+// (h_rate, w_rate >= 1e-12); duration in [1e-3, 1e4]; coil step in [1e-3, 10]; radii, margins and
+// tolerances in [0, 10]; aico tolerance in [1e-12, 1e6], max_step in [1e-9, 1000].
+//
 // Features (the keys besides "type"):
 //   position        link (required), offset [3] (default 0)
 //   axis_alignment  link (required), axis [3] (default [0, 0, 1]), direction [3] (required)

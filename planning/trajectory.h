@@ -2,6 +2,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cstdint>
 #include <string>
 
 #include "planning/enum_names.h"
@@ -45,9 +46,20 @@ struct Trajectory {
 // Euclidean joint-space length Σ_t |q_{t+1} − q_t|.
 double PathLength(const Trajectory& trajectory);
 
+// Limit on the number of interpolated states of one edge or one densified/checked path. A finer
+// resolution would need more validity checks than any run can make (and, for Densify, more
+// memory); it is refused instead of silently overflowing an integer step count.
+inline constexpr std::int64_t kMaxEdgeSteps = 10'000'000;
+
+// Steps of an edge of joint-space length `distance` checked at `resolution`:
+// max(1, ⌈distance / resolution⌉) (interior states at i/steps, i = 1 .. steps − 1). Throws
+// std::invalid_argument when resolution is not > 0, distance is not finite or the count exceeds
+// kMaxEdgeSteps.
+std::int64_t EdgeSteps(double distance, double resolution);
+
 // Linear interpolation of a path to equally spaced waypoints at most `resolution` apart
 // (Euclidean joint-space distance). Every original waypoint is kept. Throws
-// std::invalid_argument for resolution <= 0.
+// std::invalid_argument for resolution <= 0 or more than kMaxEdgeSteps output waypoints.
 Trajectory Densify(const Trajectory& trajectory, double resolution);
 
 }  // namespace planning

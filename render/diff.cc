@@ -108,6 +108,10 @@ DiffResult CompareImages(const Image& expected, const Image& actual, const DiffO
                                 "x" + std::to_string(expected.height) + ", actual " +
                                 std::to_string(actual.width) + "x" + std::to_string(actual.height));
   }
+  if (!(options.threshold >= 0.0 && options.threshold <= 1.0)) {
+    throw std::invalid_argument("diff threshold must be in [0, 1], got " +
+                                std::to_string(options.threshold));
+  }
   DiffResult r;
   r.allowed = options.max_diff_pixels >= 0
                   ? options.max_diff_pixels

@@ -107,6 +107,18 @@ Image DecodePng(const std::string& bytes, const std::string& source_name) {
     throw std::invalid_argument(source_name + ": not a PNG file");
   }
   int w = 0, h = 0, channels = 0;
+  if (bytes.size() > kMaxPngFileBytes) {
+    throw std::invalid_argument(source_name + ": PNG larger than " +
+                                std::to_string(kMaxPngFileBytes) + " bytes (limit)");
+  }
+  // The size from the header first: a small file can announce gigabytes of pixels.
+  if (stbi_info_from_memory(reinterpret_cast<const unsigned char*>(bytes.data()),
+                            static_cast<int>(bytes.size()), &w, &h, &channels) &&
+      static_cast<long long>(w) * h > kMaxImagePixels) {
+    throw std::invalid_argument(source_name + ": PNG of " + std::to_string(w) + "x" +
+                                std::to_string(h) + " pixels is larger than the limit of " +
+                                std::to_string(kMaxImagePixels) + " pixels");
+  }
   unsigned char* pixels =
       stbi_load_from_memory(reinterpret_cast<const unsigned char*>(bytes.data()),
                             static_cast<int>(bytes.size()), &w, &h, &channels, 4);
@@ -127,9 +139,14 @@ Image ReadPng(const std::string& path) {
   if (!in || std::filesystem::is_directory(path)) {
     throw std::invalid_argument(path + ": cannot open (missing file?)");
   }
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
-  return DecodePng(buffer.str(), path);
+  // Bounded read (render/ cannot use topology's reader): stops one chunk past the limit.
+  std::string bytes;
+  char chunk[1 << 16];
+  while (in && bytes.size() <= kMaxPngFileBytes) {
+    in.read(chunk, sizeof(chunk));
+    bytes.append(chunk, static_cast<size_t>(in.gcount()));
+  }
+  return DecodePng(bytes, path);
 }
 
 Image Downscale(const Image& image, int w, int h) {

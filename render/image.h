@@ -5,6 +5,7 @@
 // uses stb_image. Pixels are compared and hashed on the decoded RGBA, never on PNG bytes.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -44,9 +45,15 @@ void WritePng(const std::string& path, const Image& image, int zlib_level = 2);
 // Throws std::runtime_error naming the path on failure.
 void WriteFileAtomically(const std::string& path, const std::string& contents);
 
+// Limits of PNG input, checked before decoding: file bytes and pixels (width × height, read from
+// the header; 8192 × 8192 = 256 MB of RGBA).
+inline constexpr std::size_t kMaxPngFileBytes = std::size_t{64} << 20;
+inline constexpr long long kMaxImagePixels = 8192LL * 8192LL;
+
 // Decodes a PNG file into RGBA (grey, grey+alpha and RGB inputs are expanded; 16-bit is reduced
 // to 8-bit). Throws std::invalid_argument naming the path when the file is missing, is not a PNG
-// (checked by signature), or cannot be decoded.
+// (checked by signature), is larger than kMaxPngFileBytes (reading stops there: `/dev/zero` is
+// refused), has more than kMaxImagePixels pixels, or cannot be decoded.
 Image ReadPng(const std::string& path);
 // The same for a PNG held in memory; `source_name` is used in error messages.
 Image DecodePng(const std::string& bytes, const std::string& source_name);

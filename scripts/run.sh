@@ -5,6 +5,8 @@
 #   scripts/run.sh build                 only builds
 #   scripts/run.sh bench                 runs the Google Benchmark programs
 # Environment: BUILD_DIR (default build), JOBS (default nproc), CI=true turns warnings into errors.
+# `test` with SANITIZE=1 also builds ASan + UBSan (TOPOPLAN_SANITIZE) in ASAN_BUILD_DIR
+# (default build-asan) and runs the unit and property tests there; any sanitizer report fails.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 ROOT=$PWD
@@ -32,7 +34,18 @@ cmake --build "$BUILD_DIR" -j "$JOBS" "${targets[@]}"
 
 case "$cmd" in
   demo) "$BUILD_DIR/app/topoplan" demo -o "$ROOT/demo-out" "$@" ;;
-  test) cd "$BUILD_DIR" && ctest --output-on-failure -j "$JOBS" "$@" ;;
+  test)
+    (cd "$BUILD_DIR" && ctest --output-on-failure -j "$JOBS" "$@")
+    if [[ "${SANITIZE:-0}" == "1" ]]; then
+      ASAN_BUILD_DIR=${ASAN_BUILD_DIR:-$ROOT/build-asan}
+      cmake -S "$ROOT" -B "$ASAN_BUILD_DIR" -DCMAKE_BUILD_TYPE=Release -DTOPOPLAN_SANITIZE=ON \
+        -DTOPOPLAN_BUILD_BENCHMARKS=OFF -DTOPOPLAN_BUILD_PYTHON=OFF "${werror[@]}" >/dev/null
+      cmake --build "$ASAN_BUILD_DIR" -j "$JOBS"
+      # Leak checking is off: the GL drivers and ODE keep process-lifetime allocations.
+      (cd "$ASAN_BUILD_DIR" &&
+        ASAN_OPTIONS=detect_leaks=0:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 \
+        ctest --output-on-failure -j "$JOBS" -L 'unit|property' "$@")
+    fi ;;
   bench)
     for b in "$BUILD_DIR"/tests/bench/bench_*; do
       [[ -x "$b" ]] && "$b" "$@"

@@ -1,14 +1,14 @@
 #include "topology/polyline.h"
 
-#include <cerrno>
-#include <cmath>
 #include <cstdlib>
-#include <fstream>
 #include <iomanip>
 #include <limits>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <vector>
+
+#include "topology/input_limits.h"
 
 namespace topology {
 namespace {
@@ -40,17 +40,23 @@ Chain ParseChainCsv(std::istream& in, const std::string& source_name) {
     while (std::getline(fields, field, ',')) {
       field = Trim(field);
       if (++count > 3) Fail(source_name, line_no, "expected 3 comma-separated numbers x,y,z");
-      char* end = nullptr;
-      errno = 0;
-      const double v = std::strtod(field.c_str(), &end);
-      if (field.empty() || end != field.c_str() + field.size() || errno == ERANGE) {
-        Fail(source_name, line_no, "'" + field + "' is not a number");
+      const std::optional<double> v = ParseFiniteDouble(field);
+      if (!v) {
+        char* end = nullptr;  // a whole-field number that is not finite (nan, inf, 1e400)?
+        std::strtod(field.c_str(), &end);
+        Fail(source_name, line_no,
+             !field.empty() && end == field.c_str() + field.size()
+                 ? "non-finite value '" + field + "'"
+                 : "'" + field + "' is not a number");
       }
-      if (!std::isfinite(v)) Fail(source_name, line_no, "non-finite value '" + field + "'");
-      xyz.push_back(v);
+      xyz.push_back(*v);
     }
     if (line.back() == ',') Fail(source_name, line_no, "trailing comma");
     if (count != 3) Fail(source_name, line_no, "expected 3 comma-separated numbers x,y,z");
+    if (xyz.size() > 3 * static_cast<std::size_t>(kMaxChainPoints)) {
+      Fail(source_name, line_no,
+           "more than " + std::to_string(kMaxChainPoints) + " points (limit of a chain file)");
+    }
   }
   const int n = static_cast<int>(xyz.size() / 3);
   if (n < 2) {
@@ -61,8 +67,7 @@ Chain ParseChainCsv(std::istream& in, const std::string& source_name) {
 }
 
 Chain ReadChainCsv(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw std::invalid_argument(path + ": cannot open chain file (missing or unreadable)");
+  std::istringstream in(ReadFileBounded(path, "chain"));
   return ParseChainCsv(in, path);
 }
 

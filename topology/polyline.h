@@ -11,10 +11,14 @@ namespace topology {
 // It has N−1 segments; segment i runs from p_i to p_{i+1}. A closed curve repeats p_0 at the end.
 using Chain = Eigen::Matrix3Xd;
 
+// Largest chain read from a file (points).
+inline constexpr int kMaxChainPoints = 100000;
+
 // Reads a chain CSV: one point per line as `x,y,z` (spaces around fields allowed); blank lines and
 // lines whose first non-blank character is `#` are ignored. Throws std::invalid_argument naming
-// `source:line` for a malformed line, a non-finite number, or fewer than 2 points; throws
-// std::invalid_argument too when the file cannot be opened.
+// `source:line` for a malformed line, a non-finite number, more than kMaxChainPoints or fewer
+// than 2 points; throws std::invalid_argument too when the file cannot be opened or is larger
+// than kMaxInputFileBytes (topology/input_limits.h).
 Chain ReadChainCsv(const std::string& path);
 Chain ParseChainCsv(std::istream& in, const std::string& source_name);
 

@@ -90,7 +90,9 @@ void Validate(const SimHand& hand, const SimObject& object, const SimOptions& o)
         !std::isfinite(l.max_torque)) {
       throw std::invalid_argument(where + ": non-finite value");
     }
-    if (l.mass <= 0) throw std::invalid_argument(where + ": mass must be > 0");
+    // Masses beyond 1e6 kg overflow ODE's mass matrices (its error handler fires mid-step).
+    if (l.mass <= 0 || l.mass > 1e6)
+      throw std::invalid_argument(where + ": mass must be in (0, 1e6] kg");
     if (i > 0) {
       if (l.joint_axis.norm() < 1e-9) throw std::invalid_argument(where + ": zero joint axis");
       if (!(l.lower > -kPi && l.upper < kPi && l.lower <= l.upper)) {
@@ -103,8 +105,8 @@ void Validate(const SimHand& hand, const SimObject& object, const SimOptions& o)
     }
   }
   if (object.shapes.empty()) throw std::invalid_argument("object: no shapes");
-  if (!(object.mass > 0) || !std::isfinite(object.mass)) {
-    throw std::invalid_argument("object: mass must be finite and > 0");
+  if (!(object.mass > 0 && object.mass <= 1e6)) {
+    throw std::invalid_argument("object: mass must be in (0, 1e6] kg");
   }
   if (!Finite(object.world_from_object)) throw std::invalid_argument("object: non-finite pose");
   for (size_t k = 0; k < object.shapes.size(); ++k) {

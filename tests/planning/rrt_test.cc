@@ -4,7 +4,10 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
+
+#include "planning/random.h"
 
 namespace planning {
 namespace {
@@ -118,6 +121,49 @@ TEST(PathIsValid, DetectsCollisionInsideAnEdge) {
   std::int64_t checks = 0;
   EXPECT_FALSE(PathIsValid(path, 0.01, FreeClosedWall, &checks));
   EXPECT_GT(checks, 2);
+}
+
+// The portable mapping of planning/random.h: the first values for seed 42 are pinned (UniformUnit
+// equals genrand_res53 of the reference MT19937, e.g. numpy's RandomState(42).random_sample()).
+TEST(PortableRandom, FirstValuesArePinned) {
+  std::mt19937 rng(42);
+  EXPECT_EQ(UniformUnit(&rng), 0.37454011884736249);
+  EXPECT_EQ(UniformUnit(&rng), 0.95071430640991617);
+  EXPECT_EQ(UniformUnit(&rng), 0.73199394181140509);
+  std::mt19937 pick(42);
+  const std::uint32_t expected[] = {3, 7, 9, 1, 7, 7};
+  for (std::uint32_t e : expected) EXPECT_EQ(UniformIndex(&pick, 10), e);
+}
+
+TEST(PortableRandom, IndexStaysInRangeAndCoversIt) {
+  std::mt19937 rng(1);
+  int seen[7] = {};
+  for (int i = 0; i < 7000; ++i) {
+    const std::uint32_t k = UniformIndex(&rng, 7);
+    ASSERT_LT(k, 7u);
+    ++seen[k];
+  }
+  for (int c : seen) EXPECT_GT(c, 850);
+  EXPECT_EQ(UniformIndex(&rng, 1), 0u);
+  EXPECT_THROW(UniformIndex(&rng, 0), std::invalid_argument);
+}
+
+// A resolution so fine that the step count would overflow is refused, never silently fewer checks.
+TEST(EdgeSteps, TinyResolutionIsRefused) {
+  EXPECT_EQ(EdgeSteps(1.0, 0.1), 10);
+  EXPECT_EQ(EdgeSteps(0.0, 0.1), 1);
+  EXPECT_THROW(EdgeSteps(1.0, 1e-300), std::invalid_argument);
+  EXPECT_THROW(EdgeSteps(1.0, 0.0), std::invalid_argument);
+  EXPECT_THROW(EdgeSteps(1.0, std::nan("")), std::invalid_argument);
+  Trajectory path;
+  path.q.resize(2, 2);
+  path.q << 0.1, 0.9, 0.1, 0.1;
+  EXPECT_THROW(PathIsValid(path, 1e-12, FreeClosedWall), std::invalid_argument);
+  EXPECT_THROW(Densify(path, 1e-12), std::invalid_argument);
+  RrtOptions options;
+  options.resolution = 1e-300;
+  std::mt19937 rng(0);
+  EXPECT_THROW(PlanBiRrt(Toy(), options, FreeWithGap, &rng), std::invalid_argument);
 }
 
 }  // namespace

@@ -287,9 +287,11 @@ TEST(ReachThroughRing, AicoEndsInsideTheBoxWithTheWrithePeakAtTheLinkThroughTheR
 
 TEST(RrtBaselines, PathsAreCollisionFreeAndSeedsReproduce) {
   const auto s = LoadScenario(kAssets + "scenarios/reach_through_ring.json");
+  // Seed 4: a seed whose uni-RRT run solves the scenario within the default budget with the
+  // portable sampling of planning/random.h (seed 3 did with std::uniform_real_distribution).
   for (Planner planner : {Planner::kRrt, Planner::kBiRrt}) {
-    const PlanResult a = RunPlanner(*s, planner, 3);
-    const PlanResult b = RunPlanner(*s, planner, 3);
+    const PlanResult a = RunPlanner(*s, planner, 4);
+    const PlanResult b = RunPlanner(*s, planner, 4);
     SCOPED_TRACE(PlannerName(planner));
     ASSERT_TRUE(a.report.success);
     EXPECT_TRUE(a.report.path_collision_free);

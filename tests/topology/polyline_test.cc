@@ -4,6 +4,8 @@
 
 #include <sstream>
 
+#include "topology/input_limits.h"
+
 namespace topology {
 namespace {
 
@@ -39,6 +41,29 @@ TEST(ChainCsvTest, ErrorsNameFileAndLine) {
   EXPECT_EQ(ParseError("1,,3\n"), "c.csv:1: '' is not a number");
   EXPECT_EQ(ParseError("# only\n1,2,3\n"), "c.csv: a chain needs at least 2 points, found 1");
   EXPECT_EQ(ParseError(""), "c.csv: a chain needs at least 2 points, found 0");
+}
+
+TEST(ChainCsvTest, LimitsAndSubnormals) {
+  EXPECT_EQ(ParseError("1,2,3\n1e400,0,0\n"), "c.csv:2: non-finite value '1e400'");
+  std::istringstream tiny("1e-310,0,0\n0,0,1\n");
+  EXPECT_EQ(ParseChainCsv(tiny, "c.csv")(0, 0), 1e-310);  // subnormal numbers are numbers
+  std::string many;
+  for (int i = 0; i <= kMaxChainPoints; ++i) many += "0,0,0\n";
+  EXPECT_NE(ParseError(many).find("more than 100000 points"), std::string::npos);
+  // /dev/zero is refused after kMaxInputFileBytes instead of being read forever.
+  try {
+    ReadChainCsv("/dev/zero");
+    FAIL();
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("/dev/zero: chain file is larger than"),
+              std::string::npos);
+  }
+  EXPECT_EQ(ParseFiniteDouble("1e-310"), 1e-310);
+  EXPECT_FALSE(ParseFiniteDouble("nan"));
+  EXPECT_FALSE(ParseFiniteDouble("1e400"));
+  EXPECT_FALSE(ParseFiniteDouble(" 1"));
+  EXPECT_FALSE(ParseFiniteDouble("1x"));
+  EXPECT_FALSE(ParseFiniteDouble(""));
 }
 
 TEST(ChainCsvTest, MissingFileThrowsWithPath) {
