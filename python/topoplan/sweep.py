@@ -20,7 +20,11 @@ import os
 import sys
 import time
 
-CSV_HEADER = "angle_deg,planner,seed,success,collision_checks,time_s"
+CSV_HEADER = (
+    "angle_deg,planner,seed,success,failure_reason,collision_checks,narrow_phase_calls,"
+    "time_s,path_length,reach_error_m,pole_offset_m"
+)
+MAX_ANGLES = 10000  # as `bench unwrap --angles`
 
 
 class UsageError(Exception):
@@ -35,11 +39,10 @@ def parse_range(text, flag="--angles"):
         raise UsageError(f"{flag}: expected a:b:step, got '{text}'") from None
     if not (step > 0.0) or b < a or a < 0.0 or b > 2000.0:
         raise UsageError(f"{flag}: expected a:b:step with 0 <= a <= b <= 2000, step > 0")
-    out, x = [], a
-    while x <= b + 1e-9:  # the same accumulation as `bench unwrap`
-        out.append(x)
-        x += step
-    return out
+    count = int((b - a) / step + 1e-9) + 1  # the same values as `bench unwrap`: a + i * step
+    if count > MAX_ANGLES:
+        raise UsageError(f"{flag}: more than {MAX_ANGLES} angles (use a larger step)")
+    return [a + i * step for i in range(count)]
 
 
 def parse_planners(text, available):
@@ -77,8 +80,13 @@ def run_unwrap(angle, planner, seed, budget=-1):
         "planner": planner,
         "seed": seed,
         "success": 1 if report["success"] else 0,
+        "failure_reason": report["failure_reason"],
         "collision_checks": int(report["collision_checks"]),
+        "narrow_phase_calls": int(report["narrow_phase_calls"]),
         "time_s": float(report["time_s"]),
+        "path_length": float(report["path_length"]),
+        "reach_error_m": float(report["reach_error_m"]),
+        "pole_offset_m": 0.0,  # the sweep does not move the pole (bench unwrap --perturb does)
     }
 
 
@@ -89,8 +97,13 @@ def row_line(row):
             row["planner"],
             str(row["seed"]),
             str(row["success"]),
+            row["failure_reason"],
             str(row["collision_checks"]),
+            str(row["narrow_phase_calls"]),
             fmt_number(row["time_s"]),
+            fmt_number(row["path_length"]),
+            fmt_number(row["reach_error_m"]),
+            fmt_number(row["pole_offset_m"]),
         ]
     )
 
@@ -117,8 +130,13 @@ def read_rows(path):
                 "planner": planner,
                 "seed": seed,
                 "success": int(parts[3]),
-                "collision_checks": int(parts[4]),
-                "time_s": float(parts[5]),
+                "failure_reason": parts[4],
+                "collision_checks": int(parts[5]),
+                "narrow_phase_calls": int(parts[6]),
+                "time_s": float(parts[7]),
+                "path_length": float(parts[8]),
+                "reach_error_m": float(parts[9]),
+                "pole_offset_m": float(parts[10]),
             }
         except (ValueError, IndexError):
             raise UsageError(f"{path}:{n}: malformed row '{line}'") from None

@@ -38,7 +38,10 @@ def test_rrt_seed_is_deterministic(cli, tmp_path):
     _, r1 = s.plan("birrt", seed=2)
     _, r2 = s.plan("birrt", seed=2)
     assert r1["collision_checks"] == r2["collision_checks"]
-    cli("plan", "unwrap", "--start-wrap", 0, "--planner", "birrt", "--seed", 2, "-o", tmp_path)
+    # Exit 1 (the run failed the success criterion) is a result too: only the reports must agree.
+    r = cli("plan", "unwrap", "--start-wrap", 0, "--planner", "birrt", "--seed", 2, "-o", tmp_path,
+            check=False)
+    assert r.returncode in (0, 1), r.stderr
     expected = json.loads((tmp_path / "report.json").read_text())
     assert {k: v for k, v in r1.items() if k != "time_s"} == {
         k: v for k, v in expected.items() if k != "time_s"
