@@ -51,12 +51,14 @@ void Session::Load(const std::string& arg, const Settings& settings) {
     if (settings.planner.start_wrap_deg >= 0) {
       overrides.start_wrap_deg = settings.planner.start_wrap_deg;
     }
+    overrides.package_paths = PackagePaths(settings.robot_input.package_paths);
+    overrides.srdf = settings.robot_input.srdf;
     scenario_ = LoadScenarioArg(path, overrides);
     robot_scene_.reset();
     joint_q_ = scenario_->problem.q0;
     status_ = "loaded scenario " + scenario_->name;
   } else {
-    robot_scene_ = LoadRobotScene(path, PackagePaths({}));
+    robot_scene_ = LoadRobotScene(path, settings.robot_input);
     scenario_.reset();
     joint_q_ = robot_scene_->q;
     status_ = "loaded " + path;

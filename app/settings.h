@@ -7,6 +7,8 @@
 #include <Eigen/Core>
 #include <string>
 
+#include "app/robot_scene.h"
+
 namespace app {
 
 // Orbit camera around `target`: yaw about +z and pitch above the xy plane, in degrees.
@@ -46,6 +48,7 @@ struct GraspSettings {
 
 struct Settings {
   std::string scenario_path;
+  RobotInputOptions robot_input;  // --package-path, --srdf: used by every load
   PlannerSettings planner;
   ViewToggles view;
   OrbitCamera camera;

@@ -22,6 +22,7 @@ void AddViewCommand(CLI::App* root, CommandList* commands) {
                    "NAME, planner P, seed N, camera YAW PITCH DIST, frames N, click WIDGET, "
                    "screenshot PNG, quit");
   view->add_flag("--headless", o->headless, "no window even without --screenshot");
+  AddRobotInputFlags(view, &o->robot_input, nullptr);
   view->add_flag("!--no-overlay", o->overlay, "headless frames without the UI panels");
   view->add_option("--size", *size, "window / frame size WxH")->capture_default_str();
   view->add_option("--exit-after", o->exit_after, "close the window after N frames (tests)");

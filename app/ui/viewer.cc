@@ -329,6 +329,7 @@ int RunViewer(const ViewerOptions& options) {
   Viewer v;
   v.settings.width = options.width;
   v.settings.height = options.height;
+  v.settings.robot_input = options.robot_input;
   ScriptRunner script(options.script.empty() ? std::vector<ScriptLine>{}
                                              : ParseScript(options.script));
   if (!options.scenario.empty()) {

@@ -5,6 +5,8 @@
 
 #include <string>
 
+#include "app/robot_scene.h"
+
 namespace app::ui {
 
 struct ViewerOptions {
@@ -16,6 +18,7 @@ struct ViewerOptions {
   int width = 1280, height = 720;
   int exit_after = 0;          // window: close after this many frames (0 = when the user closes it)
   bool print_widgets = false;  // print "widget NAME x0 y0 x1 y1" for the first frame's widgets
+  RobotInputOptions robot_input;  // --package-path, --srdf
 };
 
 // Runs the viewer; returns the process exit code (0 ok). Throws render::ContextError when no
