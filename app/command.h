@@ -5,8 +5,10 @@
 #include <functional>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
+#include "planning/json_reader.h"
 #include "render/offscreen_context.h"
 
 namespace app {
@@ -48,11 +50,7 @@ void AddViewCommand(CLI::App* root, CommandList* commands);       // view (app/u
 // ("--method: unknown transfer method 'x' (...)"): the library names values, the CLI names flags.
 template <typename F>
 auto ParseFlag(const std::string& flag, F&& parse) -> decltype(parse()) {
-  try {
-    return parse();
-  } catch (const std::invalid_argument& e) {
-    throw std::invalid_argument(flag + ": " + e.what());
-  }
+  return planning::PrefixErrors(flag, std::forward<F>(parse));
 }
 
 // Runs `run`, mapping exceptions to exit codes and printing "topoplan <name>: error: ..." to

@@ -83,6 +83,17 @@ class JsonNode {
   std::string path_;
 };
 
+// Calls f() and prefixes any std::invalid_argument it throws with `prefix` ("<prefix>: <what>"):
+// the one way a caller adds its context (file and JSON path, a flag name) to a library error.
+template <typename F>
+auto PrefixErrors(const std::string& prefix, F&& f) -> decltype(f()) {
+  try {
+    return f();
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(prefix + ": " + e.what());
+  }
+}
+
 // Calls f() and prefixes any std::invalid_argument it throws with the node's location.
 template <typename F>
 auto Located(const JsonNode& n, F&& f) -> decltype(f()) {

@@ -16,22 +16,12 @@
 namespace planning {
 namespace {
 
-// Calls f() and prefixes any std::invalid_argument with `where` ("<file>: <JSON path>").
-template <typename F>
-auto At(const std::string& where, F&& f) -> decltype(f()) {
-  try {
-    return f();
-  } catch (const std::invalid_argument& e) {
-    throw std::invalid_argument(where + ": " + e.what());
-  }
-}
-
 int FindIn(const SpecName& n, int (*find)(const Robot&, const std::string&), const Robot& r) {
-  return At(n.where, [&] { return find(r, n.name); });
+  return PrefixErrors(n.where, [&] { return find(r, n.name); });
 }
 
 Eigen::Matrix3Xd ObjectChain(const Scenario& s, const SpecName& object, const SpecName& chain) {
-  const int o = At(object.where, [&] { return FindObject(s.objects, object.name); });
+  const int o = PrefixErrors(object.where, [&] { return FindObject(s.objects, object.name); });
   const int c = FindIn(chain, FindChain, s.objects.objects[o].model);
   return ObjectChainPoints(s.objects, o, c);
 }
@@ -40,7 +30,7 @@ std::unique_ptr<Feature> BuildFeature(const Scenario& s, const FeatureSpec& f) {
   const Robot& r = s.robot;
   auto link = [&] { return FindIn(f.link, FindLink, r); };
   auto chain = [&] { return FindIn(f.chain, FindChain, r); };
-  return At(f.where, [&]() -> std::unique_ptr<Feature> {
+  return PrefixErrors(f.where, [&]() -> std::unique_ptr<Feature> {
     switch (f.type) {
       case FeatureType::kPosition:
         return MakePositionFeature(r, link(), f.offset);
@@ -235,9 +225,9 @@ int TaskIndex(const Scenario& s, const SpecName& n) {
 
 void LoadObjects(Scenario* s) {
   for (const ObjectSpec& o : s->spec.objects) {
-    Robot model = At(o.where + ".urdf", [&] { return LoadRobot(o.urdf); });
+    Robot model = PrefixErrors(o.where + ".urdf", [&] { return LoadRobot(o.urdf); });
     const Eigen::Isometry3d pose = PoseFromXyzRpy(o.xyz, o.rpy);
-    At(o.where, [&] { AddObject(model, pose, o.name, &s->objects); });
+    PrefixErrors(o.where, [&] { AddObject(model, pose, o.name, &s->objects); });
     if (!o.collide) continue;
     if (!o.capsule_chain) {
       AddObject(model, pose, o.name, &s->env);
@@ -283,7 +273,8 @@ void SetUpCollision(Scenario* s) {
     }
   }
   // Validate the options once (unknown link names throw here, with the JSON path).
-  if (!c.where.empty()) At(c.where, [&] { CollisionData check(s->robot, s->env, s->collision); });
+  if (!c.where.empty())
+    PrefixErrors(c.where, [&] { CollisionData check(s->robot, s->env, s->collision); });
 }
 
 }  // namespace
@@ -348,7 +339,7 @@ MotionProblem AttemptProblem(const Scenario& s, int k) {
     p.tasks.push_back(BuildTask(s, s.spec.tasks[i], p.q0, &s.goal_q));
     p.tasks.back().precision *= scale[static_cast<Eigen::Index>(i)];
   }
-  At(s.source, [&] { ValidateProblem(p); });
+  PrefixErrors(s.source, [&] { ValidateProblem(p); });
   return p;
 }
 
@@ -367,7 +358,7 @@ std::unique_ptr<Scenario> SetUpScenario(ScenarioSpec spec,
   s->source = sp.source;
   RobotLoadOptions load;
   load.package_paths = sp.package_paths;
-  s->robot = At(sp.source + ": robot", [&] { return LoadRobot(sp.robot, load); });
+  s->robot = PrefixErrors(sp.source + ": robot", [&] { return LoadRobot(sp.robot, load); });
   const std::string srdf_path = sp.srdf.empty() ? FindSrdf(sp.robot) : sp.srdf;
   std::optional<Srdf> srdf;
   if (!srdf_path.empty()) {
@@ -376,7 +367,8 @@ std::unique_ptr<Scenario> SetUpScenario(ScenarioSpec spec,
   }
   if (sp.start.kind == StartKind::kPose) {
     if (!srdf) throw std::invalid_argument(sp.start.where + ": a pose start needs an SRDF");
-    s->spec.start.q = At(sp.start.where, [&] { return NamedPose(s->robot, *srdf, sp.start.pose); });
+    s->spec.start.q =
+        PrefixErrors(sp.start.where, [&] { return NamedPose(s->robot, *srdf, sp.start.pose); });
     s->spec.start.kind = StartKind::kQ;
   }
   LoadObjects(s.get());
