@@ -10,6 +10,7 @@
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
 
 #include <Eigen/Geometry>
 #include <cmath>
@@ -43,6 +44,7 @@
 #include "topology/writhe.h"
 
 namespace py = pybind11;
+namespace fs = std::filesystem;
 
 namespace {
 
@@ -234,8 +236,11 @@ struct PyRobot {
   planning::Environment env;
   std::unique_ptr<planning::CollisionData> coll;  // built on first use, reset by add_object
 
-  static PyRobot Load(const std::string& urdf, const std::vector<std::string>& package_paths) {
+  static PyRobot Load(const fs::path& urdf_path, const std::vector<fs::path>& package_path_list) {
+    const std::string urdf = urdf_path.string();
     RequireFile(urdf, "urdf");
+    std::vector<std::string> package_paths;
+    for (const fs::path& p : package_path_list) package_paths.push_back(p.string());
     PyRobot r;
     planning::RobotLoadOptions options;
     options.package_paths = app::PackagePaths(package_paths);
@@ -489,7 +494,7 @@ PYBIND11_MODULE(_core, m) {
                       "A robot model loaded from a URDF, with placed collision objects. q is an\n"
                       "array in joint_names order or a dict {joint name: value} (others 0).")
       .def_static("load", &PyRobot::Load, py::arg("urdf"),
-                  py::arg("package_paths") = std::vector<std::string>{},
+                  py::arg("package_paths") = std::vector<fs::path>{},
                   "Loads a URDF (meshes through assimp; package:// URIs resolved against\n"
                   "package_paths, $ROS_PACKAGE_PATH and the URDF's ancestors; chains from the\n"
                   "<stem>.chains.json sidecar). FileNotFoundError for a missing file, ValueError\n"
@@ -560,8 +565,9 @@ PYBIND11_MODULE(_core, m) {
           "(3N) x n Jacobian of the chain points: rows 3k..3k+2 = d p_k / d q.")
       .def(
           "add_object",
-          [](PyRobot& r, const std::string& urdf, const py::handle& position, const py::handle& rpy,
-             const std::string& name) {
+          [](PyRobot& r, const fs::path& urdf_path, const py::handle& position,
+             const py::handle& rpy, const std::string& name) {
+            const std::string urdf = urdf_path.string();
             RequireFile(urdf, "urdf");
             const Eigen::Vector3d xyz = ToVector(position, "position", 3);
             const Eigen::Vector3d e = ToVector(rpy, "rpy", 3);
@@ -649,7 +655,8 @@ PYBIND11_MODULE(_core, m) {
           "(PlanCancelled is raised). The GIL is released while planning.");
   m.def(
       "load_scenario",
-      [](const std::string& arg, std::optional<double> start_wrap, long rrt_budget) {
+      [](const fs::path& arg_path, std::optional<double> start_wrap, long rrt_budget) {
+        const std::string arg = arg_path.string();
         if (start_wrap && !std::isfinite(*start_wrap)) ThrowValue("start_wrap: must be finite");
         const std::string path = Named(
             "path_or_name", [&] { return app::ResolveScenarioPath(arg); }, PyExc_FileNotFoundError);
@@ -690,14 +697,16 @@ PYBIND11_MODULE(_core, m) {
       "Writhe-matrix heatmap figure (the one of `topoplan heatmap`) as an H x W x 3 uint8 array.");
   m.def(
       "read_png",
-      [](const std::string& path) {
+      [](const fs::path& file) {
+        const std::string path = file.string();
         RequireFile(path, "path");
         return ImageArray(render::ReadPng(path));
       },
       py::arg("path"), "Reads a PNG into an H x W x 3 uint8 array.");
   m.def(
       "write_png",
-      [](const std::string& path, const py::array_t<std::uint8_t>& image) {
+      [](const fs::path& file, const py::array_t<std::uint8_t>& image) {
+        const std::string path = file.string();
         if (image.ndim() != 3 || image.shape(2) != 3) ThrowValue("image: expected shape (H, W, 3)");
         render::Image out(static_cast<int>(image.shape(1)), static_cast<int>(image.shape(0)));
         const auto v = image.unchecked<3>();
@@ -727,7 +736,8 @@ PYBIND11_MODULE(_core, m) {
       "(angle, planner, seed); None when there is nothing to draw.");
   m.def(
       "grasp_transfer",
-      [](const std::string& grasp, const std::string& method, double mu) {
+      [](const fs::path& grasp_path, const std::string& method, double mu) {
+        const std::string grasp = grasp_path.string();
         if (!(mu >= 0.0) || !std::isfinite(mu)) ThrowValue("mu: must be finite and >= 0");
         const planning::TransferMethod tm =
             Named("method", [&] { return planning::ParseTransferMethod(method); });
