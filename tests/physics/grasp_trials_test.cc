@@ -65,8 +65,7 @@ TEST(GraspTrialsTest, PerturbedRepetitionsAreCountedAndIndependentOfThreads) {
   const Robot lwr = LoadRobot(kAssets + "robots/lwr4_sdh.urdf");
   const std::vector<GraspObject> objects = LoadGraspObjects(kAssets + "grasps/objects.json");
   const std::vector<HumanGrasp> grasps = {LoadHumanGrasp(kAssets + "grasps/power_bottle.json")};
-  const std::vector<TransferMethod> methods = {TransferMethod::kJointMapping,
-                                               TransferMethod::kHuman};
+  const std::vector<TransferMethod> methods = {TransferMethod::kJointMapping};
   OdeRuntime runtime;
   GraspTrialsOptions o;
   o.perturb = 2;
