@@ -9,6 +9,7 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <thread>
 
 #include "app/assets.h"
 #include "app/cli.h"
@@ -297,9 +298,11 @@ class Demo {
     const std::vector<planning::TransferMethod> methods = planning::AllTransferMethods();
     phys::OdeRuntime ode;
     GraspFrameWriter frames;
+    phys::GraspTrialsOptions options;  // default protocol (mu 1), no perturbation
+    options.threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
     const phys::GraspTrialsResult result =
-        phys::RunGraspTrials(ode, in.human, in.lwr_sdh, in.objects, in.grasps, methods,
-                             phys::StabilityOptions{}.sim.mu, GraspTransferHooks(dir, &frames));
+        phys::RunGraspTrials(ode, in.human, in.lwr_sdh, in.objects, in.grasps, methods, options,
+                             GraspTransferHooks(dir, &frames));
     WriteGraspOutputs(result, dir.string());
     // Unstable baseline grasps are results, not errors.
     html_ << "<h2>5. Grasp transfer: human hand &rarr; Schunk SDH, tested in ODE</h2>\n"
@@ -314,15 +317,20 @@ class Demo {
              "<p><img src=\"grasp/summary.png\" width=\"640\"></p>\n"
           << GraspHtmlTable(result)
           << "<p><a href=\"grasp/report.json\">report.json</a></p>\n"
-             "<h3>Transferred grasps (winding method) and their stability tests</h3>\n";
+             "<h3>Human grasps and the transferred SDH grasps (winding method), with their "
+             "stability tests</h3>\n<p>Left: the demonstrated human grasp; right: the SDH "
+             "posture the winding method found, both seen by one camera.</p>\n";
     for (const planning::HumanGrasp& g : result.grasps) {
       const std::string name = g.name + "_winding";
       const fs::path run = dir / "frames" / name;
-      const auto transfer = SortedPngs(run / "transfer", "transfer_");
       html_ << "<p><b>" << HtmlEscape(g.name) << "</b><br>";
-      if (!transfer.empty()) {
+      const auto transfer = SortedPngs(run / "transfer", "transfer_");
+      if (fs::exists(run / "transfer" / "side_by_side.png")) {
+        html_ << "<img src=\"grasp/frames/" << name
+              << "/transfer/side_by_side.png\" width=\"640\"><br>";
+      } else if (!transfer.empty()) {
         html_ << "<img src=\"grasp/frames/" << name << "/transfer/"
-              << transfer.back().filename().string() << "\" width=\"320\"> ";
+              << transfer.back().filename().string() << "\" width=\"320\"><br>";
       }
       if (fs::exists(run / "stability" / "contact_sheet.png")) {
         html_ << "<img src=\"grasp/frames/" << name

@@ -5,6 +5,8 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <optional>
+#include <thread>
 
 #include "app/assets.h"
 #include "app/command.h"
@@ -70,6 +72,9 @@ struct TransferArgs {
   double timeout = 0.0;
   bool frames = false;
   bool json = false;
+  int perturb = 0;
+  unsigned seed = 0;
+  int threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
 };
 
 int RunTransfer(const TransferArgs& a) {
@@ -91,24 +96,31 @@ int RunTransfer(const TransferArgs& a) {
   phys::OdeRuntime ode;
   std::unique_ptr<GraspFrameWriter> frames;
   if (a.frames) frames = std::make_unique<GraspFrameWriter>();
-  phys::GraspTrialHooks hooks = GraspTransferHooks(out.staging(), frames.get());
-  // Stops between trials; a stopped run leaves a report.json with its status only.
-  hooks.on_start = [&stop, start = hooks.on_start](const auto& setup, const auto& transfer,
-                                                   const auto& hand, const auto& object) {
-    stop.Poll();
-    return start ? start(setup, transfer, hand, object) : phys::StepCallback{};
+  const phys::GraspTrialHooks hooks = GraspTransferHooks(out.staging(), frames.get());
+  phys::GraspTrialsOptions options;
+  options.mu = a.mu;
+  options.perturb = a.perturb;
+  options.seed = a.seed;
+  options.threads = a.threads;
+  // Stops between trials; a stopped run keeps the grasps whose trials all finished.
+  std::optional<StopRequested> stopped;
+  options.should_stop = [&stop, &stopped] {
+    try {
+      stop.Poll();
+      return false;
+    } catch (const StopRequested& e) {
+      stopped = e;
+      return true;
+    }
   };
-  phys::GraspTrialsResult result;
-  try {
-    result = phys::RunGraspTrials(ode, in.human, in.lwr_sdh, in.objects, in.grasps, methods, a.mu,
-                                  hooks);
-  } catch (const StopRequested& e) {
-    const nlohmann::json report = StoppedReportJson(e, {{"mu", a.mu}});
-    WriteFileAtomic((std::filesystem::path(out.staging()) / "report.json").string(),
-                    report.dump(1) + "\n");
+  const phys::GraspTrialsResult result = phys::RunGraspTrials(ode, in.human, in.lwr_sdh, in.objects,
+                                                              in.grasps, methods, options, hooks);
+  if (stopped) {
+    WriteGraspOutputs(result, out.staging(), StoppedReportJson(*stopped, GraspReportJson(result)));
     out.Commit();
-    std::fprintf(stderr, "%s: wrote %s/report.json\n", e.what(), a.out_dir.c_str());
-    return e.timeout ? kExitFailed : kExitInterrupted;
+    std::fprintf(stderr, "%s: wrote %s/report.json (%zu of %zu grasps)\n", stopped->what(),
+                 a.out_dir.c_str(), result.grasps.size(), in.grasps.size());
+    return stopped->timeout ? kExitFailed : kExitInterrupted;
   }
 
   const std::string text = WriteGraspOutputs(result, out.staging());
@@ -156,6 +168,18 @@ void AddGraspCommands(CLI::App* root, CommandList* commands) {
   transfer->add_flag("--frames", ta->frames,
                      "also write frames of the transfer and stability test");
   transfer->add_flag("--json", ta->json, "print report.json to stdout");
+  transfer
+      ->add_option("--perturb", ta->perturb,
+                   "also repeat every grasp and method N times with the object moved by up to "
+                   "+-5 mm per axis and turned by up to +-5 deg (seeded); report.json then gives "
+                   "per grasp and method perturbed: {trials, stable, ci95} (Wilson 95 %)")
+      ->check(CLI::Range(1, 1000));
+  transfer->add_option("--seed", ta->seed, "seed of the perturbations (default 0)");
+  transfer
+      ->add_option("--threads", ta->threads,
+                   "threads computing transfers ahead of the simulations (default: the number "
+                   "of cores); the results do not depend on it")
+      ->check(CLI::Range(1, 256));
   commands->push_back({transfer, [ta] { return RunTransfer(*ta); }});
 }
 

@@ -1,5 +1,6 @@
 #include "app/grasp_frames.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 
@@ -11,6 +12,7 @@ namespace {
 
 constexpr int kFrameWidth = 480;
 constexpr int kFrameHeight = 360;
+constexpr int kGap = 8;  // white columns between the halves of a side-by-side image
 
 }  // namespace
 
@@ -38,6 +40,7 @@ void GraspFrameWriter::Transfer(const std::string& dir, const planning::Transfer
   camera_ = FrameSceneCamera(human, view_, 40.0f);
   writer.Add(renderer_.Render(human, camera_, kFrameWidth, kFrameHeight));
   planning::KinematicsData sk(setup.sdh);
+  render::Scene last;
   for (int c = 0; c < t.trajectory.q.cols(); ++c) {
     planning::ForwardKinematics(setup.sdh, t.trajectory.q.col(c), &sk);
     render::Scene scene;
@@ -45,8 +48,30 @@ void GraspFrameWriter::Transfer(const std::string& dir, const planning::Transfer
     AddGraspObjectShapes(setup.object, setup.grasp.world_from_object, &scene);
     if (c == 0) camera_ = FrameSceneCamera(scene, view_, 40.0f);
     writer.Add(renderer_.Render(scene, camera_, kFrameWidth, kFrameHeight));
+    last = std::move(scene);
   }
   writer.Finish();
+  if (t.trajectory.q.cols() > 0) {
+    render::WriteFileAtomically((std::filesystem::path(dir) / "side_by_side.png").string(),
+                                render::EncodePng(SideBySide(human, last, view_)));
+  }
+}
+
+render::Image GraspFrameWriter::SideBySide(const render::Scene& left, const render::Scene& right,
+                                           const Eigen::Vector3f& view) {
+  // One camera framing both scenes (they share the world frame), so both halves have one scale.
+  render::Scene both = left;
+  both.shapes.insert(both.shapes.end(), right.shapes.begin(), right.shapes.end());
+  both.tubes.insert(both.tubes.end(), right.tubes.begin(), right.tubes.end());
+  const render::Camera camera = FrameSceneCamera(both, view, 40.0f);
+  const render::Image a = renderer_.Render(left, camera, kFrameWidth, kFrameHeight);
+  const render::Image b = renderer_.Render(right, camera, kFrameWidth, kFrameHeight);
+  render::Image out(2 * kFrameWidth + kGap, kFrameHeight, 255, 255, 255);
+  for (int y = 0; y < kFrameHeight; ++y) {
+    std::copy_n(a.at(0, y), 4 * kFrameWidth, out.at(0, y));
+    std::copy_n(b.at(0, y), 4 * kFrameWidth, out.at(kFrameWidth + kGap, y));
+  }
+  return out;
 }
 
 planning::physics::StepCallback GraspFrameWriter::Stability(

@@ -21,7 +21,9 @@ class GraspFrameWriter {
  public:
   GraspFrameWriter();
 
-  // DIR/transfer_*.png: the human grasp, then every slice of transfer.trajectory.
+  // DIR/transfer_*.png: the human grasp, then every slice of transfer.trajectory; and, when the
+  // trajectory is not empty, DIR/side_by_side.png (968x360): the human grasp (left) and the final
+  // SDH grasp (right), seen by one camera that frames both, so both halves have the same scale.
   void Transfer(const std::string& dir, const planning::TransferSetup& setup,
                 const planning::TransferResult& transfer);
 
@@ -36,6 +38,9 @@ class GraspFrameWriter {
   void FinishStability();
 
  private:
+  render::Image SideBySide(const render::Scene& left, const render::Scene& right,
+                           const Eigen::Vector3f& view);
+
   render::OffscreenContext context_;
   render::Renderer renderer_;
   SceneMeshCache cache_;

@@ -9,6 +9,7 @@
 #include "app/figures.h"
 #include "app/io.h"
 #include "app/scene_builder.h"
+#include "planning/grasp_quality.h"
 #include "planning/kinematics.h"
 #include "render/offscreen_context.h"
 #include "render/plot.h"
@@ -285,6 +286,32 @@ std::string UnwrapHtmlTable(const planning::UnwrapBenchmarkResult& result) {
 
 // --- grasp transfer -----------------------------------------------------------------------------
 
+namespace {
+
+// {trials, stable, rate, ci95: [lo, hi]} (Wilson 95 %) of perturbed repetitions.
+nlohmann::json PerturbedJson(int trials, int stable) {
+  nlohmann::json j = {{"trials", trials}, {"stable", stable}};
+  if (trials > 0) {
+    const Eigen::Vector2d ci = planning::WilsonInterval(stable, trials);
+    j["rate"] = Round(static_cast<double>(stable) / trials, 1e4);
+    j["ci95"] = {Round(ci[0], 1e4), Round(ci[1], 1e4)};
+  }
+  return j;
+}
+
+// "5/8 (0.31-0.86)": count and Wilson 95 % interval.
+std::string RateText(int stable, int trials, const Eigen::Vector2d& ci) {
+  char buf[64];
+  if (trials > 0) {
+    std::snprintf(buf, sizeof buf, "%d/%d (%.2f-%.2f)", stable, trials, ci[0], ci[1]);
+  } else {
+    std::snprintf(buf, sizeof buf, "0/0");
+  }
+  return buf;
+}
+
+}  // namespace
+
 nlohmann::json GraspReportJson(const phys::GraspTrialsResult& result) {
   const phys::StabilityOptions& stab = result.stability;
   nlohmann::json report;
@@ -343,6 +370,10 @@ nlohmann::json GraspReportJson(const phys::GraspTrialsResult& result) {
                         {"blown_up", d.blown_up}});
       }
       j["directions"] = dirs;
+      if (result.perturb > 0) {
+        j["perturbed"] =
+            PerturbedJson(static_cast<int>(trial.perturbed.size()), trial.perturbed_stable);
+      }
       mj[planning::ToString(result.methods[mi])] = j;
     }
     gj["methods"] = mj;
@@ -350,10 +381,20 @@ nlohmann::json GraspReportJson(const phys::GraspTrialsResult& result) {
   }
   nlohmann::json summary = nlohmann::json::object();
   for (const phys::GraspMethodSummary& s : result.summary) {
-    summary[planning::ToString(s.method)] = {
-        {"stable", s.stable}, {"grasps", s.grasps}, {"success_rate", Round(s.rate, 1e4)}};
+    nlohmann::json sj = {{"stable", s.stable},
+                         {"grasps", s.grasps},
+                         {"success_rate", Round(s.rate, 1e4)},
+                         {"ci95", {Round(s.ci95[0], 1e4), Round(s.ci95[1], 1e4)}}};
+    if (result.perturb > 0) sj["perturbed"] = PerturbedJson(s.perturbed_trials, s.perturbed_stable);
+    summary[planning::ToString(s.method)] = sj;
   }
   report["summary"] = summary;
+  if (result.perturb > 0) {
+    report["perturb"] = {{"repetitions", result.perturb},
+                         {"seed", result.seed},
+                         {"max_translation_m", result.perturb_translation},
+                         {"max_rotation_deg", result.perturb_rotation_deg}};
+  }
   return report;
 }
 
@@ -372,7 +413,11 @@ std::string GraspSummaryMarkdown(const phys::GraspTrialsResult& result) {
     md << "| " << result.grasps[gi].name << " |";
     for (const phys::GraspTrial& trial : result.trials[gi]) {
       md << " " << trial.stability.directions_passed << "/6"
-         << (trial.stability.stable ? " stable" : "") << " |";
+         << (trial.stability.stable ? " stable" : "");
+      if (result.perturb > 0) {
+        md << ", perturbed " << trial.perturbed_stable << "/" << trial.perturbed.size();
+      }
+      md << " |";
     }
     for (const phys::GraspTrial& trial : result.trials[gi]) {
       char eps[32];
@@ -381,12 +426,23 @@ std::string GraspSummaryMarkdown(const phys::GraspTrialsResult& result) {
     }
     md << "\n";
   }
-  md << "| **success rate** |";
+  md << "| **success rate (95 % CI)** |";
   for (const phys::GraspMethodSummary& s : result.summary) {
-    md << " " << s.stable << "/" << s.grasps << " |";
+    md << " " << RateText(s.stable, s.grasps, s.ci95) << " |";
   }
   for (size_t i = 0; i < result.summary.size(); ++i) md << " |";
   md << "\n";
+  if (result.perturb > 0) {
+    md << "| **perturbed (95 % CI)** |";
+    for (const phys::GraspMethodSummary& s : result.summary) {
+      md << " " << RateText(s.perturbed_stable, s.perturbed_trials, s.perturbed_ci95) << " |";
+    }
+    for (size_t i = 0; i < result.summary.size(); ++i) md << " |";
+    md << "\n\nperturbed: " << result.perturb << " repetitions per grasp and method, object moved "
+       << "by up to " << result.perturb_translation * 1e3 << " mm per axis and turned by up to "
+       << result.perturb_rotation_deg << " deg (seed " << result.seed
+       << "); intervals: Wilson 95 %.\n";
+  }
   return md.str();
 }
 
@@ -429,12 +485,19 @@ render::Image GraspSummaryFigure(const phys::GraspTrialsResult& result) {
 }
 
 std::string WriteGraspOutputs(const phys::GraspTrialsResult& result, const std::string& dir) {
+  return WriteGraspOutputs(result, dir, GraspReportJson(result));
+}
+
+std::string WriteGraspOutputs(const phys::GraspTrialsResult& result, const std::string& dir,
+                              const nlohmann::json& report) {
   fs::create_directories(dir);
-  const std::string text = GraspReportJson(result).dump(1) + "\n";
+  const std::string text = report.dump(1) + "\n";
   WriteFileAtomic((fs::path(dir) / "report.json").string(), text);
   WriteFileAtomic((fs::path(dir) / "summary.md").string(), GraspSummaryMarkdown(result));
-  render::WriteFileAtomically((fs::path(dir) / "summary.png").string(),
-                              render::EncodePng(GraspSummaryFigure(result)));
+  if (!result.grasps.empty()) {  // a run stopped before its first grasp has nothing to plot
+    render::WriteFileAtomically((fs::path(dir) / "summary.png").string(),
+                                render::EncodePng(GraspSummaryFigure(result)));
+  }
   return text;
 }
 
@@ -453,9 +516,9 @@ std::string GraspHtmlTable(const phys::GraspTrialsResult& result) {
     }
     t << "</tr>\n";
   }
-  t << "<tr><td><b>success rate</b></td>";
+  t << "<tr><td><b>success rate (95 % CI)</b></td>";
   for (const phys::GraspMethodSummary& s : result.summary) {
-    t << "<td>" << s.stable << "/" << s.grasps << "</td>";
+    t << "<td>" << RateText(s.stable, s.grasps, s.ci95) << "</td>";
   }
   t << "</tr></table>\n";
   return t.str();

@@ -79,21 +79,29 @@ std::string UnwrapHtmlTable(const planning::UnwrapBenchmarkResult& result);
 
 // report.json of `grasp transfer`: mu, protocol, per grasp (name, type, object, file, human
 // windings, per method: windings, winding_error, epsilon_quality, clearance, solver, q,
-// stability) and per-method summary (stable, grasps, success_rate). Values rounded to 1e-6
-// (rotations 1e-3, rates 1e-4).
+// stability; with perturb > 0 also perturbed: {trials, stable, rate, ci95: [lo, hi]}) and
+// per-method summary (stable, grasps, success_rate, ci95: Wilson 95 % over the grasps; with
+// perturb > 0 perturbed: {trials, stable, rate, ci95} over all repetitions), and with perturb > 0
+// "perturb": {repetitions, seed, max_translation_m, max_rotation_deg}. Values rounded to 1e-6
+// (rotations 1e-3, rates and intervals 1e-4).
 nlohmann::json GraspReportJson(const planning::physics::GraspTrialsResult& result);
 
 // summary.md: directions passed out of 6 per grasp and method, then one "eps METHOD" column per
-// method (GraspTrial::epsilon_quality, 4 decimals), and the success-rate row.
+// method (GraspTrial::epsilon_quality, 4 decimals), and the success-rate row with Wilson 95 %
+// intervals; with perturb > 0 each cell also gives "perturbed s/N" and a perturbed-rate row.
 std::string GraspSummaryMarkdown(const planning::physics::GraspTrialsResult& result);
 
 // summary.png: directions held per grasp, one marker series per method.
 render::Image GraspSummaryFigure(const planning::physics::GraspTrialsResult& result);
 
-// Writes DIR/report.json (GraspReportJson, 1-space indent), DIR/summary.md and DIR/summary.png;
-// returns the report.json text.
+// Writes DIR/report.json (GraspReportJson, 1-space indent), DIR/summary.md and DIR/summary.png
+// (not when result.grasps is empty: a run stopped before its first grasp); returns the
+// report.json text.
 std::string WriteGraspOutputs(const planning::physics::GraspTrialsResult& result,
                               const std::string& dir);
+// The same with a given report.json (e.g. GraspReportJson with a "status" of a stopped run).
+std::string WriteGraspOutputs(const planning::physics::GraspTrialsResult& result,
+                              const std::string& dir, const nlohmann::json& report);
 
 // HTML table of the same numbers as summary.md (header and cells from result.methods).
 std::string GraspHtmlTable(const planning::physics::GraspTrialsResult& result);

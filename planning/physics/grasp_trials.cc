@@ -2,10 +2,16 @@
 
 #include <algorithm>
 #include <cmath>
+#include <condition_variable>
+#include <exception>
+#include <mutex>
+#include <random>
 #include <stdexcept>
+#include <thread>
 
 #include "planning/grasp_quality.h"
 #include "planning/kinematics.h"
+#include "planning/random.h"
 
 namespace planning::physics {
 namespace {
@@ -34,41 +40,245 @@ void Simulate(const OdeRuntime& runtime, const TransferSetup& setup,
   if (hooks.on_done) hooks.on_done(setup, *trial);
 }
 
+// The trial up to its simulation: the transfer (or the demonstration), the hand at its
+// configuration and the object at the grasp's pose.
+GraspTrial PrepareTrial(const TransferSetup& setup, TransferMethod method) {
+  GraspTrial trial;
+  if (method != TransferMethod::kHuman) {
+    trial.transfer = TransferGrasp(setup, method);
+    trial.winding_error = (trial.transfer.robot_winding - trial.transfer.target_winding).norm();
+    trial.hand = BuildSimHand(setup.sdh, trial.transfer.q, "sdh_palm");
+  } else {
+    trial.human = true;
+    TransferResult& t = trial.transfer;
+    t.method = TransferMethod::kHuman;
+    t.q = setup.human_q;
+    KinematicsData kin(setup.human);
+    ForwardKinematics(setup.human, setup.human_q, &kin);
+    const GraspEncoding enc = EncodeGrasp(setup.human, kin, setup.human_chains, setup.reference);
+    t.human_winding = t.target_winding = t.robot_winding = enc.finger;
+    t.human_phalanx_winding = t.robot_phalanx_winding = enc.phalanx;
+    t.min_clearance = HandClearance(setup.human, kin, SampleHandSpheres(setup.human, {}, 0.002),
+                                    setup.object, setup.grasp.world_from_object);
+    t.solver = "demonstration";
+    t.iterations = 0;
+    trial.hand = BuildSimHand(setup.human, setup.human_q, "hand_palm", HumanHandBuildOptions());
+  }
+  trial.object = BuildSimObject(setup.object, setup.grasp.world_from_object);
+  return trial;
+}
+
+// The perturbed repetitions of a prepared and simulated trial (no hooks).
+void RunPerturbed(const OdeRuntime& runtime, const TransferSetup& setup,
+                  const StabilityOptions& stability, const GraspTrialsOptions& options,
+                  GraspTrial* trial) {
+  for (int k = 0; k < options.perturb; ++k) {
+    PerturbedTrial p;
+    p.world_from_object =
+        PerturbedObjectPose(setup.grasp.world_from_object, setup.grasp.name, k, options);
+    const SimObject object = BuildSimObject(setup.object, p.world_from_object);
+    const StabilityResult r = TestGraspStability(runtime, trial->hand, object, stability);
+    p.stable = r.stable;
+    p.directions_passed = r.directions_passed;
+    p.epsilon_quality = ClosureEpsilon(object, r, stability.sim.mu);
+    trial->perturbed_stable += p.stable ? 1 : 0;
+    trial->perturbed.push_back(p);
+  }
+}
+
+// FNV-1a 64 of a name.
+std::uint64_t NameHash(const std::string& name) {
+  std::uint64_t h = 14695981039346656037ull;
+  for (unsigned char c : name) {
+    h ^= c;
+    h *= 1099511628211ull;
+  }
+  return h;
+}
+
+void CheckTrialsOptions(const GraspTrialsOptions& o) {
+  if (!(o.mu >= 0) || !std::isfinite(o.mu)) {
+    throw std::invalid_argument("grasp trials: mu must be a finite number >= 0");
+  }
+  if (o.perturb < 0 || o.perturb > 1000) {
+    throw std::invalid_argument("grasp trials: perturb must be in [0, 1000]");
+  }
+  if (o.threads < 1) throw std::invalid_argument("grasp trials: threads must be >= 1");
+  if (!(o.perturb_translation >= 0) || !std::isfinite(o.perturb_translation) ||
+      !(o.perturb_rotation_deg >= 0) || !std::isfinite(o.perturb_rotation_deg)) {
+    throw std::invalid_argument("grasp trials: perturbation sizes must be finite and >= 0");
+  }
+}
+
+// Transfers computed ahead by worker threads, claimed in job order (grasp-major); the calling
+// thread claims a job itself when no worker has started it yet.
+class TransferQueue {
+ public:
+  TransferQueue(const std::vector<TransferSetup>& setups,
+                const std::vector<TransferMethod>& methods, int workers)
+      : setups_(setups), methods_(methods), slots_(setups.size() * methods.size()) {
+    for (int w = 0; w < workers; ++w) threads_.emplace_back([this] { Work(); });
+  }
+  ~TransferQueue() {
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      stop_ = true;
+    }
+    for (std::thread& t : threads_) t.join();
+  }
+  TransferQueue(const TransferQueue&) = delete;
+  TransferQueue& operator=(const TransferQueue&) = delete;
+
+  // The prepared trial of job j (computed here if nobody claimed it); rethrows its exception.
+  GraspTrial Take(size_t j) {
+    std::unique_lock<std::mutex> lock(mutex_);
+    if (next_ <= j) {  // jobs are claimed in order: j is not started, nor any after it
+      next_ = j + 1;
+      lock.unlock();
+      Compute(j);
+      lock.lock();
+    }
+    done_.wait(lock, [&] { return slots_[j].ready; });
+    Slot slot = std::move(slots_[j]);
+    if (slot.error) std::rethrow_exception(slot.error);
+    return std::move(slot.trial);
+  }
+
+ private:
+  struct Slot {
+    bool ready = false;
+    GraspTrial trial;
+    std::exception_ptr error;
+  };
+
+  void Compute(size_t j) {
+    Slot slot;
+    try {
+      slot.trial = PrepareTrial(setups_[j / methods_.size()], methods_[j % methods_.size()]);
+    } catch (...) {
+      slot.error = std::current_exception();
+    }
+    slot.ready = true;
+    std::lock_guard<std::mutex> lock(mutex_);
+    slots_[j] = std::move(slot);
+    done_.notify_all();
+  }
+
+  void Work() {
+    while (true) {
+      size_t j;
+      {
+        std::lock_guard<std::mutex> lock(mutex_);
+        if (stop_ || next_ >= slots_.size()) return;
+        j = next_++;
+      }
+      Compute(j);
+    }
+  }
+
+  const std::vector<TransferSetup>& setups_;
+  const std::vector<TransferMethod>& methods_;
+  std::vector<Slot> slots_;
+  std::mutex mutex_;
+  std::condition_variable done_;
+  size_t next_ = 0;
+  bool stop_ = false;
+  std::vector<std::thread> threads_;
+};
+
 }  // namespace
+
+Eigen::Isometry3d PerturbedObjectPose(const Eigen::Isometry3d& world_from_object,
+                                      const std::string& grasp_name, int k,
+                                      const GraspTrialsOptions& options) {
+  const std::uint64_t h = NameHash(grasp_name);
+  std::seed_seq seq{options.seed, static_cast<std::uint32_t>(h),
+                    static_cast<std::uint32_t>(h >> 32), static_cast<std::uint32_t>(k)};
+  std::mt19937 rng(seq);
+  auto symmetric = [&rng](double a) { return a * (2.0 * UniformUnit(&rng) - 1.0); };
+  Eigen::Vector3d t;
+  for (int i = 0; i < 3; ++i) t[i] = symmetric(options.perturb_translation);
+  const double z = 2.0 * UniformUnit(&rng) - 1.0;
+  const double phi = 2.0 * M_PI * UniformUnit(&rng);
+  const double r = std::sqrt(std::max(0.0, 1.0 - z * z));
+  const Eigen::Vector3d axis(r * std::cos(phi), r * std::sin(phi), z);
+  const double angle = symmetric(options.perturb_rotation_deg * M_PI / 180.0);
+  Eigen::Isometry3d pose = world_from_object;
+  pose.linear() = Eigen::AngleAxisd(angle, axis).toRotationMatrix() * world_from_object.linear();
+  pose.translation() += t;
+  return pose;
+}
 
 GraspTrial RunGraspTrial(const OdeRuntime& runtime, const TransferSetup& setup,
                          TransferMethod method, const StabilityOptions& options,
                          const GraspTrialHooks& hooks) {
-  if (method == TransferMethod::kHuman) return RunHumanTrial(runtime, setup, options, hooks);
-  GraspTrial trial;
-  trial.transfer = TransferGrasp(setup, method);
-  trial.winding_error = (trial.transfer.robot_winding - trial.transfer.target_winding).norm();
-  trial.hand = BuildSimHand(setup.sdh, trial.transfer.q, "sdh_palm");
-  trial.object = BuildSimObject(setup.object, setup.grasp.world_from_object);
+  GraspTrial trial = PrepareTrial(setup, method);
   Simulate(runtime, setup, options, hooks, &trial);
   return trial;
 }
 
 GraspTrial RunHumanTrial(const OdeRuntime& runtime, const TransferSetup& setup,
                          const StabilityOptions& options, const GraspTrialHooks& hooks) {
-  GraspTrial trial;
-  trial.human = true;
-  TransferResult& t = trial.transfer;
-  t.method = TransferMethod::kHuman;
-  t.q = setup.human_q;
-  KinematicsData kin(setup.human);
-  ForwardKinematics(setup.human, setup.human_q, &kin);
-  const GraspEncoding enc = EncodeGrasp(setup.human, kin, setup.human_chains, setup.reference);
-  t.human_winding = t.target_winding = t.robot_winding = enc.finger;
-  t.human_phalanx_winding = t.robot_phalanx_winding = enc.phalanx;
-  t.min_clearance = HandClearance(setup.human, kin, SampleHandSpheres(setup.human, {}, 0.002),
-                                  setup.object, setup.grasp.world_from_object);
-  t.solver = "demonstration";
-  t.iterations = 0;
-  trial.hand = BuildSimHand(setup.human, setup.human_q, "hand_palm", HumanHandBuildOptions());
-  trial.object = BuildSimObject(setup.object, setup.grasp.world_from_object);
-  Simulate(runtime, setup, options, hooks, &trial);
-  return trial;
+  return RunGraspTrial(runtime, setup, TransferMethod::kHuman, options, hooks);
+}
+
+GraspTrialsResult RunGraspTrials(const OdeRuntime& runtime, const Robot& human_hand,
+                                 const Robot& sdh_source, const std::vector<GraspObject>& objects,
+                                 const std::vector<HumanGrasp>& grasps,
+                                 const std::vector<TransferMethod>& methods,
+                                 const GraspTrialsOptions& options, const GraspTrialHooks& hooks) {
+  CheckTrialsOptions(options);
+  GraspTrialsResult result;
+  result.methods = methods;
+  result.stability.sim.mu = options.mu;
+  result.perturb = options.perturb;
+  result.seed = options.seed;
+  result.perturb_translation = options.perturb_translation;
+  result.perturb_rotation_deg = options.perturb_rotation_deg;
+  // Every setup first, so that a bad grasp or object fails before any work.
+  std::vector<TransferSetup> setups;
+  for (const HumanGrasp& g : grasps) {
+    setups.push_back(
+        MakeTransferSetup(human_hand, sdh_source, FindGraspObject(objects, g.object), g));
+  }
+  {
+    TransferQueue queue(setups, methods, methods.empty() ? 0 : options.threads - 1);
+    for (size_t gi = 0; gi < grasps.size() && result.complete; ++gi) {
+      std::vector<GraspTrial> row;
+      for (size_t mi = 0; mi < methods.size(); ++mi) {
+        if (options.should_stop && options.should_stop()) {
+          result.complete = false;
+          break;
+        }
+        GraspTrial trial = queue.Take(gi * methods.size() + mi);
+        Simulate(runtime, setups[gi], result.stability, hooks, &trial);
+        RunPerturbed(runtime, setups[gi], result.stability, options, &trial);
+        row.push_back(std::move(trial));
+      }
+      if (!result.complete) break;
+      result.grasps.push_back(grasps[gi]);
+      result.trials.push_back(std::move(row));
+    }
+  }
+  for (size_t mi = 0; mi < methods.size(); ++mi) {
+    GraspMethodSummary s;
+    s.method = methods[mi];
+    s.grasps = static_cast<int>(result.trials.size());
+    for (const std::vector<GraspTrial>& row : result.trials) {
+      const GraspTrial& t = row[mi];
+      s.stable += t.stability.stable ? 1 : 0;
+      result.all_stable = result.all_stable && t.stability.stable;
+      s.perturbed_trials += static_cast<int>(t.perturbed.size());
+      s.perturbed_stable += t.perturbed_stable;
+    }
+    s.rate = static_cast<double>(s.stable) / std::max(1, s.grasps);
+    if (s.grasps > 0) s.ci95 = WilsonInterval(s.stable, s.grasps);
+    s.perturbed_rate = static_cast<double>(s.perturbed_stable) / std::max(1, s.perturbed_trials);
+    if (s.perturbed_trials > 0)
+      s.perturbed_ci95 = WilsonInterval(s.perturbed_stable, s.perturbed_trials);
+    result.summary.push_back(s);
+  }
+  return result;
 }
 
 GraspTrialsResult RunGraspTrials(const OdeRuntime& runtime, const Robot& human_hand,
@@ -76,34 +286,9 @@ GraspTrialsResult RunGraspTrials(const OdeRuntime& runtime, const Robot& human_h
                                  const std::vector<HumanGrasp>& grasps,
                                  const std::vector<TransferMethod>& methods, double mu,
                                  const GraspTrialHooks& hooks) {
-  if (!(mu >= 0) || !std::isfinite(mu)) {
-    throw std::invalid_argument("grasp trials: mu must be a finite number >= 0");
-  }
-  GraspTrialsResult result;
-  result.grasps = grasps;
-  result.methods = methods;
-  result.stability.sim.mu = mu;
-  for (TransferMethod m : methods) {
-    GraspMethodSummary s;
-    s.method = m;
-    s.grasps = static_cast<int>(grasps.size());
-    result.summary.push_back(s);
-  }
-  for (const HumanGrasp& g : grasps) {
-    const GraspObject& object = FindGraspObject(objects, g.object);
-    const TransferSetup setup = MakeTransferSetup(human_hand, sdh_source, object, g);
-    std::vector<GraspTrial>& row = result.trials.emplace_back();
-    for (size_t mi = 0; mi < methods.size(); ++mi) {
-      row.push_back(RunGraspTrial(runtime, setup, methods[mi], result.stability, hooks));
-      const bool stable = row.back().stability.stable;
-      result.summary[mi].stable += stable ? 1 : 0;
-      result.all_stable = result.all_stable && stable;
-    }
-  }
-  for (GraspMethodSummary& s : result.summary) {
-    s.rate = static_cast<double>(s.stable) / std::max(1, s.grasps);
-  }
-  return result;
+  GraspTrialsOptions options;
+  options.mu = mu;
+  return RunGraspTrials(runtime, human_hand, sdh_source, objects, grasps, methods, options, hooks);
 }
 
 }  // namespace planning::physics

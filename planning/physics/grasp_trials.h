@@ -2,7 +2,9 @@
 // transfer method, build the ODE hand and object, and run the gravity stability test.
 #pragma once
 
+#include <cstdint>
 #include <functional>
+#include <string>
 #include <vector>
 
 #include "planning/grasp.h"
@@ -14,6 +16,16 @@
 #include "planning/robot.h"
 
 namespace planning::physics {
+
+// One repetition of a trial with the object moved and turned (RunGraspTrials with perturb > 0):
+// the same transferred hand (or, for the human reference, the same demonstration), the object at
+// world_from_object instead of the grasp's pose, the same stability protocol.
+struct PerturbedTrial {
+  Eigen::Isometry3d world_from_object = Eigen::Isometry3d::Identity();  // perturbed object pose
+  bool stable = false;
+  int directions_passed = 0;
+  double epsilon_quality = 0.0;  // as GraspTrial::epsilon_quality
+};
 
 // One trial: a human grasp transferred with one method and tested in ODE.
 struct GraspTrial {
@@ -32,6 +44,9 @@ struct GraspTrial {
   // setup.human_q, all three windings = the human's, solver "demonstration", method kHuman) and
   // `hand` is the human hand (palm link "hand_palm").
   bool human = false;
+  // RunGraspTrials with perturb = N > 0: the N repetitions with perturbed object poses.
+  std::vector<PerturbedTrial> perturbed;
+  int perturbed_stable = 0;  // repetitions whose stability test passed
 };
 
 // Observers of a trial. `on_start` runs after the transfer, once the ODE hand and object are
@@ -65,22 +80,72 @@ struct GraspMethodSummary {
   int stable = 0;     // grasps whose stability test passed all 6 directions
   int grasps = 0;     // grasps tested
   double rate = 0.0;  // stable / max(1, grasps), in [0, 1]
+  // Wilson 95 % interval of `rate` (WilsonInterval(stable, grasps)); (0, 1) without grasps.
+  Eigen::Vector2d ci95 = Eigen::Vector2d(0.0, 1.0);
+  // With perturb = N > 0: all N · grasps perturbed repetitions of this method.
+  int perturbed_trials = 0;
+  int perturbed_stable = 0;
+  double perturbed_rate = 0.0;                                 // perturbed_stable / trials
+  Eigen::Vector2d perturbed_ci95 = Eigen::Vector2d(0.0, 1.0);  // Wilson 95 %
 };
 
+// Options of RunGraspTrials beyond the grasps and methods.
+struct GraspTrialsOptions {
+  double mu = 1.0;  // Coulomb friction of the protocol (StabilityOptions::sim.mu)
+  // Robustness: every grasp × method is repeated `perturb` times (0: none, at most 1000) with the
+  // object moved by up to perturb_translation along each world axis (uniform in [−a, a]) and
+  // turned about its origin by an angle uniform in [−b, b] (b = perturb_rotation_deg) about a
+  // uniformly random axis; the hand keeps its configuration (the transfer is not redone). The
+  // draws of repetition k of a grasp come from std::mt19937 seeded by std::seed_seq{seed, h_lo,
+  // h_hi, k} (h = FNV-1a 64 of the grasp name) through UniformUnit (planning/random.h): the same
+  // for every method (paired), reproducible, independent of the other grasps and of `threads`.
+  int perturb = 0;
+  std::uint32_t seed = 0;
+  double perturb_translation = 0.005;  // [m]
+  double perturb_rotation_deg = 5.0;   // [deg]
+  // Threads (>= 1): threads − 1 worker threads compute the transfers (AICO) ahead while the
+  // calling thread runs every ODE simulation and every hook in grasp-major order, so results,
+  // hook calls and their order do not depend on `threads`.
+  int threads = 1;
+  // Polled by the calling thread before each simulation; when it returns true no new trial
+  // starts and RunGraspTrials returns the grasps whose trials all finished (complete = false).
+  std::function<bool()> should_stop;
+};
+
+// The perturbed object pose of repetition k of grasp `grasp_name` (see GraspTrialsOptions).
+Eigen::Isometry3d PerturbedObjectPose(const Eigen::Isometry3d& world_from_object,
+                                      const std::string& grasp_name, int k,
+                                      const GraspTrialsOptions& options);
+
 struct GraspTrialsResult {
-  std::vector<HumanGrasp> grasps;               // as given
+  std::vector<HumanGrasp> grasps;               // as given (stopped: the finished ones)
   std::vector<TransferMethod> methods;          // as given (output order)
   StabilityOptions stability;                   // the protocol used (stability.sim.mu = mu)
   std::vector<std::vector<GraspTrial>> trials;  // trials[grasp][method]
   std::vector<GraspMethodSummary> summary;      // one per method, in `methods` order
   bool all_stable = true;                       // every trial stable
+  int perturb = 0;                              // GraspTrialsOptions::perturb
+  std::uint32_t seed = 0;                       // GraspTrialsOptions::seed
+  double perturb_translation = 0.0;             // [m]
+  double perturb_rotation_deg = 0.0;            // [deg]
+  bool complete = true;                         // false when should_stop ended the run early
 };
 
-// Runs RunGraspTrial (kHuman: RunHumanTrial) for every grasp × method with Coulomb friction `mu`
-// (default protocol otherwise), grasp-major. Each grasp's object is looked up by name in `objects`;
-// `human_hand` and `sdh_source` are the robots MakeTransferSetup takes. Throws
-// std::invalid_argument for an unknown object or bad grasp (as MakeTransferSetup) and for mu < 0 or
-// non-finite.
+// Runs RunGraspTrial (kHuman: RunHumanTrial) for every grasp × method with Coulomb friction
+// options.mu (default protocol otherwise), grasp-major, then the options.perturb repetitions of
+// each (see GraspTrialsOptions; on_start/on_done run for the nominal trial only). Each grasp's
+// object is looked up by name in `objects`; `human_hand` and `sdh_source` are the robots
+// MakeTransferSetup takes. Throws std::invalid_argument for an unknown object or bad grasp (as
+// MakeTransferSetup), for mu < 0 or non-finite, perturb outside [0, 1000], threads < 1 or
+// non-finite/negative perturbation sizes.
+GraspTrialsResult RunGraspTrials(const OdeRuntime& runtime, const Robot& human_hand,
+                                 const Robot& sdh_source, const std::vector<GraspObject>& objects,
+                                 const std::vector<HumanGrasp>& grasps,
+                                 const std::vector<TransferMethod>& methods,
+                                 const GraspTrialsOptions& options,
+                                 const GraspTrialHooks& hooks = {});
+
+// The same with GraspTrialsOptions{mu}.
 GraspTrialsResult RunGraspTrials(const OdeRuntime& runtime, const Robot& human_hand,
                                  const Robot& sdh_source, const std::vector<GraspObject>& objects,
                                  const std::vector<HumanGrasp>& grasps,

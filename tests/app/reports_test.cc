@@ -6,11 +6,14 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <regex>
 #include <sstream>
 #include <string>
 #include <vector>
+
+#include "planning/grasp_quality.h"
 
 namespace app {
 namespace {
@@ -176,6 +179,7 @@ TEST(ReportsTest, GraspTableMatchesReportJson) {
     s.grasps = 3;
     for (int g = 0; g < 3; ++g) s.stable += passed[g][m] == 6 ? 1 : 0;
     s.rate = s.stable / 3.0;
+    s.ci95 = planning::WilsonInterval(s.stable, s.grasps);
     result.summary.push_back(s);
   }
   const nlohmann::json report = GraspReportJson(result);
@@ -199,18 +203,28 @@ TEST(ReportsTest, GraspTableMatchesReportJson) {
                        0.01 * static_cast<double>(3 * g + m - 1));
     }
   }
+  // The success-rate row: "stable/grasps (lo-hi)" with the Wilson 95 % interval of the summary.
   for (size_t m = 1; m < header.size(); ++m) {
     const nlohmann::json& s = report["summary"][header[m]];
-    EXPECT_EQ(rows[3][m], std::to_string(s["stable"].get<int>()) + "/" +
-                              std::to_string(s["grasps"].get<int>()));
+    char expected[64];
+    std::snprintf(expected, sizeof expected, "%d/%d (%.2f-%.2f)", s["stable"].get<int>(),
+                  s["grasps"].get<int>(), s["ci95"][0].get<double>(), s["ci95"][1].get<double>());
+    EXPECT_EQ(rows[3][m], expected);
   }
+  // Wilson(2, 3) = (0.2077, 0.9385), Wilson(1, 3) = (0.0615, 0.7923).
+  EXPECT_NEAR(report["summary"]["winding"]["ci95"][0].get<double>(), 0.2077, 1e-4);
+  EXPECT_NEAR(report["summary"]["winding"]["ci95"][1].get<double>(), 0.9385, 1e-4);
   // summary.md carries the same cells.
   const std::string md = GraspSummaryMarkdown(result);
   EXPECT_NE(md.find("| grasp_1 | 6/6 stable | 0/6 | 3/6 | 0.0300 | 0.0400 | 0.0500 |"),
             std::string::npos)
       << md;
   EXPECT_NE(md.find("| eps winding | eps joint | eps fingertip |"), std::string::npos) << md;
-  EXPECT_NE(md.find("| **success rate** | 2/3 | 1/3 | 1/3 |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| **success rate (95 % CI)** | 2/3 (0.21-0.94) | 1/3 (0.06-0.79) | 1/3 "
+                    "(0.06-0.79) |"),
+            std::string::npos)
+      << md;
+  EXPECT_EQ(md.find("perturbed"), std::string::npos) << md;  // no --perturb: no perturbed row
 }
 
 }  // namespace

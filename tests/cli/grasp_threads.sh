@@ -1,0 +1,15 @@
+#!/usr/bin/env bash
+# grasp_threads.sh TOPOPLAN DIR: `grasp transfer` of one grasp with every method and one perturbed
+# repetition, once with 1 thread and once with 2; the report.json files must be byte-identical.
+set -u
+bin=$1 out=$2
+rm -rf "$out"
+for n in 1 2; do
+  "$bin" grasp transfer --grasp lateral_pinch_box --method all --perturb 1 --seed 5 --threads "$n" \
+    -o "$out/t$n" 2>"$out.t$n.log" >/dev/null
+  rc=$?
+  [[ $rc -le 1 ]] || { echo "grasp_threads.sh: --threads $n exited $rc"; cat "$out.t$n.log"; exit 1; }
+done
+cmp "$out/t1/report.json" "$out/t2/report.json" || { echo "reports differ"; exit 1; }
+grep -q '"perturbed"' "$out/t1/report.json" || { echo "no perturbed entries"; exit 1; }
+exit 0

@@ -1,0 +1,119 @@
+// RunGraspTrials' robustness repetitions: the perturbed object poses (reproducible by seed, within
+// the stated bounds) and the perturbed counts of a small run.
+#include "planning/physics/grasp_trials.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "planning/robot_io.h"
+
+namespace planning::physics {
+namespace {
+
+const std::string kAssets = std::string(TOPOPLAN_SOURCE_DIR) + "/assets/";
+
+Eigen::Isometry3d SomePose() {
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  pose.linear() = Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+  pose.translation() = Eigen::Vector3d(0.1, -0.2, 0.3);
+  return pose;
+}
+
+double AngleDeg(const Eigen::Matrix3d& a, const Eigen::Matrix3d& b) {
+  return Eigen::AngleAxisd(a * b.transpose()).angle() * 180.0 / M_PI;
+}
+
+TEST(GraspTrialsTest, PerturbedPosesAreReproducibleBySeedAndBounded) {
+  GraspTrialsOptions o;
+  o.seed = 7;
+  const Eigen::Isometry3d pose = SomePose();
+  double max_t = 0.0, max_angle = 0.0;
+  for (int k = 0; k < 200; ++k) {
+    const Eigen::Isometry3d a = PerturbedObjectPose(pose, "power_bottle", k, o);
+    const Eigen::Isometry3d b = PerturbedObjectPose(pose, "power_bottle", k, o);
+    EXPECT_TRUE(a.matrix() == b.matrix()) << k;  // bit for bit
+    const Eigen::Vector3d dt = a.translation() - pose.translation();
+    EXPECT_LE(dt.cwiseAbs().maxCoeff(), 0.005 + 1e-15);
+    const double angle = AngleDeg(a.linear(), pose.linear());
+    EXPECT_LE(angle, 5.0 + 1e-9);
+    max_t = std::max(max_t, dt.cwiseAbs().maxCoeff());
+    max_angle = std::max(max_angle, angle);
+    // Orthonormal rotation.
+    EXPECT_NEAR((a.linear() * a.linear().transpose() - Eigen::Matrix3d::Identity()).norm(), 0.0,
+                1e-12);
+  }
+  // The draws fill the box and the angle range.
+  EXPECT_GT(max_t, 0.0045);
+  EXPECT_GT(max_angle, 4.5);
+  // Another seed, another repetition or another grasp: another pose.
+  GraspTrialsOptions other = o;
+  other.seed = 8;
+  const Eigen::Isometry3d p0 = PerturbedObjectPose(pose, "power_bottle", 0, o);
+  EXPECT_FALSE(p0.matrix() == PerturbedObjectPose(pose, "power_bottle", 0, other).matrix());
+  EXPECT_FALSE(p0.matrix() == PerturbedObjectPose(pose, "power_bottle", 1, o).matrix());
+  EXPECT_FALSE(p0.matrix() == PerturbedObjectPose(pose, "hook_mug_handle", 0, o).matrix());
+  // Zero sizes: the pose itself.
+  GraspTrialsOptions none = o;
+  none.perturb_translation = 0.0;
+  none.perturb_rotation_deg = 0.0;
+  EXPECT_TRUE(PerturbedObjectPose(pose, "power_bottle", 3, none).isApprox(pose, 1e-15));
+}
+
+TEST(GraspTrialsTest, PerturbedRepetitionsAreCountedAndIndependentOfThreads) {
+  const Robot human = LoadRobot(kAssets + "robots/human_hand.urdf");
+  const Robot lwr = LoadRobot(kAssets + "robots/lwr4_sdh.urdf");
+  const std::vector<GraspObject> objects = LoadGraspObjects(kAssets + "grasps/objects.json");
+  const std::vector<HumanGrasp> grasps = {LoadHumanGrasp(kAssets + "grasps/power_bottle.json")};
+  const std::vector<TransferMethod> methods = {TransferMethod::kJointMapping};
+  OdeRuntime runtime;
+  GraspTrialsOptions o;
+  o.perturb = 2;
+  o.seed = 3;
+  o.threads = 1;
+  const GraspTrialsResult one = RunGraspTrials(runtime, human, lwr, objects, grasps, methods, o);
+  o.threads = 2;
+  const GraspTrialsResult two = RunGraspTrials(runtime, human, lwr, objects, grasps, methods, o);
+  ASSERT_EQ(one.trials.size(), 1u);
+  ASSERT_EQ(two.trials.size(), 1u);
+  EXPECT_TRUE(one.complete);
+  for (size_t mi = 0; mi < methods.size(); ++mi) {
+    const GraspTrial& a = one.trials[0][mi];
+    const GraspTrial& b = two.trials[0][mi];
+    ASSERT_EQ(a.perturbed.size(), 2u);
+    EXPECT_TRUE(a.transfer.q == b.transfer.q);
+    EXPECT_EQ(a.stability.directions_passed, b.stability.directions_passed);
+    EXPECT_EQ(a.epsilon_quality, b.epsilon_quality);
+    int stable = 0;
+    for (size_t k = 0; k < a.perturbed.size(); ++k) {
+      EXPECT_EQ(a.perturbed[k].directions_passed, b.perturbed[k].directions_passed);
+      EXPECT_EQ(a.perturbed[k].epsilon_quality, b.perturbed[k].epsilon_quality);
+      EXPECT_TRUE(a.perturbed[k].world_from_object.isApprox(
+          PerturbedObjectPose(grasps[0].world_from_object, grasps[0].name, static_cast<int>(k), o),
+          0.0));
+      stable += a.perturbed[k].stable ? 1 : 0;
+    }
+    EXPECT_EQ(a.perturbed_stable, stable);
+    EXPECT_EQ(one.summary[mi].perturbed_trials, 2);
+    EXPECT_EQ(one.summary[mi].perturbed_stable, stable);
+  }
+  // A stop before the first trial: nothing finished, the run says so.
+  o.should_stop = [] { return true; };
+  const GraspTrialsResult stopped =
+      RunGraspTrials(runtime, human, lwr, objects, grasps, methods, o);
+  EXPECT_FALSE(stopped.complete);
+  EXPECT_TRUE(stopped.grasps.empty());
+  EXPECT_EQ(stopped.summary[0].grasps, 0);
+  // Bad options.
+  GraspTrialsOptions bad;
+  bad.perturb = 1001;
+  EXPECT_THROW(RunGraspTrials(runtime, human, lwr, objects, grasps, methods, bad),
+               std::invalid_argument);
+  bad.perturb = 0;
+  bad.threads = 0;
+  EXPECT_THROW(RunGraspTrials(runtime, human, lwr, objects, grasps, methods, bad),
+               std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace planning::physics
