@@ -17,12 +17,15 @@ namespace {
 
 const std::string kAssets = TOPOPLAN_SOURCE_DIR "/assets/";
 
+// `text` as the file `name` in this test's scratch folder; returns its path.
 std::string WriteTemp(const std::string& name, const std::string& text) {
-  const std::filesystem::path dir = std::filesystem::path(TOPOPLAN_BINARY_DIR) / "replan_test_tmp";
-  std::filesystem::create_directories(dir);
-  const std::string path = (dir / name).string();
-  std::ofstream(path) << text;
-  return path;
+  static const std::filesystem::path dir = [] {
+    auto d = std::filesystem::path(TOPOPLAN_BINARY_DIR) / "replan_test_tmp";
+    std::filesystem::create_directories(d);
+    return d;
+  }();
+  std::ofstream((dir / name).string()) << text;
+  return (dir / name).string();
 }
 
 // The message of the std::invalid_argument thrown by ReadObjectPath on `text`.
@@ -48,27 +51,29 @@ TEST(ReadObjectPath, ReadsRowsAndInterpolates) {
 }
 
 TEST(ReadObjectPath, EachBadRowNamesFileAndLine) {
-  EXPECT_NE(PathError("hdr.csv", "time,x,y,z\n0,0,0,0\n").find("hdr.csv:1: expected the header"),
-            std::string::npos);
-  EXPECT_NE(PathError("short.csv", "t,x,y,z\n0,0,0,0\n1,0,0\n").find("short.csv:3: expected 4"),
-            std::string::npos);
-  EXPECT_NE(PathError("long.csv", "t,x,y,z\n0,0,0,0,5\n").find("long.csv:2: expected 4"),
-            std::string::npos);
-  EXPECT_NE(PathError("word.csv", "t,x,y,z\n0,0,abc,0\n").find("word.csv:2: 'abc' is not a number"),
-            std::string::npos);
-  EXPECT_NE(PathError("trail.csv", "t,x,y,z\n0,0,0,0,\n").find("trail.csv:2: empty value"),
-            std::string::npos);
-  EXPECT_NE(PathError("nan.csv", "t,x,y,z\n0,0,0,0\n1,nan,0,0\n").find("nan.csv:3: non-finite"),
-            std::string::npos);
-  EXPECT_NE(PathError("inf.csv", "t,x,y,z\n0,0,0,inf\n").find("inf.csv:2: non-finite"),
-            std::string::npos);
-  EXPECT_NE(PathError("time.csv", "t,x,y,z\n0,0,0,0\n1,0,0,0\n1,0,0,0\n")
-                .find("time.csv:4: time 1 is not greater than the previous time 1"),
-            std::string::npos);
-  EXPECT_NE(PathError("back.csv", "t,x,y,z\n2,0,0,0\n1,0,0,0\n").find("back.csv:3: time 1"),
-            std::string::npos);
-  EXPECT_NE(PathError("empty.csv", "").find("empty.csv: empty file"), std::string::npos);
-  EXPECT_NE(PathError("none.csv", "t,x,y,z\n").find("none.csv: no samples"), std::string::npos);
+  struct Case {
+    const char* file;
+    const char* text;
+    const char* message;
+  };
+  const Case cases[] = {
+      {"hdr.csv", "time,x,y,z\n0,0,0,0\n", "hdr.csv:1: expected the header"},
+      {"short.csv", "t,x,y,z\n0,0,0,0\n1,0,0\n", "short.csv:3: expected 4"},
+      {"long.csv", "t,x,y,z\n0,0,0,0,5\n", "long.csv:2: expected 4"},
+      {"word.csv", "t,x,y,z\n0,0,abc,0\n", "word.csv:2: 'abc' is not a number"},
+      {"trail.csv", "t,x,y,z\n0,0,0,0,\n", "trail.csv:2: empty value"},
+      {"nan.csv", "t,x,y,z\n0,0,0,0\n1,nan,0,0\n", "nan.csv:3: non-finite"},
+      {"inf.csv", "t,x,y,z\n0,0,0,inf\n", "inf.csv:2: non-finite"},
+      {"time.csv", "t,x,y,z\n0,0,0,0\n1,0,0,0\n1,0,0,0\n",
+       "time.csv:4: time 1 is not greater than the previous time 1"},
+      {"back.csv", "t,x,y,z\n2,0,0,0\n1,0,0,0\n", "back.csv:3: time 1"},
+      {"empty.csv", "", "empty.csv: empty file"},
+      {"none.csv", "t,x,y,z\n", "none.csv: no samples"},
+  };
+  for (const Case& c : cases) {
+    EXPECT_NE(PathError(c.file, c.text).find(c.message), std::string::npos)
+        << c.file << ": " << PathError(c.file, c.text);
+  }
   EXPECT_THROW(ReadObjectPath(kAssets + "scenarios/no_such_path.csv"), std::invalid_argument);
 }
 
