@@ -1,5 +1,6 @@
 // `topoplan plan` (AICO / RRT / BiRRT on a scenario, with trajectory, report and optional frames)
 // and `topoplan bench unwrap` (thesis Fig. 4.5: collision checks vs angle to unwrap).
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -14,6 +15,7 @@
 #include "app/reports.h"
 #include "app/robot_scene.h"
 #include "planning/planner.h"
+#include "planning/replan.h"
 #include "planning/scenario.h"
 #include "planning/unwrap_benchmark.h"
 #include "render/image.h"
@@ -30,6 +32,10 @@ struct PlanArgs {
   double timeout = 0.0;
   bool frames = false, json = false;
   RobotInputOptions robot_input;  // --package-path, --srdf
+  // Re-planning with a moving object (planning/replan.h).
+  std::string moving_object, object_path;
+  double replan_period = 0.1;
+  int replan_sweeps = 3;
 };
 
 struct BenchArgs {
@@ -94,6 +100,151 @@ void ProgressBar(int done, int total, const std::string& what) {
   if (done == total) std::fprintf(stderr, "\n");
 }
 
+// "step,time_s,x,y,z": the moving object's position at every executed slice.
+std::string ObjectPositionsCsv(const planning::ReplanResult& r) {
+  std::ostringstream out;
+  out.precision(17);
+  out << "step,time_s,x,y,z\n";
+  for (size_t t = 0; t < r.object_positions.size(); ++t) {
+    const Eigen::Vector3d& p = r.object_positions[t];
+    out << t << "," << static_cast<double>(t) * r.executed.dt << "," << p.x() << "," << p.y() << ","
+        << p.z() << "\n";
+  }
+  return out.str();
+}
+
+// The plan report of a re-planning run: the executed path judged segment by segment (replan.h);
+// checks and iterations of the initial solve and every re-plan.
+planning::PlanReport ReplanPlanReport(const planning::ReplanResult& r) {
+  planning::PlanReport rep;
+  rep.planner = "aico";
+  rep.success = r.success;
+  rep.status = r.replans.empty() ? r.initial.status : r.replans.back().status;
+  rep.collision_checks = r.initial.collision_queries;
+  rep.iterations = r.initial.iterations;
+  rep.cost = r.replans.empty() ? r.initial.cost : r.replans.back().cost;
+  double wall_ms = r.initial_wall_ms;
+  for (const planning::ReplanStep& step : r.replans) {
+    rep.collision_checks += step.collision_queries;
+    rep.iterations += step.sweeps;
+    wall_ms += step.wall_ms;
+  }
+  rep.path_length = planning::PathLength(r.executed);
+  rep.time_s = wall_ms / 1000.0;
+  rep.start_writhe_total = r.start_writhe_total;
+  rep.final_writhe_total = r.final_writhe_total;
+  rep.min_clearance_m = r.verdict.min_clearance_m;
+  rep.path_collision_free = r.verdict.collision_free;
+  rep.cost_history = r.initial.cost_history;
+  rep.failure_reason = r.verdict.reason;
+  rep.failure_step = r.verdict.step;
+  rep.reach_error_m = r.verdict.reach_error_m;
+  rep.max_winding_jump_turns = r.verdict.max_winding_jump_turns;
+  rep.final_winding_turns = r.verdict.final_winding_turns;
+  return rep;
+}
+
+// `plan SCENARIO --moving-object NAME --object-path FILE`: re-planning while the object moves.
+ExitCode RunMovingObjectPlan(const PlanArgs& pa, const planning::ScenarioOverrides& overrides,
+                             planning::Planner planner) {
+  if (pa.moving_object.empty() || pa.object_path.empty()) {
+    throw std::invalid_argument("--moving-object and --object-path must be given together");
+  }
+  if (planner != planning::Planner::kAico) {
+    throw std::invalid_argument("--moving-object: re-planning uses AICO (--planner aico)");
+  }
+  if (!(pa.replan_period > 0.0) || !std::isfinite(pa.replan_period)) {
+    throw std::invalid_argument("--replan-period: expected a finite number of seconds > 0");
+  }
+  OutputDir out(pa.output, "-o");  // checked before any work
+  const planning::ObjectPath path =
+      ParseFlag("--object-path", [&] { return planning::ReadObjectPath(pa.object_path); });
+  const auto scenario = LoadScenarioArg(pa.scenario, overrides);
+  ParseFlag("--moving-object", [&] {  // unknown names list the valid ones
+    const std::vector<std::string> names = planning::ObjectNames(*scenario);
+    if (std::find(names.begin(), names.end(), pa.moving_object) == names.end()) {
+      planning::MoveObject(scenario.get(), pa.moving_object, Eigen::Vector3d::Zero());
+    }
+  });
+  const StopCheck stop(pa.timeout);
+  planning::ReplanOptions options;
+  options.replan_period_s = pa.replan_period;
+  options.sweeps = pa.replan_sweeps;
+  options.on_replan = [&stop](const planning::ReplanStep& step) {
+    std::fprintf(stderr, "\rre-plan at t = %.3f s: %d sweeps, %.1f ms", step.time_s, step.sweeps,
+                 step.wall_ms);
+    stop.Poll();
+  };
+  planning::ReplanResult r;
+  try {
+    r = planning::RunReplanning(scenario.get(), pa.moving_object, path, options);
+  } catch (const StopRequested& e) {
+    const nlohmann::json report = StoppedReportJson(
+        e,
+        {{"scenario", scenario->name}, {"planner", "aico"}, {"moving_object", pa.moving_object}});
+    WriteFileAtomic((fs::path(out.staging()) / "report.json").string(), report.dump(2) + "\n");
+    out.Commit();
+    std::fprintf(stderr, "\n%s: wrote %s/report.json\n", e.what(), pa.output.c_str());
+    if (pa.json) std::printf("%s\n", report.dump(2).c_str());
+    return e.timeout ? kExitFailed : kExitInterrupted;
+  }
+  std::fprintf(stderr, "\n");
+  const planning::PlanReport rep = ReplanPlanReport(r);
+  nlohmann::json report = PlanReportJson(*scenario, rep, pa.seed);
+  nlohmann::json replans = nlohmann::json::array();
+  for (const planning::ReplanStep& step : r.replans) {
+    replans.push_back(
+        {{"time_s", step.time_s},
+         {"object_position",
+          {step.object_position.x(), step.object_position.y(), step.object_position.z()}},
+         {"sweeps", step.sweeps},
+         {"status", planning::StatusName(step.status)},
+         {"cost", step.cost},
+         {"cpu_ms", step.cpu_ms},
+         {"wall_ms", step.wall_ms}});
+  }
+  report["replanning"] = {{"object", pa.moving_object},
+                          {"object_path", pa.object_path},
+                          {"count", r.replans.size()},
+                          {"period_s", r.period_s},
+                          {"sweeps", options.sweeps},
+                          {"rate_hz", r.rate_hz},
+                          {"median_ms", r.median_cpu_ms},
+                          {"max_ms", r.max_cpu_ms},
+                          {"median_wall_ms", r.median_wall_ms},
+                          {"max_wall_ms", r.max_wall_ms},
+                          {"initial_solve_ms", r.initial_cpu_ms},
+                          {"passed_through", r.passed_through},
+                          {"replans", replans}};
+  const std::string dir = out.staging();
+  WriteFileAtomic((fs::path(dir) / "trajectory.csv").string(),
+                  TrajectoryCsv(*scenario, r.executed));
+  WriteFileAtomic((fs::path(dir) / "object_path.csv").string(), ObjectPositionsCsv(r));
+  WriteFileAtomic((fs::path(dir) / "report.json").string(), report.dump(2) + "\n");
+  if (pa.frames) {
+    MovingObjectFrames moving;
+    moving.object = r.object;
+    moving.positions = r.object_positions;
+    WritePlanFrames(
+        *scenario, r.executed, dir,
+        [&stop](const render::Image&, const render::Image*) { stop.Poll(); }, &moving);
+  }
+  out.Commit();
+  if (pa.json) {
+    std::printf("%s\n", report.dump(2).c_str());
+  } else {
+    std::printf("%s\n", PlanSummaryLine(*scenario, rep).c_str());
+    std::printf(
+        "re-planning: %zu re-plans every %.3f s, %.1f per CPU second (median %.1f ms, max %.1f "
+        "ms CPU), %s the %s\n",
+        r.replans.size(), r.period_s, r.rate_hz, r.median_cpu_ms, r.max_cpu_ms,
+        r.passed_through ? "passed through" : "did not pass through", pa.moving_object.c_str());
+    std::printf("wrote %s/trajectory.csv, %s/object_path.csv, %s/report.json\n", pa.output.c_str(),
+                pa.output.c_str(), pa.output.c_str());
+  }
+  return r.success ? kExitOk : kExitFailed;
+}
+
 }  // namespace
 
 void AddPlanCommands(CLI::App* root, CommandList* commands) {
@@ -120,11 +271,28 @@ void AddPlanCommands(CLI::App* root, CommandList* commands) {
                  "also render DIR/frames/*.png, DIR/heatmaps/*.png (writhe per frame) and "
                  "DIR/writhe_cost.png");
   plan->add_flag("--json", pa->json, "print report.json to stdout");
+  plan->add_option("--moving-object", pa->moving_object,
+                   "re-plan while this object of the scenario (e.g. ring, pole) follows "
+                   "--object-path (AICO, receding horizon, warm-started)");
+  plan->add_option("--object-path", pa->object_path,
+                   "CSV 't,x,y,z' (header, then seconds of plan time and the object's world "
+                   "position in m; linear in between, held after the last row)");
+  plan->add_option("--replan-period", pa->replan_period,
+                   "plan time between re-plans in seconds, rounded to whole time slices "
+                   "(default 0.1)");
+  plan->add_option("--replan-sweeps", pa->replan_sweeps,
+                   "AICO sweep budget of each re-plan (default 3)")
+      ->check(CLI::Range(1, 1000));
   plan->footer(
       "Writes DIR/trajectory.csv (step,time_s,<joints in robot order>) and DIR/report.json\n"
       "(planner, success, collision_checks, iterations, cost, time_s, start_writhe_total,\n"
       "final_writhe_total, min_clearance_m, ...). Exit codes: 0 success, 1 the planner failed\n"
-      "(no path, collision, goal not met), 2 bad scenario/flags, 3 no GL context for --frames.");
+      "(no path, collision, goal not met), 2 bad scenario/flags, 3 no GL context for --frames.\n"
+      "With --moving-object NAME --object-path FILE the arm executes its plan while the object\n"
+      "moves; every --replan-period AICO re-plans from the current state, warm-started with the\n"
+      "previous plan shifted. trajectory.csv is the executed motion, DIR/object_path.csv the\n"
+      "object per step, report.json gains \"replanning\": {count, rate_hz (re-plans per CPU\n"
+      "second), median_ms, max_ms (CPU), passed_through, ...}; --frames shows the object moving.");
   commands->push_back(
       {plan, [pa]() {
          planning::ScenarioOverrides overrides;
@@ -133,6 +301,9 @@ void AddPlanCommands(CLI::App* root, CommandList* commands) {
              ParseFlag("--planner", [&] { return planning::ParsePlanner(pa->planner); });
          overrides.package_paths = PackagePaths(pa->robot_input.package_paths);
          overrides.srdf = pa->robot_input.srdf;
+         if (!pa->moving_object.empty() || !pa->object_path.empty()) {
+           return RunMovingObjectPlan(*pa, overrides, planner);
+         }
          OutputDir out(pa->output, "-o");  // checked before any work
          const StopCheck stop(pa->timeout);
          const auto scenario = LoadScenarioArg(pa->scenario, overrides);

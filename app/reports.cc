@@ -14,6 +14,7 @@
 #include "render/offscreen_context.h"
 #include "render/plot.h"
 #include "render/renderer.h"
+#include "topology/writhe.h"
 
 namespace app {
 namespace {
@@ -104,8 +105,21 @@ std::string PlanSummaryLine(const planning::Scenario& s, const planning::PlanRep
 
 PlanFrames WritePlanFrames(
     const planning::Scenario& s, const planning::Trajectory& tr, const std::string& dir,
-    const std::function<void(const render::Image& frame, const render::Image* heatmap)>& on_frame) {
+    const std::function<void(const render::Image& frame, const render::Image* heatmap)>& on_frame,
+    const MovingObjectFrames* moving) {
   planning::Trajectory frames = tr;
+  if (moving != nullptr &&
+      (moving->object < 0 || moving->object >= static_cast<int>(s.objects.objects.size()) ||
+       moving->positions.size() != static_cast<size_t>(tr.num_points()) || tr.dt == 0.0)) {
+    throw std::invalid_argument("WritePlanFrames: moving object positions do not match the frames");
+  }
+  planning::Environment moved;  // with `moving`: the objects, the moving one placed per frame
+  if (moving) moved = s.objects;
+  Eigen::Vector3d home = Eigen::Vector3d::Zero();
+  if (moving) home = s.objects.objects[moving->object].world_from_object.translation();
+  const bool moving_report =
+      moving && s.spec.writhe_report &&
+      s.spec.writhe_report->object.name == s.objects.objects[moving->object].name;
   if (tr.dt == 0.0 && tr.num_points() > 1) {
     frames = planning::Densify(tr, std::max(planning::PathLength(tr) / 100.0, 1e-6));
   }
@@ -121,7 +135,16 @@ PlanFrames WritePlanFrames(
   std::vector<Eigen::MatrixXd> matrices;
   for (int t = 0; t < frames.num_points(); ++t) {
     Eigen::MatrixXd W;
-    writhe.push_back(planning::ReportWritheTotal(s, frames.q.col(t), &W));
+    if (moving_report) {
+      planning::ForwardKinematics(s.robot, frames.q.col(t), &kin);
+      Eigen::Matrix3Xd P;
+      planning::ChainPoints(s.robot, kin, s.report_chain, &P);
+      W = topology::WritheMatrix(P,
+                                 s.report_object_chain.colwise() + (moving->positions[t] - home));
+      writhe.push_back(W.sum());
+    } else {
+      writhe.push_back(planning::ReportWritheTotal(s, frames.q.col(t), &W));
+    }
     if (W.size() > 0) max_abs_w = std::max(max_abs_w, W.cwiseAbs().maxCoeff());
     matrices.push_back(W);
     x.push_back(t);
@@ -144,7 +167,10 @@ PlanFrames WritePlanFrames(
   render::FrameWriter heatmap_writer((fs::path(dir) / "heatmaps").string(), heatmap_options);
   for (int t = 0; t < frames.num_points(); ++t) {
     planning::ForwardKinematics(s.robot, frames.q.col(t), &kin);
-    const render::Scene scene = BuildRobotScene(s.robot, kin, s.objects, options, &cache);
+    if (moving)
+      moved.objects[moving->object].world_from_object.translation() = moving->positions[t];
+    const render::Scene scene =
+        BuildRobotScene(s.robot, kin, moving ? moved : s.objects, options, &cache);
     if (t == 0) camera = FrameSceneCamera(scene);
     const render::Image frame = renderer.Render(scene, camera, 640, 480, {});
     frame_writer.Add(frame);

@@ -49,13 +49,21 @@ std::string PlanSummaryLine(const planning::Scenario& scenario, const planning::
 // the scenario has one) and DIR/writhe_cost.png (total writhe and task cost / max over the
 // frames). `on_frame`, if given, sees every robot frame and its heatmap (null when none). Throws
 // EnvironmentError when there is no GL context.
+// With `moving` (re-planning, planning/replan.h), frame t shows object `moving->object` at
+// moving->positions[t] (orientation kept) and its writhe (heatmap, curve) uses the report object
+// chain moved with it; the task cost is that of the scenario's problem (objects at home).
 struct PlanFrames {
   render::FrameSequence frames, heatmaps;
+};
+struct MovingObjectFrames {
+  int object = -1;                         // index into scenario.objects
+  std::vector<Eigen::Vector3d> positions;  // per trajectory point, world, m
 };
 PlanFrames WritePlanFrames(const planning::Scenario& scenario,
                            const planning::Trajectory& trajectory, const std::string& dir,
                            const std::function<void(const render::Image& frame,
-                                                    const render::Image* heatmap)>& on_frame = {});
+                                                    const render::Image* heatmap)>& on_frame = {},
+                           const MovingObjectFrames* moving = nullptr);
 
 // A plan report (PlanReportJson) as a two-column HTML table of its main fields.
 std::string PlanReportHtml(const nlohmann::json& report);

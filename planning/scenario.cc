@@ -416,6 +416,49 @@ std::unique_ptr<Scenario> SetUpScenario(ScenarioSpec spec,
   return s;
 }
 
+std::vector<std::string> ObjectNames(const Scenario& s) {
+  std::vector<std::string> names;
+  for (const ObjectSpec& o : s.spec.objects) names.push_back(o.name);
+  return names;
+}
+
+void RebuildTaskFeatures(const Scenario& s, MotionProblem* problem) {
+  if (problem->tasks.size() != s.spec.tasks.size()) {
+    throw std::invalid_argument("RebuildTaskFeatures: the problem has " +
+                                std::to_string(problem->tasks.size()) + " tasks, the scenario " +
+                                std::to_string(s.spec.tasks.size()));
+  }
+  for (size_t i = 0; i < problem->tasks.size(); ++i) {
+    problem->tasks[i].feature = BuildFeature(s, s.spec.tasks[i].feature);
+  }
+}
+
+void MoveObject(Scenario* s, const std::string& name, const Eigen::Vector3d& position) {
+  size_t spec_index = s->spec.objects.size();
+  for (size_t i = 0; i < s->spec.objects.size(); ++i) {
+    if (s->spec.objects[i].name == name) spec_index = i;
+  }
+  if (spec_index == s->spec.objects.size()) {
+    std::string list;
+    for (const std::string& n : ObjectNames(*s)) list += (list.empty() ? "" : ", ") + n;
+    throw std::invalid_argument("unknown object '" + name +
+                                "' (objects: " + (list.empty() ? "none" : list) + ")");
+  }
+  if (!position.allFinite()) throw std::invalid_argument("MoveObject: non-finite position");
+  PlacedObject& placed = s->objects.objects[FindObject(s->objects, name)];
+  const Eigen::Vector3d delta = position - placed.world_from_object.translation();
+  placed.world_from_object.translation() = position;
+  for (PlacedObject& e : s->env.objects) {
+    if (e.name == name || e.name.rfind(name + "#", 0) == 0) e.world_from_object.pretranslate(delta);
+  }
+  s->spec.objects[spec_index].xyz = position;
+  if (s->spec.writhe_report && s->spec.writhe_report->object.name == name) {
+    s->report_object_chain =
+        ObjectChain(*s, s->spec.writhe_report->object, s->spec.writhe_report->object_chain);
+  }
+  RebuildTaskFeatures(*s, &s->problem);
+}
+
 std::unique_ptr<Scenario> LoadScenario(const std::string& path,
                                        const ScenarioOverrides& overrides) {
   ScenarioSpec spec = ParseScenarioSpec(path, overrides.search_roots);

@@ -108,4 +108,23 @@ topology::Axis ReportAxis(const Scenario& scenario);
 double ReportWritheTotal(const Scenario& scenario, const Eigen::VectorXd& q,
                          Eigen::MatrixXd* matrix = nullptr);
 
+// --- Moving objects (planning/replan.h) ------------------------------------------------------
+
+// Names of the scenario's objects (spec order), e.g. {"ring"} or {"pole"}.
+std::vector<std::string> ObjectNames(const Scenario& scenario);
+
+// Moves object `name` to world position `position` (m; its orientation is kept): `objects`, the
+// `env` entries made from it (the object, or its capsules "name#k"), spec.objects[].xyz, the
+// report object chain when it is the report object, and the features of `problem`
+// (RebuildTaskFeatures). Task targets are kept (the goal is not re-estimated). Any workspace
+// made from a problem of this scenario before the move holds the old pose: rebuild its feature
+// data (TaskWorkspace::data, Feature::CreateData) or the workspace. Throws std::invalid_argument
+// "unknown object 'X' (objects: a, b)" for an unknown name or a non-finite position.
+void MoveObject(Scenario* scenario, const std::string& name, const Eigen::Vector3d& position);
+
+// Replaces the feature of every task of `problem` (built by AttemptProblem: one task per
+// spec.tasks entry, in order) by one built from the scenario as it is now (objects where they
+// are). Targets and precisions are kept. Throws std::invalid_argument on a task-count mismatch.
+void RebuildTaskFeatures(const Scenario& scenario, MotionProblem* problem);
+
 }  // namespace planning
