@@ -33,6 +33,7 @@ struct PlanArgs {
   double start_wrap = std::numeric_limits<double>::quiet_NaN();  // NaN: not given
   double timeout = 0.0;
   bool frames = false, json = false;
+  bool no_stamp = false;          // --no-stamp: frames without scenario name and time
   RobotInputOptions robot_input;  // --package-path, --srdf
 };
 
@@ -154,6 +155,8 @@ void AddPlanCommands(CLI::App* root, CommandList* commands) {
   plan->add_flag("--frames", pa->frames,
                  "also render DIR/frames/*.png, DIR/heatmaps/*.png (writhe per frame) and "
                  "DIR/writhe_cost.png");
+  plan->add_flag("--no-stamp", pa->no_stamp,
+                 "with --frames: no scenario name and time stamp in the frames' corner");
   plan->add_flag("--json", pa->json, "print report.json to stdout");
   plan->footer(
       "Writes DIR/trajectory.csv (step,time_s,<joints in robot order>) and DIR/report.json\n"
@@ -195,8 +198,10 @@ void AddPlanCommands(CLI::App* root, CommandList* commands) {
          if (planner == planning::Planner::kAico) std::fprintf(stderr, "\n");
          const nlohmann::json report = WritePlanOutputs(*scenario, result, pa->seed, out.staging());
          if (pa->frames && result.trajectory.num_points() > 0) {
-           WritePlanFrames(*scenario, result.trajectory, out.staging(),
-                           [&stop](const render::Image&, const render::Image*) { stop.Poll(); });
+           WritePlanFrames(
+               *scenario, result.trajectory, out.staging(),
+               [&stop](const render::Image&, const render::Image*) { stop.Poll(); },
+               PlanFrameOptions{.stamp = !pa->no_stamp});
          }
          out.Commit();
          if (pa->json) {

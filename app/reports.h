@@ -47,15 +47,26 @@ std::string PlanSummaryLine(const planning::Scenario& scenario, const planning::
 // Writes DIR/frames/frame_*.png (the robot at every trajectory point; RRT paths resampled to at
 // most 100 frames), DIR/heatmaps/heatmap_*.png (writhe matrix of the report pair per frame, when
 // the scenario has one) and DIR/writhe_cost.png (total writhe and task cost / max over the
-// frames). `on_frame`, if given, sees every robot frame and its heatmap (null when none). Throws
-// EnvironmentError when there is no GL context.
+// frames). Every robot frame uses one camera that fits the robot's swept volume over the whole
+// trajectory and the scenario's box task regions (FitSceneCamera), draws those boxes
+// (AddTaskBoxes), and, with options.stamp, carries the scenario name and its time stamp in the
+// top-left corner; contact-sheet labels are the time stamps. `on_frame`, if given, sees every
+// robot frame and its heatmap (null when none). Throws EnvironmentError when there is no GL
+// context.
+struct PlanFrameOptions {
+  bool stamp = true;  // scenario name and time in a corner of each robot frame (--no-stamp)
+};
 struct PlanFrames {
   render::FrameSequence frames, heatmaps;
+  // Per robot frame: "t = 1.25 s" (time slice × dt), or "path 37%" (share of the joint-space path
+  // length) for a path without time (RRTs, dt = 0).
+  std::vector<std::string> labels;
 };
 PlanFrames WritePlanFrames(const planning::Scenario& scenario,
                            const planning::Trajectory& trajectory, const std::string& dir,
                            const std::function<void(const render::Image& frame,
-                                                    const render::Image* heatmap)>& on_frame = {});
+                                                    const render::Image* heatmap)>& on_frame = {},
+                           const PlanFrameOptions& options = {});
 
 // A plan report (PlanReportJson) as a two-column HTML table of its main fields.
 std::string PlanReportHtml(const nlohmann::json& report);

@@ -234,19 +234,25 @@ TEST(OmplLogTest, OneExperimentPerAngleWithEveryPlannerAndSeed) {
   info.setup = "synthetic";
   const std::vector<std::string> lines = Lines(OmplBenchmarkLog(result, 1, info));
   ASSERT_GT(lines.size(), 20u);
-  EXPECT_EQ(lines[0], "topoplan version 1.2.3");
-  EXPECT_EQ(lines[1], "Experiment unwrap_90deg");
-  EXPECT_EQ(lines[2], "3 experiment properties");
-  EXPECT_EQ(lines[3], "angle_deg REAL = 90");
-  EXPECT_EQ(lines[6], "Running on testhost");
-  EXPECT_EQ(lines[7], "Starting at 2026-12-01T00:00:00");
-  EXPECT_EQ(lines[8], "<<<|");
-  EXPECT_EQ(lines[9], "synthetic");
-  EXPECT_EQ(lines[10], "|>>>");
-  EXPECT_EQ(lines[14], "3 runs per planner");
-  // Sum of the angle's run times: 3 planners x (0 + 0.01 + 0.02) s.
-  EXPECT_EQ(lines[15], "0.09 seconds spent to collect the data");
-  EXPECT_EQ(lines[16], "1 enum type");
+  // The header: the sum of the angle's run times is 3 planners x (0 + 0.01 + 0.02) s.
+  const std::vector<std::string> header = {"topoplan version 1.2.3",
+                                           "Experiment unwrap_90deg",
+                                           "3 experiment properties",
+                                           "angle_deg REAL = 90",
+                                           "perturb_m REAL = 0",
+                                           "seeds INTEGER = 3",
+                                           "Running on testhost",
+                                           "Starting at 2026-12-01T00:00:00",
+                                           "<<<|",
+                                           "synthetic",
+                                           "|>>>",
+                                           "0 is the random seed",
+                                           "0 seconds per run",
+                                           "0 MB per run",
+                                           "3 runs per planner",
+                                           "0.09 seconds spent to collect the data",
+                                           "1 enum type"};
+  EXPECT_EQ(std::vector<std::string>(lines.begin(), lines.begin() + 17), header);
   EXPECT_EQ(lines[17].rfind("failure_reason|none|joint_limits|", 0), 0u);
   EXPECT_EQ(lines[18], "3 planners");
   // Planner blocks in the result's order, each: name, common properties, 10 property names,
