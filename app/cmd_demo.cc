@@ -213,6 +213,10 @@ class Demo {
                             [&](const render::Image& frame, const render::Image* heatmap) {
                               if (heatmap) writer.Add(SideBySide(frame, *heatmap));
                             });
+    // The movie's contact sheet gives each frame's time, as the frames themselves do.
+    if (writer.size() == static_cast<int>(frames.labels.size())) {
+      for (int i = 0; i < writer.size(); ++i) writer.SetLabel(i, frames.labels[i]);
+    }
     const render::FrameSequence seq = writer.Finish();
     std::printf("  movie: %zu frames%s\n", seq.frames.size(),
                 seq.video.empty() ? " (no ffmpeg: no video)" : (", " + seq.video).c_str());

@@ -1,8 +1,11 @@
 // `topoplan plan` (AICO / RRT / BiRRT on a scenario, with trajectory, report and optional frames)
 // and `topoplan bench unwrap` (thesis Fig. 4.5: collision checks vs angle to unwrap).
+#include <unistd.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <ctime>
 #include <filesystem>
 #include <limits>
 #include <memory>
@@ -12,6 +15,7 @@
 #include "app/assets.h"
 #include "app/command.h"
 #include "app/io.h"
+#include "app/ompl_log.h"
 #include "app/reports.h"
 #include "app/robot_scene.h"
 #include "planning/planner.h"
@@ -31,6 +35,7 @@ struct PlanArgs {
   double start_wrap = std::numeric_limits<double>::quiet_NaN();  // NaN: not given
   double timeout = 0.0;
   bool frames = false, json = false;
+  bool no_stamp = false;          // --no-stamp: frames without scenario name and time
   RobotInputOptions robot_input;  // --package-path, --srdf
   // Re-planning with a moving object (planning/replan.h).
   std::string moving_object, object_path;
@@ -44,6 +49,7 @@ struct BenchArgs {
   long budget = -1;
   double perturb = 0.0;
   double timeout = 0.0;
+  std::string ompl_log;  // --ompl-log FILE: OMPL benchmark logs, one per angle (app/ompl_log.h)
 };
 
 // Largest number of angles in --angles.
@@ -90,6 +96,36 @@ std::vector<planning::Planner> ParsePlanners(const std::string& text) {
   }
   if (out.empty()) throw std::invalid_argument("--planners: empty list");
   return out;
+}
+
+// The header of the OMPL logs of `bench unwrap`: this host, the start time (UTC) and the options.
+OmplLogInfo BenchLogInfo(const planning::UnwrapBenchmarkOptions& options) {
+  OmplLogInfo info;
+  info.version = TOPOPLAN_VERSION;
+  char host[256] = {};
+  if (gethostname(host, sizeof host - 1) == 0 && host[0] != '\0') info.host = host;
+  for (char& c : info.host) {
+    if (c == ' ') c = '_';
+  }
+  const std::time_t now = std::time(nullptr);
+  char stamp[32];
+  std::tm utc{};
+  gmtime_r(&now, &utc);
+  std::strftime(stamp, sizeof stamp, "%Y-%m-%dT%H:%M:%S", &utc);
+  info.start_time = stamp;
+  std::ostringstream setup;
+  setup << "topoplan bench unwrap: thesis Fig. 4.5, collision checks to unwrap an arm coiled "
+           "around a pole\nscenario "
+        << options.scenario_path << "\nplanners";
+  for (planning::Planner p : options.planners) setup << " " << planning::PlannerName(p);
+  setup << "\nseeds 0.." << options.seeds - 1 << "\nrrt collision-check budget "
+        << (options.rrt_budget > 0 ? std::to_string(options.rrt_budget) : "of the scenario")
+        << "\npole perturbation " << options.perturb_m
+        << " m\nno time or memory limit per run (the RRTs stop at their budget)\n";
+  info.setup = setup.str();
+  info.rrt_budget = options.rrt_budget;
+  info.perturb_m = options.perturb_m;
+  return info;
 }
 
 void ProgressBar(int done, int total, const std::string& what) {
@@ -227,7 +263,8 @@ ExitCode RunMovingObjectPlan(const PlanArgs& pa, const planning::ScenarioOverrid
     moving.positions = r.object_positions;
     WritePlanFrames(
         *scenario, r.executed, dir,
-        [&stop](const render::Image&, const render::Image*) { stop.Poll(); }, &moving);
+        [&stop](const render::Image&, const render::Image*) { stop.Poll(); }, &moving,
+        PlanFrameOptions{.stamp = !pa.no_stamp});
   }
   out.Commit();
   if (pa.json) {
@@ -270,6 +307,8 @@ void AddPlanCommands(CLI::App* root, CommandList* commands) {
   plan->add_flag("--frames", pa->frames,
                  "also render DIR/frames/*.png, DIR/heatmaps/*.png (writhe per frame) and "
                  "DIR/writhe_cost.png");
+  plan->add_flag("--no-stamp", pa->no_stamp,
+                 "with --frames: no scenario name and time stamp in the frames' corner");
   plan->add_flag("--json", pa->json, "print report.json to stdout");
   plan->add_option("--moving-object", pa->moving_object,
                    "re-plan while this object of the scenario (e.g. ring, pole) follows "
@@ -331,8 +370,10 @@ void AddPlanCommands(CLI::App* root, CommandList* commands) {
          if (planner == planning::Planner::kAico) std::fprintf(stderr, "\n");
          const nlohmann::json report = WritePlanOutputs(*scenario, result, pa->seed, out.staging());
          if (pa->frames && result.trajectory.num_points() > 0) {
-           WritePlanFrames(*scenario, result.trajectory, out.staging(),
-                           [&stop](const render::Image&, const render::Image*) { stop.Poll(); });
+           WritePlanFrames(
+               *scenario, result.trajectory, out.staging(),
+               [&stop](const render::Image&, const render::Image*) { stop.Poll(); }, nullptr,
+               PlanFrameOptions{.stamp = !pa->no_stamp});
          }
          out.Commit();
          if (pa->json) {
@@ -364,13 +405,18 @@ void AddPlanCommands(CLI::App* root, CommandList* commands) {
                      "move the pole of each seed by a random offset of at most M metres "
                      "perpendicular to its axis (seeded, reproducible; default 0)");
   AddTimeoutFlag(unwrap, &ba->timeout);
+  unwrap->add_option("--ompl-log", ba->ompl_log,
+                     "also write OMPL benchmark logs (ompl_benchmark_statistics.py, Planner "
+                     "Arena): FILE_<angle>deg.log, one experiment per angle");
   unwrap->add_option("-o,--output", ba->output, "output folder")->required();
   unwrap->footer(
       "Writes DIR/unwrap.csv (angle_deg,planner,seed,success,failure_reason,collision_checks,\n"
       "narrow_phase_calls,time_s,path_length,reach_error_m,pole_offset_m) and\n"
       "DIR/unwrap.png (mean collision checks of successful runs vs angle, log scale, one curve\n"
       "per planner, x markers where a run failed). time_s is wall-clock; everything else is\n"
-      "deterministic. Exit 0 when the benchmark ran (failed runs are data, not errors).");
+      "deterministic. Exit 0 when the benchmark ran (failed runs are data, not errors).\n"
+      "--ompl-log FILE: FILE with _<angle>deg before its extension per angle, in OMPL's\n"
+      "benchmark log format (one planner per topoplan planner, one run per seed).");
   commands->push_back(
       {unwrap, [ba]() {
          planning::UnwrapBenchmarkOptions options;
@@ -385,6 +431,15 @@ void AddPlanCommands(CLI::App* root, CommandList* commands) {
          }
          options.perturb_m = ba->perturb;
          OutputDir out(ba->output, "-o");  // checked before any work
+         std::unique_ptr<OutputDir> log_dir;
+         OmplLogInfo log_info;
+         if (!ba->ompl_log.empty()) {
+           CheckOutputFile(ba->ompl_log, "--ompl-log");
+           const fs::path folder = fs::path(ba->ompl_log).parent_path();
+           log_dir =
+               std::make_unique<OutputDir>(folder.empty() ? "." : folder.string(), "--ompl-log");
+           log_info = BenchLogInfo(options);
+         }
          const StopCheck stop(ba->timeout);
          planning::UnwrapBenchmarkResult finished;  // the runs completed so far
          options.progress = [&](int done, int total, const planning::UnwrapRun& run) {
@@ -413,7 +468,20 @@ void AddPlanCommands(CLI::App* root, CommandList* commands) {
          if (const auto figure = UnwrapFigure(result)) {
            render::WritePng((fs::path(out.staging()) / "unwrap.png").string(), *figure);
          }
+         if (log_dir) {
+           for (size_t a = 0; a < result.angles_deg.size(); ++a) {
+             const std::string name =
+                 fs::path(OmplLogPath(ba->ompl_log, result.angles_deg[a])).filename().string();
+             WriteFileAtomic((fs::path(log_dir->staging()) / name).string(),
+                             OmplBenchmarkLog(result, a, log_info));
+           }
+         }
          out.Commit();
+         if (log_dir) {
+           log_dir->Commit();
+           std::printf("wrote %zu OMPL benchmark logs %s\n", result.angles_deg.size(),
+                       OmplLogPath(ba->ompl_log, result.angles_deg.front()).c_str());
+         }
          std::printf("wrote %s/unwrap.csv and %s/unwrap.png (%d runs)\n", ba->output.c_str(),
                      ba->output.c_str(), total);
          return kExitOk;

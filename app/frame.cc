@@ -28,7 +28,9 @@ render::Scene BuildFrameScene(const Session& session, const Settings& settings,
   options.visuals = !settings.view.collision_geometry;
   options.chains = settings.view.chains;
   options.grid = settings.view.grid;
-  return BuildRobotScene(robot, kin, session.objects(), options, cache);
+  render::Scene scene = BuildRobotScene(robot, kin, session.objects(), options, cache);
+  if (session.scenario()) AddTaskBoxes(session.scenario()->spec, &scene);
+  return scene;
 }
 
 render::Camera OrbitToCamera(const OrbitCamera& o) {

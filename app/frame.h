@@ -10,7 +10,8 @@
 namespace app {
 
 // Robot at session.ShownQ(settings) with the objects, chains (settings.view.chains), collision
-// or visual geometry, and the ground grid. Meshes are converted once into `cache`.
+// or visual geometry, the scenario's box task regions (AddTaskBoxes), and the ground grid. Meshes
+// are converted once into `cache`.
 render::Scene BuildFrameScene(const Session& session, const Settings& settings,
                               SceneMeshCache* cache);
 

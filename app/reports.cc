@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <iterator>
 #include <sstream>
 
 #include "app/figures.h"
@@ -106,7 +107,7 @@ std::string PlanSummaryLine(const planning::Scenario& s, const planning::PlanRep
 PlanFrames WritePlanFrames(
     const planning::Scenario& s, const planning::Trajectory& tr, const std::string& dir,
     const std::function<void(const render::Image& frame, const render::Image* heatmap)>& on_frame,
-    const MovingObjectFrames* moving) {
+    const MovingObjectFrames* moving, const PlanFrameOptions& frame_opts) {
   planning::Trajectory frames = tr;
   if (moving != nullptr &&
       (moving->object < 0 || moving->object >= static_cast<int>(s.objects.objects.size()) ||
@@ -157,6 +158,36 @@ PlanFrames WritePlanFrames(
     planning::EvaluateTasks(s.problem, slice, frames.q.col(t), true, &ws);
     cost.push_back(planning::TaskCost(s.problem, slice, Eigen::VectorXd(), ws));
   }
+  // One camera for the whole trajectory: it fits the robot's swept volume and the box regions.
+  constexpr int kWidth = 640, kHeight = 480;
+  render::Scene swept;
+  SceneBuildOptions swept_options = options;
+  swept_options.objects = false;
+  swept_options.grid = false;
+  for (int t = 0; t < frames.num_points(); ++t) {
+    planning::ForwardKinematics(s.robot, frames.q.col(t), &kin);
+    render::Scene robot = BuildRobotScene(s.robot, kin, s.objects, swept_options, &cache);
+    std::move(robot.shapes.begin(), robot.shapes.end(), std::back_inserter(swept.shapes));
+    std::move(robot.tubes.begin(), robot.tubes.end(), std::back_inserter(swept.tubes));
+  }
+  AddTaskBoxes(s.spec, &swept);
+  camera = FitSceneCamera(swept, Eigen::Vector3f(1.0f, -1.3f, 0.8f), 35.0f,
+                          static_cast<float>(kWidth) / kHeight);
+  swept = render::Scene();
+  // Time stamps: the time slices' times, or the share of the path length without time (RRTs).
+  PlanFrames out;
+  const double length = planning::PathLength(frames);
+  double walked = 0.0;
+  for (int t = 0; t < frames.num_points(); ++t) {
+    char stamp[64];
+    if (frames.dt > 0.0) {
+      std::snprintf(stamp, sizeof stamp, "t = %.2f s", t * frames.dt);
+    } else {
+      if (t > 0) walked += (frames.q.col(t) - frames.q.col(t - 1)).norm();
+      std::snprintf(stamp, sizeof stamp, "path %.0f%%", length > 0 ? 100.0 * walked / length : 0.0);
+    }
+    out.labels.push_back(stamp);
+  }
   // Numbered PNGs plus a contact sheet each, and an MP4 of the frames when ffmpeg exists.
   render::FrameWriterOptions frame_options;
   frame_options.prefix = "frame_";
@@ -169,23 +200,23 @@ PlanFrames WritePlanFrames(
     planning::ForwardKinematics(s.robot, frames.q.col(t), &kin);
     if (moving)
       moved.objects[moving->object].world_from_object.translation() = moving->positions[t];
-    const render::Scene scene =
+    render::Scene scene =
         BuildRobotScene(s.robot, kin, moving ? moved : s.objects, options, &cache);
-    if (t == 0) camera = FrameSceneCamera(scene);
-    const render::Image frame = renderer.Render(scene, camera, 640, 480, {});
-    frame_writer.Add(frame);
+    AddTaskBoxes(s.spec, &scene);
+    render::Image frame = renderer.Render(scene, camera, kWidth, kHeight, {});
+    if (frame_opts.stamp) render::DrawStamp(&frame, {s.name, out.labels[t]});
+    frame_writer.Add(frame, out.labels[t]);
     std::optional<render::Image> heatmap;
     if (matrices[t].size() > 0) {
       char title[128];
       std::snprintf(title, sizeof(title), "Writhe matrix, frame %d (total %+.3f)", t, writhe[t]);
       heatmap = WritheHeatmapFigure(matrices[t], "robot chain", "object chain", 480, 480, title);
-      heatmap_writer.Add(*heatmap);
+      heatmap_writer.Add(*heatmap, out.labels[t]);
     }
     if (on_frame) on_frame(frame, heatmap ? &*heatmap : nullptr);
     std::fprintf(stderr, "\rframes %d/%d", t + 1, frames.num_points());
   }
   std::fprintf(stderr, "\n");
-  PlanFrames out;
   out.frames = frame_writer.Finish();
   out.heatmaps = heatmap_writer.Finish();
   if (!out.frames.video.empty()) std::fprintf(stderr, "wrote %s\n", out.frames.video.c_str());

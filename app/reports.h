@@ -47,13 +47,13 @@ std::string PlanSummaryLine(const planning::Scenario& scenario, const planning::
 // Writes DIR/frames/frame_*.png (the robot at every trajectory point; RRT paths resampled to at
 // most 100 frames), DIR/heatmaps/heatmap_*.png (writhe matrix of the report pair per frame, when
 // the scenario has one) and DIR/writhe_cost.png (total writhe and task cost / max over the
-// frames). `on_frame`, if given, sees every robot frame and its heatmap (null when none). Throws
-// EnvironmentError when there is no GL context.
-// With `moving` (re-planning, planning/replan.h), frame t shows object `moving->object` at
-// moving->positions[t] (orientation kept) and its writhe (heatmap, curve) uses the report object
-// chain moved with it; the task cost is that of the scenario's problem (objects at home).
+                           const MovingObjectFrames* moving = nullptr,
+                           const PlanFrameOptions& options = {});
 struct PlanFrames {
   render::FrameSequence frames, heatmaps;
+  // Per robot frame: "t = 1.25 s" (time slice × dt), or "path 37%" (share of the joint-space path
+  // length) for a path without time (RRTs, dt = 0).
+  std::vector<std::string> labels;
 };
 struct MovingObjectFrames {
   int object = -1;                         // index into scenario.objects
@@ -63,7 +63,8 @@ PlanFrames WritePlanFrames(const planning::Scenario& scenario,
                            const planning::Trajectory& trajectory, const std::string& dir,
                            const std::function<void(const render::Image& frame,
                                                     const render::Image* heatmap)>& on_frame = {},
-                           const MovingObjectFrames* moving = nullptr);
+                           const MovingObjectFrames* moving = nullptr,
+                           const PlanFrameOptions& options = {});
 
 // A plan report (PlanReportJson) as a two-column HTML table of its main fields.
 std::string PlanReportHtml(const nlohmann::json& report);

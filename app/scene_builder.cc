@@ -183,15 +183,11 @@ render::Scene BuildRobotScene(const planning::Robot& robot, const planning::Kine
   return scene;
 }
 
-render::Camera FrameSceneCamera(const render::Scene& scene, const Eigen::Vector3f& view_dir,
-                                float fovy_deg) {
-  // World AABB of every shape and tube.
-  Eigen::Vector3f lo = Eigen::Vector3f::Constant(std::numeric_limits<float>::max());
-  Eigen::Vector3f hi = -lo;
-  auto grow = [&](const Eigen::Vector3f& p, float r) {
-    lo = lo.cwiseMin(p - Eigen::Vector3f::Constant(r));
-    hi = hi.cwiseMax(p + Eigen::Vector3f::Constant(r));
-  };
+namespace {
+
+// Calls grow(p, r) for points p whose balls of radius r cover every shape and tube of `scene`.
+template <typename Grow>
+void ForEachBoundPoint(const render::Scene& scene, Grow grow) {
   for (const render::Shape& s : scene.shapes) {
     const Eigen::Matrix3f R = s.world_from_shape.block<3, 3>(0, 0);
     const Eigen::Vector3f t = s.world_from_shape.block<3, 1>(0, 3);
@@ -224,13 +220,32 @@ render::Camera FrameSceneCamera(const render::Scene& scene, const Eigen::Vector3
   for (const render::Tube& t : scene.tubes) {
     for (const Eigen::Vector3f& p : t.points) grow(p, t.radius);
   }
+}
+
+// Unit vectors of a camera looking along -back with +z up: right and up.
+void ViewAxes(const Eigen::Vector3f& back, Eigen::Vector3f* right, Eigen::Vector3f* up) {
+  *right = (-back).cross(Eigen::Vector3f::UnitZ()).normalized();
+  *up = right->cross(-back);
+}
+
+}  // namespace
+
+render::Camera FrameSceneCamera(const render::Scene& scene, const Eigen::Vector3f& view_dir,
+                                float fovy_deg) {
+  // World AABB of every shape and tube.
+  Eigen::Vector3f lo = Eigen::Vector3f::Constant(std::numeric_limits<float>::max());
+  Eigen::Vector3f hi = -lo;
+  ForEachBoundPoint(scene, [&](const Eigen::Vector3f& p, float r) {
+    lo = lo.cwiseMin(p - Eigen::Vector3f::Constant(r));
+    hi = hi.cwiseMax(p + Eigen::Vector3f::Constant(r));
+  });
   render::Camera camera;
   if (!(lo.x() <= hi.x())) return camera;
   // Distance at which every AABB corner fits the vertical and (4:3) horizontal field of view.
   const Eigen::Vector3f center = 0.5f * (lo + hi);
   const Eigen::Vector3f back = view_dir.normalized();  // target → eye
-  const Eigen::Vector3f right = (-back).cross(Eigen::Vector3f::UnitZ()).normalized();
-  const Eigen::Vector3f up = right.cross(-back);
+  Eigen::Vector3f right, up;
+  ViewAxes(back, &right, &up);
   const float tan_v = std::tan(0.5f * fovy_deg * static_cast<float>(M_PI) / 180.0f);
   const float tan_h = tan_v * 4.0f / 3.0f;
   float distance = 0.1f;
@@ -246,6 +261,68 @@ render::Camera FrameSceneCamera(const render::Scene& scene, const Eigen::Vector3
   camera.eye = center + 1.05f * distance * back;
   camera.fovy_deg = fovy_deg;
   return camera;
+}
+
+render::Camera FitSceneCamera(const render::Scene& scene, const Eigen::Vector3f& view_dir,
+                              float fovy_deg, float aspect, float fill) {
+  const Eigen::Vector3f back = view_dir.normalized();
+  Eigen::Vector3f right, up;
+  ViewAxes(back, &right, &up);
+  // Extents of the bounding balls along the view axes (right, up, back).
+  Eigen::Vector3f lo = Eigen::Vector3f::Constant(std::numeric_limits<float>::max());
+  Eigen::Vector3f hi = -lo;
+  std::vector<Eigen::Vector4f> balls;  // (right, up, back coordinates, radius)
+  ForEachBoundPoint(scene, [&](const Eigen::Vector3f& p, float r) {
+    const Eigen::Vector3f c(p.dot(right), p.dot(up), p.dot(back));
+    lo = lo.cwiseMin(c - Eigen::Vector3f::Constant(r));
+    hi = hi.cwiseMax(c + Eigen::Vector3f::Constant(r));
+    balls.emplace_back(c.x(), c.y(), c.z(), r);
+  });
+  render::Camera camera;
+  if (balls.empty()) return camera;
+  const Eigen::Vector3f mid = 0.5f * (lo + hi);
+  const float tan_v =
+      std::clamp(fill, 0.1f, 1.0f) * std::tan(0.5f * fovy_deg * static_cast<float>(M_PI) / 180.0f);
+  const float tan_h = tan_v * std::max(aspect, 0.1f);
+  // Each ball must fit at its depth: |offset| + r <= tan · (distance − along − r).
+  float distance = 0.1f;
+  for (const Eigen::Vector4f& b : balls) {
+    const float along = b.z() - mid.z() + b.w();
+    distance = std::max(distance, (std::abs(b.y() - mid.y()) + b.w()) / tan_v + along);
+    distance = std::max(distance, (std::abs(b.x() - mid.x()) + b.w()) / tan_h + along);
+  }
+  camera.target = mid.x() * right + mid.y() * up + mid.z() * back;
+  camera.eye = camera.target + distance * back;
+  camera.fovy_deg = fovy_deg;
+  return camera;
+}
+
+void AddTaskBoxes(const planning::ScenarioSpec& spec, render::Scene* scene) {
+  constexpr std::array<float, 4> kEdge{0.85f, 0.45f, 0.05f, 1.0f};
+  for (const planning::TaskSpec& task : spec.tasks) {
+    if (task.feature.type != planning::FeatureType::kBox) continue;
+    const Eigen::Vector3f c = task.feature.center.cast<float>();
+    const Eigen::Vector3f h = task.feature.half_extent.cast<float>();
+    scene->shapes.push_back(
+        render::MakeBox(c, 2.0f * h, render::MakeMaterial(0.95f, 0.6f, 0.15f, 0.18f)));
+    render::Lines edges;
+    edges.strip = false;
+    edges.width = 2.0f;
+    edges.rgba = kEdge;
+    for (int a = 0; a < 3; ++a) {  // 4 edges along each axis a
+      for (int k = 0; k < 4; ++k) {
+        Eigen::Vector3f p = c, q = c;
+        const int b = (a + 1) % 3, d = (a + 2) % 3;
+        p[a] -= h[a];
+        q[a] += h[a];
+        p[b] = q[b] = c[b] + (k & 1 ? h[b] : -h[b]);
+        p[d] = q[d] = c[d] + (k & 2 ? h[d] : -h[d]);
+        edges.points.push_back(p);
+        edges.points.push_back(q);
+      }
+    }
+    scene->lines.push_back(std::move(edges));
+  }
 }
 
 SceneDocument RobotSceneDocument(const std::string& path, const std::string& q_text,

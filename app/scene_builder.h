@@ -12,6 +12,7 @@
 #include "planning/collision.h"
 #include "planning/kinematics.h"
 #include "planning/robot.h"
+#include "planning/scenario_spec.h"
 #include "render/scene.h"
 
 namespace app {
@@ -55,6 +56,18 @@ render::Camera FrameSceneCamera(const render::Scene& scene,
                                 const Eigen::Vector3f& view_dir = Eigen::Vector3f(1.0f, -1.3f,
                                                                                   0.8f),
                                 float fovy_deg = 35.0f);
+
+// A camera looking from `view_dir` (target towards the eye, +z up) that fits every shape and
+// tube of `scene` tightly into an image of width/height `aspect` with vertical field of view
+// fovy_deg: the bounding balls of the geometry (as FrameSceneCamera's) fill a fraction `fill`
+// (0.1..1) of the half-angles, the target is the middle of their extents along the view axes.
+// Used with a scene holding a whole trajectory's robot shapes (its swept volume).
+render::Camera FitSceneCamera(const render::Scene& scene, const Eigen::Vector3f& view_dir,
+                              float fovy_deg, float aspect, float fill = 0.92f);
+
+// The "remain inside a box" task regions of `spec` (feature type box; centre and half extents,
+// world frame [m]): a translucent orange box and its 12 edges as 2-px lines, appended to `scene`.
+void AddTaskBoxes(const planning::ScenarioSpec& spec, render::Scene* scene);
 
 // What `topoplan render ROBOT.urdf|SCENE.json` draws: the scene's robot at its q (or `q_text`
 // from --q when not empty) with objects and chains; the camera from the JSON's "camera" or framed

@@ -33,6 +33,21 @@ std::string FindExecutable(const std::string& name) {
   return "";
 }
 
+namespace {
+
+std::vector<std::string> SplitLines(const std::string& text) {
+  std::vector<std::string> lines;
+  size_t start = 0;
+  while (true) {
+    const size_t end = text.find('\n', start);
+    lines.push_back(text.substr(start, end == std::string::npos ? std::string::npos : end - start));
+    if (end == std::string::npos) return lines;
+    start = end + 1;
+  }
+}
+
+}  // namespace
+
 Image MakeContactSheet(const std::vector<Image>& thumbnails,
                        const std::vector<std::string>& labels) {
   if (thumbnails.empty() || thumbnails.size() != labels.size()) {
@@ -42,24 +57,70 @@ Image MakeContactSheet(const std::vector<Image>& thumbnails,
   const int cols = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(n))));
   const int rows = (n + cols - 1) / cols;
   int cell_w = 0, cell_h = 0;
+  size_t label_lines = 1;
   for (const Image& t : thumbnails) {
     cell_w = std::max(cell_w, t.width);
     cell_h = std::max(cell_h, t.height);
   }
-  constexpr int kGutter = 8, kLabel = 16;
-  Image sheet(kGutter + cols * (cell_w + kGutter), kGutter + rows * (cell_h + kLabel + kGutter),
+  for (const std::string& l : labels) label_lines = std::max(label_lines, SplitLines(l).size());
+  constexpr int kGutter = 8, kLine = 16;
+  const int label_h = kLine * static_cast<int>(label_lines);
+  Image sheet(kGutter + cols * (cell_w + kGutter), kGutter + rows * (cell_h + label_h + kGutter),
               255, 255, 255);
   const internal::Font& font = internal::Font::Regular();
   for (int i = 0; i < n; ++i) {
     const int x = kGutter + (i % cols) * (cell_w + kGutter);
-    const int y = kGutter + (i / cols) * (cell_h + kLabel + kGutter);
+    const int y = kGutter + (i / cols) * (cell_h + label_h + kGutter);
     internal::Blit(&sheet, thumbnails[static_cast<size_t>(i)], x, y);
     internal::StrokeRect(&sheet, x - 1, y - 1, x + thumbnails[static_cast<size_t>(i)].width + 1,
                          y + thumbnails[static_cast<size_t>(i)].height + 1, {160, 160, 160});
-    font.Draw(&sheet, x + 0.5f * cell_w, y + cell_h + 3 + font.Ascent(11.0f),
-              labels[static_cast<size_t>(i)], 11.0f, {40, 40, 40}, internal::Align::kCenter);
+    const std::vector<std::string> lines = SplitLines(labels[static_cast<size_t>(i)]);
+    for (size_t k = 0; k < lines.size(); ++k) {
+      font.Draw(&sheet, x + 0.5f * cell_w,
+                y + cell_h + 3 + font.Ascent(11.0f) + kLine * static_cast<float>(k), lines[k],
+                11.0f, {40, 40, 40}, internal::Align::kCenter);
+    }
   }
   return sheet;
+}
+
+std::vector<int> ContactSheetPicks(int n, int m, const std::vector<bool>& keys) {
+  if (n < 0 || static_cast<int>(keys.size()) != n) {
+    throw std::invalid_argument("contact sheet: one key flag per frame expected");
+  }
+  std::vector<bool> picked = keys;
+  const int num_keys = static_cast<int>(std::count(keys.begin(), keys.end(), true));
+  const int even = std::min(n, std::max(0, std::max(1, m) - num_keys));
+  for (int k = 0; k < even; ++k) {
+    const int i =
+        even == 1 ? 0
+                  : static_cast<int>(std::lround(static_cast<double>(k) * (n - 1) / (even - 1)));
+    picked[static_cast<size_t>(i)] = true;
+  }
+  std::vector<int> out;
+  for (int i = 0; i < n; ++i) {
+    if (picked[static_cast<size_t>(i)]) out.push_back(i);
+  }
+  return out;
+}
+
+void DrawStamp(Image* image, const std::vector<std::string>& lines) {
+  if (lines.empty()) return;
+  const internal::Font& font = internal::Font::Regular();
+  constexpr float kPx = 13.0f;
+  constexpr int kPad = 5, kLine = 17;
+  float width = 0.0f;
+  for (const std::string& l : lines) width = std::max(width, font.Width(l, kPx));
+  const int x1 = std::min(image->width, 2 * kPad + static_cast<int>(std::ceil(width)) + 4);
+  const int y1 = std::min(image->height, kPad + kLine * static_cast<int>(lines.size()) + 4);
+  for (int y = 2; y < y1; ++y) {
+    for (int x = 2; x < x1; ++x) internal::BlendPixel(image, x, y, {255, 255, 255}, 0.75f);
+  }
+  for (size_t k = 0; k < lines.size(); ++k) {
+    font.Draw(image, static_cast<float>(kPad + 2),
+              static_cast<float>(kPad + 2) + font.Ascent(kPx) + kLine * static_cast<float>(k),
+              lines[k], kPx, {30, 30, 30});
+  }
 }
 
 FrameWriter::FrameWriter(const std::string& dir, const FrameWriterOptions& options)
@@ -69,7 +130,7 @@ FrameWriter::FrameWriter(const std::string& dir, const FrameWriterOptions& optio
   if (!fs::is_directory(dir_)) throw std::runtime_error(dir_ + ": cannot create folder");
 }
 
-std::string FrameWriter::Add(const Image& frame) {
+std::string FrameWriter::Add(const Image& frame, const std::string& label, bool key) {
   char name[64];
   std::snprintf(name, sizeof(name), "%05d.png", size());
   const std::string path = (fs::path(dir_) / (options_.prefix + name)).string();
@@ -81,21 +142,28 @@ std::string FrameWriter::Add(const Image& frame) {
         1, static_cast<int>(std::lround(static_cast<double>(w) * frame.height / frame.width)));
     thumbnails_.push_back(Downscale(frame, w, h));
   }
+  labels_.push_back(label.empty() ? "frame " + std::to_string(size() - 1) : label);
+  keys_.push_back(key);
   return path;
+}
+
+void FrameWriter::SetLabel(int index, const std::string& label, bool key) {
+  if (index < 0 || index >= size()) {
+    throw std::out_of_range("frame " + std::to_string(index) + " does not exist");
+  }
+  labels_[static_cast<size_t>(index)] = label;
+  if (key) keys_[static_cast<size_t>(index)] = true;
 }
 
 FrameSequence FrameWriter::Finish() {
   const int n = size();
   if (options_.contact_sheet && n > 0) {
-    // Evenly sampled frames, always including the first and the last.
-    const int m = std::min(n, std::max(1, options_.contact_sheet_max_frames));
+    // Key frames, then evenly sampled ones (always including the first and the last).
     std::vector<Image> picked;
     std::vector<std::string> labels;
-    for (int k = 0; k < m; ++k) {
-      const int i =
-          m == 1 ? 0 : static_cast<int>(std::lround(static_cast<double>(k) * (n - 1) / (m - 1)));
+    for (int i : ContactSheetPicks(n, options_.contact_sheet_max_frames, keys_)) {
       picked.push_back(thumbnails_[static_cast<size_t>(i)]);
-      labels.push_back("frame " + std::to_string(i));
+      labels.push_back(labels_[static_cast<size_t>(i)]);
     }
     sequence_.contact_sheet = (fs::path(dir_) / "contact_sheet.png").string();
     WritePng(sequence_.contact_sheet, MakeContactSheet(picked, labels));

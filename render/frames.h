@@ -3,7 +3,7 @@
 //
 // Layout of a finished sequence in `dir`:
 //   <prefix>00000.png, <prefix>00001.png, ...   every frame (libpng, fast settings)
-//   contact_sheet.png                           thumbnails in a grid, each labelled with its index
+//   contact_sheet.png                           thumbnails in a grid, each with its label
 //   <prefix>video.mp4 (or .gif)                 when ffmpeg exists and video is enabled
 #pragma once
 
@@ -38,8 +38,14 @@ class FrameWriter {
   // Creates `dir` if needed. Throws std::runtime_error when it cannot be created.
   explicit FrameWriter(const std::string& dir, const FrameWriterOptions& options = {});
 
-  // Writes the next frame; returns its path.
-  std::string Add(const Image& frame);
+  // Writes the next frame; returns its path. `label` captions its contact-sheet thumbnail
+  // (empty: "frame N"; '\n' starts another line). `key` frames are always on the contact sheet,
+  // the others fill the remaining places evenly (the first and the last always included).
+  std::string Add(const Image& frame, const std::string& label = "", bool key = false);
+
+  // Replaces the label of frame `index` (0 <= index < size()); `key` also makes it a key frame,
+  // e.g. to say why a sequence ended early. Throws std::out_of_range for a bad index.
+  void SetLabel(int index, const std::string& label, bool key = false);
 
   // Writes the contact sheet and the video; call once at the end.
   FrameSequence Finish();
@@ -51,13 +57,23 @@ class FrameWriter {
   FrameWriterOptions options_;
   FrameSequence sequence_;
   std::vector<Image> thumbnails_;
+  std::vector<std::string> labels_;
+  std::vector<bool> keys_;
 };
 
 // Contact sheet of `thumbnails` in a grid of ceil(sqrt(n)) columns, each labelled with
-// labels[i] (white background, 8 px gutters). Throws std::invalid_argument when empty or when
-// labels and thumbnails differ in count.
+// labels[i] below it (white background, 8 px gutters, 16 px per label line; '\n' separates lines).
+// Throws std::invalid_argument when empty or when labels and thumbnails differ in count.
 Image MakeContactSheet(const std::vector<Image>& thumbnails,
                        const std::vector<std::string>& labels);
+
+// Indices of at most max(m, number of keys) of n frames for a contact sheet, ascending: every key
+// frame (keys[i], keys.size() == n), then the first, the last and evenly spaced others up to m.
+std::vector<int> ContactSheetPicks(int n, int m, const std::vector<bool>& keys);
+
+// Writes `lines` into the top-left corner of `image` (13 px DejaVu Sans, dark grey on a
+// translucent white box), e.g. a time stamp and scenario name on a rendered frame.
+void DrawStamp(Image* image, const std::vector<std::string>& lines);
 
 // Full path of an executable `name` found on PATH, or empty.
 std::string FindExecutable(const std::string& name);

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <map>
@@ -13,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "app/ompl_log.h"
 #include "planning/grasp_quality.h"
 
 namespace app {
@@ -225,6 +227,78 @@ TEST(ReportsTest, GraspTableMatchesReportJson) {
             std::string::npos)
       << md;
   EXPECT_EQ(md.find("perturbed"), std::string::npos) << md;  // no --perturb: no perturbed row
+}
+
+// --- OMPL benchmark logs (app/ompl_log.h) --------------------------------------------------------
+
+std::vector<std::string> Lines(const std::string& text) {
+  std::vector<std::string> lines;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  return lines;
+}
+
+TEST(OmplLogTest, OneExperimentPerAngleWithEveryPlannerAndSeed) {
+  const planning::UnwrapBenchmarkResult result = SyntheticUnwrap();
+  OmplLogInfo info;
+  info.version = "1.2.3";
+  info.host = "testhost";
+  info.start_time = "2026-12-01T00:00:00";
+  info.setup = "synthetic";
+  const std::vector<std::string> lines = Lines(OmplBenchmarkLog(result, 1, info));
+  ASSERT_GT(lines.size(), 20u);
+  // The header: the sum of the angle's run times is 3 planners x (0 + 0.01 + 0.02) s.
+  const std::vector<std::string> header = {"topoplan version 1.2.3",
+                                           "Experiment unwrap_90deg",
+                                           "3 experiment properties",
+                                           "angle_deg REAL = 90",
+                                           "perturb_m REAL = 0",
+                                           "seeds INTEGER = 3",
+                                           "Running on testhost",
+                                           "Starting at 2026-12-01T00:00:00",
+                                           "<<<|",
+                                           "synthetic",
+                                           "|>>>",
+                                           "0 is the random seed",
+                                           "0 seconds per run",
+                                           "0 MB per run",
+                                           "3 runs per planner",
+                                           "0.09 seconds spent to collect the data",
+                                           "1 enum type"};
+  EXPECT_EQ(std::vector<std::string>(lines.begin(), lines.begin() + 17), header);
+  EXPECT_EQ(lines[17].rfind("failure_reason|none|joint_limits|", 0), 0u);
+  EXPECT_EQ(lines[18], "3 planners");
+  // Planner blocks in the result's order, each: name, common properties, 10 property names,
+  // "3 runs", 3 run lines of 10 "; "-terminated values, ".".
+  size_t k = 19;
+  for (size_t p = 0; p < result.planners.size(); ++p) {
+    EXPECT_EQ(lines[k++], planning::PlannerName(result.planners[p]));
+    const int common = std::stoi(lines[k++]);
+    k += static_cast<size_t>(common);
+    ASSERT_EQ(lines[k++], "10 properties for each run");
+    EXPECT_EQ(lines[k], "collision checks INTEGER");
+    EXPECT_EQ(lines[k + 8], "solved BOOLEAN");
+    k += 10;
+    ASSERT_EQ(lines[k++], "3 runs");
+    for (int s = 0; s < 3; ++s) {
+      const planning::UnwrapRun& run = result.runs[(1 * 3 + p) * 3 + static_cast<size_t>(s)];
+      const std::string& line = lines[k++];
+      EXPECT_EQ(line.rfind(std::to_string(run.report.collision_checks) + "; ", 0), 0u) << line;
+      EXPECT_NE(
+          line.find("; " + std::to_string(s) + "; " + (run.report.success ? "1" : "0") + "; "),
+          std::string::npos)
+          << line;
+      EXPECT_EQ(std::count(line.begin(), line.end(), ';'), 10) << line;
+    }
+    EXPECT_EQ(lines[k++], ".");
+  }
+  EXPECT_EQ(k, lines.size());
+  EXPECT_THROW(OmplBenchmarkLog(result, 3, info), std::invalid_argument);
+}
+
+TEST(OmplLogTest, LogPathPerAngle) {
+  EXPECT_EQ(OmplLogPath("out/unwrap.log", 720.0), "out/unwrap_720deg.log");
+  EXPECT_EQ(OmplLogPath("log", 22.5), "log_22.5deg");
 }
 
 }  // namespace

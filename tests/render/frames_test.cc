@@ -63,6 +63,49 @@ TEST(FramesTest, WritesAnMp4WhenFfmpegExists) {
   EXPECT_GT(fs::file_size(seq.video), 100u);
 }
 
+TEST(FramesTest, LabelsKeyFramesAndMultiLineLabels) {
+  const fs::path dir = fs::path(TOPOPLAN_BINARY_DIR) / "test-tmp" / "frames_label_test";
+  fs::remove_all(dir);
+  FrameWriterOptions o;
+  o.thumbnail_width = 40;
+  o.video = false;
+  o.contact_sheet_max_frames = 4;
+  FrameWriter writer(dir.string(), o);
+  for (int i = 0; i < 10; ++i) writer.Add(Image(80, 60, 0, 0, 0), "t = " + std::to_string(i));
+  writer.SetLabel(4, "t = 4\nobject dropped", /*key=*/true);
+  EXPECT_THROW(writer.SetLabel(10, "x"), std::out_of_range);
+  const FrameSequence seq = writer.Finish();
+  const Image sheet = ReadPng(seq.contact_sheet);
+  // 4 thumbnails (key frame 4 + 3 evenly spaced) in a 2x2 grid; labels of two 16 px lines.
+  EXPECT_EQ(sheet.width, 8 + 2 * (40 + 8));
+  EXPECT_EQ(sheet.height, 8 + 2 * (30 + 32 + 8));
+}
+
+TEST(FramesTest, ContactSheetPicksKeepKeyFrames) {
+  std::vector<bool> keys(10, false);
+  EXPECT_EQ(ContactSheetPicks(10, 4, keys), (std::vector<int>{0, 3, 6, 9}));
+  keys[4] = true;
+  EXPECT_EQ(ContactSheetPicks(10, 4, keys), (std::vector<int>{0, 4, 5, 9}));
+  keys.assign(10, true);
+  EXPECT_EQ(ContactSheetPicks(10, 4, keys).size(), 10u);  // every key frame, even beyond m
+  EXPECT_EQ(ContactSheetPicks(3, 36, std::vector<bool>(3, false)), (std::vector<int>{0, 1, 2}));
+  EXPECT_THROW(ContactSheetPicks(3, 4, keys), std::invalid_argument);
+}
+
+TEST(FramesTest, StampDarkensTextInTheTopLeftCorner) {
+  Image image(200, 100, 0, 0, 255);
+  DrawStamp(&image, {"unwrap", "t = 1.25 s"});
+  // A light box behind dark text in the corner; the rest of the image is untouched.
+  EXPECT_GT(image.at(3, 3)[0], 150);
+  int dark = 0;
+  for (int y = 0; y < 40; ++y) {
+    for (int x = 0; x < 100; ++x) dark += image.at(x, y)[0] < 100 && image.at(x, y)[2] < 150;
+  }
+  EXPECT_GT(dark, 20);
+  EXPECT_EQ(image.at(199, 99)[2], 255);
+  EXPECT_EQ(image.at(199, 99)[0], 0);
+}
+
 TEST(FramesTest, FindExecutable) {
   EXPECT_FALSE(FindExecutable("sh").empty());
   EXPECT_TRUE(FindExecutable("no-such-program-topoplan").empty());
