@@ -99,6 +99,7 @@ void ValidateGeometryElement(const TiXmlElement* e, const std::string& source,
 }
 
 XmlSummary ValidateXml(const std::string& xml, const std::string& source) {
+  internal::CheckXmlUtf8(xml, source);
   internal::CheckXmlDepth(xml, source);
   TiXmlDocument doc;
   doc.Parse(xml.c_str());

@@ -24,6 +24,7 @@ using internal::XmlAttr;
 }  // namespace
 
 Srdf ParseSrdf(const std::string& xml, const std::string& source) {
+  internal::CheckXmlUtf8(xml, source);
   internal::CheckXmlDepth(xml, source);
   TiXmlDocument doc;
   doc.Parse(xml.c_str());

@@ -1,5 +1,4 @@
-// Fuzz targets of the formats read by render/ and app/: PNG, scene JSON, viewer scripts and
-// command-line flags.
+// Fuzz targets of the formats read by app/: scene JSON, viewer scripts and command-line flags.
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <stdexcept>
@@ -14,17 +13,12 @@
 #include "app/session.h"
 #include "planning/grasp_transfer.h"
 #include "planning/planner.h"
-#include "render/image.h"
 #include "render/offscreen_context.h"
 #include "tests/fuzz/fuzz_targets.h"
 #include "topology/input_limits.h"
 
 namespace topoplan_fuzz {
 namespace {
-
-std::string Text(const uint8_t* data, size_t size) {
-  return std::string(reinterpret_cast<const char*>(data), size);
-}
 
 // The whole command line, parsed as main() parses it but without running the command.
 void ParseCommandLine(const std::string& text) {
@@ -42,13 +36,13 @@ void ParseCommandLine(const std::string& text) {
   CLI::App root{"topoplan"};
   root.require_subcommand(1);
   app::CommandList commands;
+  // Every command of app_core; `demo` (app_cli) and `view` (app_ui) are left out so that the
+  // fuzz programs do not link the window libraries.
   app::AddTopologyCommands(&root, &commands);
-  app::AddDemoCommand(&root, &commands);
   app::AddRenderCommands(&root, &commands);
   app::AddGraspCommands(&root, &commands);
   app::AddRobotCommands(&root, &commands);
   app::AddPlanCommands(&root, &commands);
-  app::AddViewCommand(&root, &commands);
   std::reverse(args.begin(), args.end());  // CLI11 takes the arguments last-first
   try {
     root.parse(args);
@@ -57,19 +51,6 @@ void ParseCommandLine(const std::string& text) {
 }
 
 }  // namespace
-
-int Png(const uint8_t* data, size_t size) {
-  try {
-    const render::Image image = render::DecodePng(Text(data, size), "fuzz.png");
-    if (image.width <= 0 || image.height <= 0 ||
-        image.rgba.size() != static_cast<size_t>(image.width) * image.height * 4) {
-      throw std::logic_error("DecodePng returned an image outside its contract");
-    }
-  } catch (const std::invalid_argument& e) {
-    Rejected(e);
-  }
-  return 0;
-}
 
 int SceneJson(const uint8_t* data, size_t size) {
   try {

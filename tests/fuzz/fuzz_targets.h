@@ -48,8 +48,8 @@ int Script(const uint8_t* data, size_t size);
 // Command-line flags: the first byte picks a parser (app::ParseNumberList, app::FiniteIn,
 // app::ParseImageSize, app::ParseQ, planning::ParsePlanner, ParseTransferMethod,
 // render::ParseGlBackend, through app::ParseFlag), the rest is the flag's text; a leading
-// byte >= 0x80 parses the rest as a whole command line (CLI11 with every command registered,
-// without running it).
+// byte >= 0x80 parses the rest as a whole command line, one argument per line (CLI11 with the
+// commands of app_core registered, all but demo and view, without running them).
 int Flags(const uint8_t* data, size_t size);
 
 struct Target {
@@ -58,6 +58,11 @@ struct Target {
 };
 // Every target, in the order above (defined by fuzz_replay).
 const std::vector<Target>& Targets();
+
+// The bytes as a string.
+inline std::string Text(const uint8_t* data, size_t size) {
+  return std::string(reinterpret_cast<const char*>(data), size);
+}
 
 // Writes the bytes to a file in this process's private temporary folder and returns its path
 // ("<tmp>/topoplan-fuzz-<pid>/<name>"); readers that only take paths read it back.

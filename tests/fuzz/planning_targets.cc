@@ -13,10 +13,6 @@
 namespace topoplan_fuzz {
 namespace {
 
-std::string Text(const uint8_t* data, size_t size) {
-  return std::string(reinterpret_cast<const char*>(data), size);
-}
-
 // Robots read once per process (the references the fuzzed files are checked against).
 const planning::Robot& Arm20() {
   static const planning::Robot robot = [] {

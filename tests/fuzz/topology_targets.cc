@@ -8,7 +8,7 @@
 namespace topoplan_fuzz {
 
 int ChainCsv(const uint8_t* data, size_t size) {
-  std::istringstream in(std::string(reinterpret_cast<const char*>(data), size));
+  std::istringstream in(Text(data, size));
   try {
     const topology::Chain chain = topology::ParseChainCsv(in, "fuzz.csv");
     if (chain.cols() > topology::kMaxChainPoints || !chain.allFinite()) {
