@@ -11,17 +11,16 @@
 #include <array>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <set>
-#include <sstream>
 #include <stdexcept>
 
 #include "planning/chain_json.h"
 #include "planning/internal/xml_text.h"
 #include "planning/json_reader.h"
 #include "planning/mesh_io.h"
+#include "topology/input_limits.h"
 
 namespace planning {
 namespace {
@@ -31,14 +30,6 @@ namespace fs = std::filesystem;
 [[noreturn]] void Fail(const std::string& source, int line, const std::string& message) {
   throw std::invalid_argument(source + (line > 0 ? ":" + std::to_string(line) : "") + ": " +
                               message);
-}
-
-std::string ReadText(const std::string& path, const char* what) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::invalid_argument(path + ": cannot open " + what + " file");
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
 }
 
 // ---- Validation pass ---------------------------------------------------------------------------
@@ -108,6 +99,7 @@ void ValidateGeometryElement(const TiXmlElement* e, const std::string& source,
 }
 
 XmlSummary ValidateXml(const std::string& xml, const std::string& source) {
+  internal::CheckXmlUtf8(xml, source);
   internal::CheckXmlDepth(xml, source);
   TiXmlDocument doc;
   doc.Parse(xml.c_str());
@@ -574,7 +566,7 @@ Robot ParseRobot(const std::string& urdf_xml, const std::string& source_name,
 }
 
 Robot LoadRobot(const std::string& urdf_path, const RobotLoadOptions& options) {
-  const std::string xml = ReadText(urdf_path, "URDF");
+  const std::string xml = topology::ReadFileBounded(urdf_path, "URDF");
   std::string dir = fs::path(urdf_path).parent_path().string();
   if (dir.empty()) dir = ".";
   return ParseRobot(xml, urdf_path, dir, options);

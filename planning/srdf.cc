@@ -4,12 +4,11 @@
 #include <tinyxml.h>
 
 #include <filesystem>
-#include <fstream>
 #include <set>
-#include <sstream>
 #include <stdexcept>
 
 #include "planning/internal/xml_text.h"
+#include "topology/input_limits.h"
 
 namespace planning {
 namespace {
@@ -25,6 +24,7 @@ using internal::XmlAttr;
 }  // namespace
 
 Srdf ParseSrdf(const std::string& xml, const std::string& source) {
+  internal::CheckXmlUtf8(xml, source);
   internal::CheckXmlDepth(xml, source);
   TiXmlDocument doc;
   doc.Parse(xml.c_str());
@@ -76,11 +76,7 @@ Srdf ParseSrdf(const std::string& xml, const std::string& source) {
 }
 
 Srdf LoadSrdf(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::invalid_argument(path + ": cannot open SRDF file");
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return ParseSrdf(ss.str(), path);
+  return ParseSrdf(topology::ReadFileBounded(path, "SRDF"), path);
 }
 
 void CheckSrdf(const Srdf& srdf, const Robot& robot) {

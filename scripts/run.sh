@@ -5,8 +5,10 @@
 #   scripts/run.sh build                 only builds
 #   scripts/run.sh bench                 runs the Google Benchmark programs
 # Environment: BUILD_DIR (default build), JOBS (default nproc), CI=true turns warnings into errors.
-# `test` with SANITIZE=1 also builds ASan + UBSan (TOPOPLAN_SANITIZE) in ASAN_BUILD_DIR
-# (default build-asan) and runs the unit and property tests there; any sanitizer report fails.
+# `test` with SANITIZE=1 (.ci/run sets it) also builds ASan + UBSan (TOPOPLAN_SANITIZE, with
+# float-cast-overflow) in ASAN_BUILD_DIR (default build-asan) and runs the unit and property
+# tests there (the CLI tests among them run the sanitized topoplan); any sanitizer report fails.
+# ccache is used when it is installed (not required).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 ROOT=$PWD
@@ -26,7 +28,9 @@ bash scripts/setup.sh
 # does not rebuild everything with other flags).
 werror=()
 [[ "${CI:-}" == "true" ]] && werror=(-DTOPOPLAN_WERROR=ON)
-cmake -S "$ROOT" -B "$BUILD_DIR" -DCMAKE_BUILD_TYPE=Release "${werror[@]}" >/dev/null
+launcher=()
+command -v ccache >/dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
+cmake -S "$ROOT" -B "$BUILD_DIR" -DCMAKE_BUILD_TYPE=Release "${werror[@]}" "${launcher[@]}" >/dev/null
 # The demo needs only the topoplan binary; the other commands build everything (tests, benchmarks).
 targets=()
 [[ "$cmd" == "demo" ]] && targets=(--target topoplan)
@@ -37,14 +41,19 @@ case "$cmd" in
   test)
     (cd "$BUILD_DIR" && ctest --output-on-failure -j "$JOBS" "$@")
     if [[ "${SANITIZE:-0}" == "1" ]]; then
+      sanitize_start=$SECONDS
       ASAN_BUILD_DIR=${ASAN_BUILD_DIR:-$ROOT/build-asan}
       cmake -S "$ROOT" -B "$ASAN_BUILD_DIR" -DCMAKE_BUILD_TYPE=Release -DTOPOPLAN_SANITIZE=ON \
-        -DTOPOPLAN_BUILD_BENCHMARKS=OFF -DTOPOPLAN_BUILD_PYTHON=OFF "${werror[@]}" >/dev/null
+        -DTOPOPLAN_BUILD_BENCHMARKS=OFF -DTOPOPLAN_BUILD_PYTHON=OFF "${werror[@]}" \
+        "${launcher[@]}" >/dev/null
       cmake --build "$ASAN_BUILD_DIR" -j "$JOBS"
+      echo "run.sh: sanitizer build took $((SECONDS - sanitize_start)) s"
       # Leak checking is off: the GL drivers and ODE keep process-lifetime allocations.
       (cd "$ASAN_BUILD_DIR" &&
-        ASAN_OPTIONS=detect_leaks=0:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 \
+        ASAN_OPTIONS=detect_leaks=0:abort_on_error=1 \
+        UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
         ctest --output-on-failure -j "$JOBS" -L 'unit|property' "$@")
+      echo "run.sh: sanitizer stage (build + unit/property tests) took $((SECONDS - sanitize_start)) s"
     fi ;;
   bench)
     for b in "$BUILD_DIR"/tests/bench/bench_*; do

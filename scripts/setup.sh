@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Installs every Debian package topoplan needs to build, test and run its demo.
 # Idempotent: packages already present are skipped. Uses sudo when not run as root.
-# Usage: scripts/setup.sh [--minimal]   (--minimal skips optional tools: ffmpeg, OMPL)
+# Usage: scripts/setup.sh [--minimal | --fuzz]   (--minimal skips optional tools: ffmpeg, OMPL;
+#        --fuzz adds clang and libFuzzer for scripts/fuzz.sh)
 set -euo pipefail
 
 REQUIRED=(
@@ -24,9 +25,12 @@ REQUIRED=(
   xvfb xauth xdotool imagemagick                  # headless window tests
 )
 OPTIONAL=(ffmpeg libompl-dev)
+FUZZ=(clang libclang-rt-14-dev libfuzzer-14-dev)     # scripts/fuzz.sh only
 
 minimal=0
+fuzz=0
 [[ "${1:-}" == "--minimal" ]] && minimal=1
+[[ "${1:-}" == "--fuzz" ]] && fuzz=1
 
 SUDO=""
 if [[ $(id -u) -ne 0 ]]; then
@@ -37,6 +41,7 @@ fi
 missing=()
 want=("${REQUIRED[@]}")
 [[ $minimal -eq 0 ]] && want+=("${OPTIONAL[@]}")
+[[ $fuzz -eq 1 ]] && want+=("${FUZZ[@]}")
 for p in "${want[@]}"; do
   if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
     missing+=("$p")

@@ -5,11 +5,36 @@
 
 #include <cerrno>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <sstream>
 #include <stdexcept>
 
 namespace planning::internal {
+
+void CheckXmlUtf8(const std::string& xml, const std::string& source) {
+  int line = 1;
+  for (size_t i = 0; i < xml.size();) {
+    const unsigned char c = static_cast<unsigned char>(xml[i]);
+    if (c == '\n') ++line;
+    const int length = c < 0x80                 ? 1
+                       : c >= 0xC2 && c <= 0xDF ? 2
+                       : c >= 0xE0 && c <= 0xEF ? 3
+                       : c >= 0xF0 && c <= 0xF4 ? 4
+                                                : 0;
+    bool ok = length > 0 && i + length <= xml.size();
+    for (int k = 1; ok && k < length; ++k) {
+      ok = (static_cast<unsigned char>(xml[i + k]) & 0xC0) == 0x80;
+    }
+    if (!ok) {
+      char byte[8];
+      std::snprintf(byte, sizeof(byte), "0x%02X", c);
+      throw std::invalid_argument(source + ":" + std::to_string(line) + ": not UTF-8 text (byte " +
+                                  byte + " at offset " + std::to_string(i) + ")");
+    }
+    i += length;
+  }
+}
 
 void CheckXmlDepth(const std::string& xml, const std::string& source, int max_depth) {
   int depth = 0, line = 1;

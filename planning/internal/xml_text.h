@@ -18,6 +18,11 @@ inline constexpr int kMaxXmlDepth = 100;
 // deeper than `max_depth`. O(size), no recursion.
 void CheckXmlDepth(const std::string& xml, const std::string& source, int max_depth = kMaxXmlDepth);
 
+// Throws std::invalid_argument "SOURCE:LINE: not UTF-8 text (byte 0xEC at offset N)" unless `xml`
+// is UTF-8 (each lead byte followed by its continuation bytes). TinyXML skips a multi-byte
+// character by its lead byte's length, so a truncated one at the end reads past the text.
+void CheckXmlUtf8(const std::string& xml, const std::string& source);
+
 // Parses `text` as whitespace-separated finite numbers. Returns false on anything else (an empty
 // text, a non-number token, inf or nan, or a count other than `count` when count > 0).
 bool ParseNumbers(const std::string& text, int count, std::vector<double>* out);

@@ -1,0 +1,128 @@
+// Fuzz targets of the files read by planning/: scenarios, URDF, chain sidecars, SRDF, grasps and
+// the grasp-object catalogue.
+#include <stdexcept>
+#include <string>
+
+#include "planning/grasp.h"
+#include "planning/grasp_object.h"
+#include "planning/robot_io.h"
+#include "planning/scenario_spec.h"
+#include "planning/srdf.h"
+#include "tests/fuzz/fuzz_targets.h"
+
+namespace topoplan_fuzz {
+namespace {
+
+// Robots read once per process (the references the fuzzed files are checked against).
+const planning::Robot& Arm20() {
+  static const planning::Robot robot = [] {
+    planning::RobotLoadOptions o;
+    o.load_meshes = false;
+    o.chains_path = AssetPath("robots/arm20_sdh.chains.json");
+    return planning::LoadRobot(AssetPath("robots/arm20_sdh.urdf"), o);
+  }();
+  return robot;
+}
+
+}  // namespace
+
+const planning::Robot& TinyArm() {
+  static const planning::Robot robot = [] {
+    planning::RobotLoadOptions o;
+    o.load_meshes = false;
+    return planning::LoadRobot(AssetPath("robots/tinyarm/urdf/tinyarm.urdf"), o);
+  }();
+  return robot;
+}
+
+namespace {
+
+const planning::Robot& HumanHand() {
+  static const planning::Robot robot = planning::LoadRobot(AssetPath("robots/human_hand.urdf"));
+  return robot;
+}
+
+const std::vector<planning::GraspObject>& Objects() {
+  static const std::vector<planning::GraspObject> objects =
+      planning::LoadGraspObjects(AssetPath("grasps/objects.json"));
+  return objects;
+}
+
+}  // namespace
+
+int ScenarioJson(const uint8_t* data, size_t size) {
+  try {
+    planning::ParseScenarioSpec(WriteInput(data, size, "scenario.json"), {AssetPath("")});
+  } catch (const std::invalid_argument& e) {
+    Rejected(e);
+  }
+  return 0;
+}
+
+int Urdf(const uint8_t* data, size_t size) {
+  const std::string text = Text(data, size);
+  const size_t nul = text.find('\0');
+  try {
+    // Mesh references resolve as for the tiny arm (package://tinyarm/..., relative paths), and
+    // the meshes found are loaded.
+    planning::Robot robot =
+        planning::ParseRobot(text.substr(0, nul), "fuzz.urdf", AssetPath("robots/tinyarm/urdf"));
+    if (nul != std::string::npos) {
+      const std::string sidecar = text.substr(nul + 1);
+      planning::LoadChains(WriteInput(reinterpret_cast<const uint8_t*>(sidecar.data()),
+                                      sidecar.size(), "robot.chains.json"),
+                           &robot);
+    }
+  } catch (const std::invalid_argument& e) {
+    Rejected(e);
+  }
+  return 0;
+}
+
+int ChainsSidecar(const uint8_t* data, size_t size) {
+  planning::Robot robot = Arm20();
+  robot.chains.clear();
+  try {
+    planning::LoadChains(WriteInput(data, size, "arm.chains.json"), &robot);
+  } catch (const std::invalid_argument& e) {
+    Rejected(e);
+  }
+  return 0;
+}
+
+int Srdf(const uint8_t* data, size_t size) {
+  try {
+    const planning::Srdf srdf = planning::ParseSrdf(Text(data, size), "fuzz.srdf");
+    planning::CheckSrdf(srdf, TinyArm());
+  } catch (const std::invalid_argument& e) {
+    Rejected(e);
+  }
+  return 0;
+}
+
+int Grasp(const uint8_t* data, size_t size) {
+  try {
+    const planning::HumanGrasp grasp = planning::LoadHumanGrasp(WriteInput(data, size, "g.json"));
+    planning::FindGraspObject(Objects(), grasp.object);
+    planning::HumanConfiguration(HumanHand(), grasp);
+  } catch (const std::invalid_argument& e) {
+    Rejected(e);
+  }
+  return 0;
+}
+
+int GraspObjects(const uint8_t* data, size_t size) {
+  try {
+    for (const planning::GraspObject& object :
+         planning::LoadGraspObjects(WriteInput(data, size, "objects.json"))) {
+      Eigen::Vector3d grad;
+      planning::SignedDistance(object, Eigen::Vector3d(0.01, 0.02, 0.03), &grad);
+      planning::TransformReference(object.reference, Eigen::Isometry3d::Identity());
+    }
+  } catch (const std::invalid_argument& e) {
+    Rejected(e);
+  }
+  return 0;
+}
+
+}  // namespace topoplan_fuzz
