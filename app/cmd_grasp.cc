@@ -8,6 +8,7 @@
 
 #include "app/assets.h"
 #include "app/command.h"
+#include "app/figures.h"
 #include "app/grasp_frames.h"
 #include "app/grasp_inputs.h"
 #include "app/io.h"
@@ -70,6 +71,7 @@ struct TransferArgs {
   double timeout = 0.0;
   bool frames = false;
   bool json = false;
+  std::vector<render::FigureFormat> formats;  // --formats
 };
 
 int RunTransfer(const TransferArgs& a) {
@@ -111,7 +113,7 @@ int RunTransfer(const TransferArgs& a) {
     return e.timeout ? kExitFailed : kExitInterrupted;
   }
 
-  const std::string text = WriteGraspOutputs(result, out.staging());
+  const std::string text = WriteGraspOutputs(result, out.staging(), a.formats);
   out.Commit();
   if (a.json) std::cout << text;
   std::fprintf(stderr, "wrote %s/report.json, summary.md, summary.png\n", a.out_dir.c_str());
@@ -156,6 +158,7 @@ void AddGraspCommands(CLI::App* root, CommandList* commands) {
   transfer->add_flag("--frames", ta->frames,
                      "also write frames of the transfer and stability test");
   transfer->add_flag("--json", ta->json, "print report.json to stdout");
+  AddFormatsFlag(transfer, &ta->formats);
   commands->push_back({transfer, [ta] { return RunTransfer(*ta); }});
 }
 

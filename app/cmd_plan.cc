@@ -10,12 +10,14 @@
 
 #include "app/assets.h"
 #include "app/command.h"
+#include "app/figures.h"
 #include "app/io.h"
 #include "app/reports.h"
 #include "app/robot_scene.h"
 #include "planning/planner.h"
 #include "planning/scenario.h"
 #include "planning/unwrap_benchmark.h"
+#include "render/figure.h"
 #include "render/image.h"
 
 namespace app {
@@ -29,7 +31,8 @@ struct PlanArgs {
   double start_wrap = std::numeric_limits<double>::quiet_NaN();  // NaN: not given
   double timeout = 0.0;
   bool frames = false, json = false;
-  RobotInputOptions robot_input;  // --package-path, --srdf
+  RobotInputOptions robot_input;              // --package-path, --srdf
+  std::vector<render::FigureFormat> formats;  // --formats
 };
 
 struct BenchArgs {
@@ -38,6 +41,7 @@ struct BenchArgs {
   long budget = -1;
   double perturb = 0.0;
   double timeout = 0.0;
+  std::vector<render::FigureFormat> formats;  // --formats
 };
 
 // Largest number of angles in --angles.
@@ -120,6 +124,7 @@ void AddPlanCommands(CLI::App* root, CommandList* commands) {
                  "also render DIR/frames/*.png, DIR/heatmaps/*.png (writhe per frame) and "
                  "DIR/writhe_cost.png");
   plan->add_flag("--json", pa->json, "print report.json to stdout");
+  AddFormatsFlag(plan, &pa->formats);
   plan->footer(
       "Writes DIR/trajectory.csv (step,time_s,<joints in robot order>) and DIR/report.json\n"
       "(planner, success, collision_checks, iterations, cost, time_s, start_writhe_total,\n"
@@ -160,8 +165,9 @@ void AddPlanCommands(CLI::App* root, CommandList* commands) {
          if (planner == planning::Planner::kAico) std::fprintf(stderr, "\n");
          const nlohmann::json report = WritePlanOutputs(*scenario, result, pa->seed, out.staging());
          if (pa->frames && result.trajectory.num_points() > 0) {
-           WritePlanFrames(*scenario, result.trajectory, out.staging(),
-                           [&stop](const render::Image&, const render::Image*) { stop.Poll(); });
+           WritePlanFrames(
+               *scenario, result.trajectory, out.staging(),
+               [&stop](const render::Image&, const render::Image*) { stop.Poll(); }, pa->formats);
          }
          out.Commit();
          if (pa->json) {
@@ -194,12 +200,15 @@ void AddPlanCommands(CLI::App* root, CommandList* commands) {
                      "perpendicular to its axis (seeded, reproducible; default 0)");
   AddTimeoutFlag(unwrap, &ba->timeout);
   unwrap->add_option("-o,--output", ba->output, "output folder")->required();
+  AddFormatsFlag(unwrap, &ba->formats);
   unwrap->footer(
       "Writes DIR/unwrap.csv (angle_deg,planner,seed,success,failure_reason,collision_checks,\n"
       "narrow_phase_calls,time_s,path_length,reach_error_m,pole_offset_m) and\n"
-      "DIR/unwrap.png (mean collision checks of successful runs vs angle, log scale, one curve\n"
-      "per planner, x markers where a run failed). time_s is wall-clock; everything else is\n"
-      "deterministic. Exit 0 when the benchmark ran (failed runs are data, not errors).");
+      "DIR/unwrap.png (three panels over the angle, log scale: collision checks, narrow-phase\n"
+      "calls, wall time; median and interquartile band over the seeds, one colour per planner,\n"
+      "crosses where a run failed; --formats adds unwrap.svg/.pdf). time_s is wall-clock;\n"
+      "everything else is deterministic. Exit 0 when the benchmark ran (failed runs are data, not "
+      "errors).");
   commands->push_back(
       {unwrap, [ba]() {
          planning::UnwrapBenchmarkOptions options;
@@ -240,7 +249,9 @@ void AddPlanCommands(CLI::App* root, CommandList* commands) {
          }
          WriteFileAtomic((fs::path(out.staging()) / "unwrap.csv").string(), UnwrapCsv(result));
          if (const auto figure = UnwrapFigure(result)) {
-           render::WritePng((fs::path(out.staging()) / "unwrap.png").string(), *figure);
+           const std::string png = (fs::path(out.staging()) / "unwrap.png").string();
+           render::WriteFigure(png, *figure);
+           WriteVectorFormats(png, *figure, ba->formats);
          }
          out.Commit();
          std::printf("wrote %s/unwrap.csv and %s/unwrap.png (%d runs)\n", ba->output.c_str(),
