@@ -567,20 +567,6 @@ std::string GraspHtmlTable(const phys::GraspTrialsResult& result) {
   return t.str();
 }
 
-std::string HtmlEscape(const std::string& s) {
-  std::string out;
-  for (char c : s) {
-    if (c == '<') {
-      out += "&lt;";
-    } else if (c == '>') {
-      out += "&gt;";
-    } else if (c == '&') {
-      out += "&amp;";
-    } else {
-      out += c;
-    }
-  }
-  return out;
-}
+std::string HtmlEscape(const std::string& s) { return render::XmlEscape(s); }
 
 }  // namespace app

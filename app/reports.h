@@ -134,7 +134,7 @@ std::string WriteGraspOutputs(const planning::physics::GraspTrialsResult& result
 // HTML table of the same numbers as summary.md (header and cells from result.methods).
 std::string GraspHtmlTable(const planning::physics::GraspTrialsResult& result);
 
-// `s` with <, >, & escaped for HTML text.
+// `s` with <, >, & and " escaped for HTML text (render::XmlEscape).
 std::string HtmlEscape(const std::string& s);
 
 }  // namespace app

@@ -80,6 +80,24 @@ std::string FormatNumber(double v, int decimals, bool plus) {
   return (plus && !zero ? "+" : "") + digits;
 }
 
+std::string XmlEscape(std::string_view s) {
+  std::string out;
+  for (char c : s) {
+    if (c == '<') {
+      out += "&lt;";
+    } else if (c == '>') {
+      out += "&gt;";
+    } else if (c == '&') {
+      out += "&amp;";
+    } else if (c == '"') {
+      out += "&quot;";
+    } else {
+      out += c;
+    }
+  }
+  return out;
+}
+
 Figure::Figure(std::function<Image()> raster, std::function<std::string(FigureFormat)> vector)
     : raster_(std::move(raster)), vector_(std::move(vector)) {}
 

@@ -5,6 +5,7 @@
 
 #include <functional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "render/image.h"
@@ -30,6 +31,9 @@ std::string PathWithFormat(const std::string& path, FigureFormat format);
 // Formats v with `decimals` digits after the point for figure text: U+2212 for negatives, never
 // a negative zero (−0.0004 at 3 decimals is "0.000"), and "+" before positives when `plus`.
 std::string FormatNumber(double v, int decimals, bool plus = false);
+
+// `s` with <, >, & and " escaped for XML/HTML text and attribute values.
+std::string XmlEscape(std::string_view s);
 
 class Figure {
  public:

@@ -496,15 +496,6 @@ Image RenderPlot(const std::vector<PlotSeries>& series, const PlotOptions& o) {
   return image;
 }
 
-Figure PlotFigure(const std::vector<PlotSeries>& series, const PlotOptions& options) {
-  return Figure([series, options] { return RenderPlot(series, options); },
-                [series, options](FigureFormat format) {
-                  std::string bytes;
-                  DrawPlot(series, options, format, nullptr, &bytes);
-                  return bytes;
-                });
-}
-
 namespace {
 
 void DrawPanels(const std::vector<PlotPanel>& panels, const PanelLayout& L, FigureFormat format,
@@ -678,32 +669,42 @@ void DrawBars(const BarChart& chart, const PlotOptions& o, FigureFormat format, 
 
 }  // namespace
 
-Figure PanelsFigure(const std::vector<PlotPanel>& panels, const PanelLayout& layout) {
+namespace {
+
+// A Figure whose PNG and vector encodings come from draw(format, Image*, std::string*).
+template <typename Draw>
+Figure PlplotFigure(Draw draw) {
   return Figure(
-      [panels, layout] {
+      [draw] {
         Image image;
-        DrawPanels(panels, layout, FigureFormat::kPng, &image, nullptr);
+        draw(FigureFormat::kPng, &image, nullptr);
         return image;
       },
-      [panels, layout](FigureFormat format) {
+      [draw](FigureFormat format) {
         std::string bytes;
-        DrawPanels(panels, layout, format, nullptr, &bytes);
+        draw(format, nullptr, &bytes);
         return bytes;
       });
 }
 
+}  // namespace
+
+Figure PlotFigure(const std::vector<PlotSeries>& series, const PlotOptions& options) {
+  return PlplotFigure([series, options](FigureFormat f, Image* image, std::string* bytes) {
+    DrawPlot(series, options, f, image, bytes);
+  });
+}
+
+Figure PanelsFigure(const std::vector<PlotPanel>& panels, const PanelLayout& layout) {
+  return PlplotFigure([panels, layout](FigureFormat f, Image* image, std::string* bytes) {
+    DrawPanels(panels, layout, f, image, bytes);
+  });
+}
+
 Figure BarChartFigure(const BarChart& chart, const PlotOptions& options) {
-  return Figure(
-      [chart, options] {
-        Image image;
-        DrawBars(chart, options, FigureFormat::kPng, &image, nullptr);
-        return image;
-      },
-      [chart, options](FigureFormat format) {
-        std::string bytes;
-        DrawBars(chart, options, format, nullptr, &bytes);
-        return bytes;
-      });
+  return PlplotFigure([chart, options](FigureFormat f, Image* image, std::string* bytes) {
+    DrawBars(chart, options, f, image, bytes);
+  });
 }
 
 }  // namespace render

@@ -8,6 +8,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "render/figure.h"
+
 namespace render::internal {
 namespace {
 
@@ -36,24 +38,6 @@ std::string Hex(const Rgb& c) {
   char buf[8];
   std::snprintf(buf, sizeof buf, "#%02x%02x%02x", c[0], c[1], c[2]);
   return buf;
-}
-
-std::string Escaped(std::string_view s) {
-  std::string out;
-  for (char c : s) {
-    if (c == '<') {
-      out += "&lt;";
-    } else if (c == '>') {
-      out += "&gt;";
-    } else if (c == '&') {
-      out += "&amp;";
-    } else if (c == '"') {
-      out += "&quot;";
-    } else {
-      out += c;
-    }
-  }
-  return out;
 }
 
 // Font size (em) of text `px` high: SVG font-size and cairo font size.
@@ -93,7 +77,7 @@ class SvgPainter : public VectorPainter {
         buf, sizeof buf,
         "<text x=\"%.2f\" y=\"%.2f\" font-size=\"%.2f\" text-anchor=\"%s\" fill=\"%s\"%s>", x, y,
         EmSize(px, bold), anchor, Hex(rgb).c_str(), bold ? " font-weight=\"bold\"" : "");
-    out_ << buf << Escaped(text) << "</text>\n";
+    out_ << buf << XmlEscape(text) << "</text>\n";
   }
   void VerticalText(float cx, float cy, std::string_view text, float px, const Rgb& rgb) override {
     const Font& f = Font::Regular();
@@ -103,7 +87,7 @@ class SvgPainter : public VectorPainter {
                   "<text transform=\"translate(%.2f %.2f) rotate(-90)\" x=\"0\" y=\"%.2f\" "
                   "font-size=\"%.2f\" text-anchor=\"middle\" fill=\"%s\">",
                   cx, cy, baseline, EmSize(px, false), Hex(rgb).c_str());
-    out_ << buf << Escaped(text) << "</text>\n";
+    out_ << buf << XmlEscape(text) << "</text>\n";
   }
   std::string Finish() override { return out_.str() + "</g>\n</svg>\n"; }
 
