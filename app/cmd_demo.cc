@@ -14,6 +14,7 @@
 #include "app/assets.h"
 #include "app/cli.h"
 #include "app/command.h"
+#include "app/figures.h"
 #include "app/grasp_frames.h"
 #include "app/grasp_inputs.h"
 #include "app/io.h"
@@ -21,6 +22,7 @@
 #include "planning/physics/grasp_trials.h"
 #include "planning/planner.h"
 #include "planning/unwrap_benchmark.h"
+#include "render/figure.h"
 #include "render/frames.h"
 #include "render/image.h"
 #include "topology/polyline.h"
@@ -33,9 +35,10 @@ namespace fs = std::filesystem;
 
 struct DemoArgs {
   std::string out_dir = "demo-out";
-  bool full = false;      // the whole Figure 4.5 sweep (0..900 deg, 5 seeds)
-  bool no_grasp = false;  // skip the grasp-transfer stage
-  double timeout = 0.0;   // --timeout: seconds, 0 = none
+  bool full = false;                          // the whole Figure 4.5 sweep (0..900 deg, 5 seeds)
+  bool no_grasp = false;                      // skip the grasp-transfer stage
+  double timeout = 0.0;                       // --timeout: seconds, 0 = none
+  std::vector<render::FigureFormat> formats;  // --formats: figures also as SVG/PDF
 };
 
 // Example chain pairs shipped in assets/chains/ and what their total writhe should be.
@@ -163,7 +166,14 @@ class Demo {
       WriteFileAtomic((out_ / "writhe" / (std::string(p.name) + ".json")).string(),
                       j.dump() + "\n");
       const std::string png = "writhe/" + std::string(p.name) + ".png";
-      rc = std::max(rc, Sub({"heatmap", a, b, "-o", (out_ / png).string(), "--size", "480x400"}));
+      for (render::FigureFormat f : args_.formats) {  // PNG always (the page shows it)
+        if (f == render::FigureFormat::kPng) continue;
+        rc = std::max(rc,
+                      Sub({"heatmap", a, b, "-o", render::PathWithFormat((out_ / png).string(), f),
+                           "--size", "480x400", "--mark-peak"}));
+      }
+      rc = std::max(rc, Sub({"heatmap", a, b, "-o", (out_ / png).string(), "--size", "480x400",
+                             "--mark-peak"}));
       char line[1024];
       std::snprintf(line, sizeof line,
                     "<tr><td>%s</td><td>%s &times; %s</td><td>%ldx%ld</td><td>%+.6f</td>"
@@ -194,7 +204,8 @@ class Demo {
         planning::RunPlanner(*scenario, planning::Planner::kAico, /*seed=*/0);
     *report = WritePlanOutputs(*scenario, result, /*seed=*/0, dir.string());
     if (result.trajectory.num_points() > 0) {
-      *frames = WritePlanFrames(*scenario, result.trajectory, dir.string(), on_frame);
+      *frames = WritePlanFrames(*scenario, result.trajectory, dir.string(), on_frame, nullptr,
+                                PlanFrameOptions{.formats = args_.formats});
     }
     std::printf("  %s\n", PlanSummaryLine(*scenario, result.report).c_str());
     return result.report.success ? kExitOk : kExitFailed;
@@ -279,7 +290,8 @@ class Demo {
     const planning::UnwrapBenchmarkResult result = planning::RunUnwrapBenchmark(options);
     WriteFileAtomic((dir / "unwrap.csv").string(), UnwrapCsv(result));
     if (const auto figure = UnwrapFigure(result)) {
-      render::WritePng((dir / "unwrap.png").string(), *figure);
+      render::WriteFigure((dir / "unwrap.png").string(), *figure);
+      WriteVectorFormats((dir / "unwrap.png").string(), *figure, args_.formats);
     }
     // Planners that fail at large angles are the figure's point, not a demo failure.
     html_ << "<h2>4. Collision checks vs angle to unwrap (Fig. 4.5)</h2>\n"
@@ -290,7 +302,7 @@ class Demo {
           << (args_.full ? "Full sweep."
                          : "Reduced sweep; <code>topoplan demo --full</code> runs "
                            "0&ndash;900&deg; with 5 seeds.")
-          << "</p>\n<p><img src=\"bench/unwrap.png\" width=\"720\"></p>\n"
+          << "</p>\n<p><img src=\"bench/unwrap.png\" width=\"960\"></p>\n"
           << UnwrapHtmlTable(result) << "<p><a href=\"bench/unwrap.csv\">unwrap.csv</a></p>\n";
     return kExitOk;
   }
@@ -307,7 +319,7 @@ class Demo {
     const phys::GraspTrialsResult result =
         phys::RunGraspTrials(ode, in.human, in.lwr_sdh, in.objects, in.grasps, methods, options,
                              GraspTransferHooks(dir, &frames));
-    WriteGraspOutputs(result, dir.string());
+    WriteGraspOutputs(result, dir.string(), args_.formats);
     // Unstable baseline grasps are results, not errors.
     html_ << "<h2>5. Grasp transfer: human hand &rarr; Schunk SDH, tested in ODE</h2>\n"
              "<p>Each human grasp is encoded as winding numbers of the finger chains about the "
@@ -399,6 +411,7 @@ void AddDemoCommand(CLI::App* root, CommandList* commands) {
   demo->add_flag("--full", args->full, "the whole Fig. 4.5 sweep (0..900 deg, 5 seeds)");
   demo->add_flag("--no-grasp", args->no_grasp, "skip the grasp-transfer stage");
   AddTimeoutFlag(demo, &args->timeout);
+  AddFormatsFlag(demo, &args->formats);
   commands->push_back({demo, [args]() { return Demo(*args).Run(); }});
 }
 

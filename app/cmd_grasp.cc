@@ -10,6 +10,7 @@
 
 #include "app/assets.h"
 #include "app/command.h"
+#include "app/figures.h"
 #include "app/grasp_frames.h"
 #include "app/grasp_inputs.h"
 #include "app/io.h"
@@ -75,6 +76,7 @@ struct TransferArgs {
   int perturb = 0;
   unsigned seed = 0;
   int threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  std::vector<render::FigureFormat> formats;  // --formats
 };
 
 int RunTransfer(const TransferArgs& a) {
@@ -116,14 +118,15 @@ int RunTransfer(const TransferArgs& a) {
   const phys::GraspTrialsResult result = phys::RunGraspTrials(ode, in.human, in.lwr_sdh, in.objects,
                                                               in.grasps, methods, options, hooks);
   if (stopped) {
-    WriteGraspOutputs(result, out.staging(), StoppedReportJson(*stopped, GraspReportJson(result)));
+    WriteGraspOutputs(result, out.staging(), StoppedReportJson(*stopped, GraspReportJson(result)),
+                      a.formats);
     out.Commit();
     std::fprintf(stderr, "%s: wrote %s/report.json (%zu of %zu grasps)\n", stopped->what(),
                  a.out_dir.c_str(), result.grasps.size(), in.grasps.size());
     return stopped->timeout ? kExitFailed : kExitInterrupted;
   }
 
-  const std::string text = WriteGraspOutputs(result, out.staging());
+  const std::string text = WriteGraspOutputs(result, out.staging(), a.formats);
   out.Commit();
   if (a.json) std::cout << text;
   std::fprintf(stderr, "wrote %s/report.json, summary.md, summary.png\n", a.out_dir.c_str());
@@ -180,6 +183,7 @@ void AddGraspCommands(CLI::App* root, CommandList* commands) {
                    "threads computing transfers ahead of the simulations (default: the number "
                    "of cores); the results do not depend on it")
       ->check(CLI::Range(1, 256));
+  AddFormatsFlag(transfer, &ta->formats);
   commands->push_back({transfer, [ta] { return RunTransfer(*ta); }});
 }
 

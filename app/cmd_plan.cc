@@ -14,6 +14,7 @@
 
 #include "app/assets.h"
 #include "app/command.h"
+#include "app/figures.h"
 #include "app/io.h"
 #include "app/ompl_log.h"
 #include "app/reports.h"
@@ -22,6 +23,7 @@
 #include "planning/replan.h"
 #include "planning/scenario.h"
 #include "planning/unwrap_benchmark.h"
+#include "render/figure.h"
 #include "render/image.h"
 
 namespace app {
@@ -35,8 +37,9 @@ struct PlanArgs {
   double start_wrap = std::numeric_limits<double>::quiet_NaN();  // NaN: not given
   double timeout = 0.0;
   bool frames = false, json = false;
-  bool no_stamp = false;          // --no-stamp: frames without scenario name and time
-  RobotInputOptions robot_input;  // --package-path, --srdf
+  bool no_stamp = false;                      // --no-stamp: frames without scenario name and time
+  RobotInputOptions robot_input;              // --package-path, --srdf
+  std::vector<render::FigureFormat> formats;  // --formats
   // Re-planning with a moving object (planning/replan.h).
   std::string moving_object, object_path;
   double replan_period = 0.1;
@@ -50,6 +53,7 @@ struct BenchArgs {
   double perturb = 0.0;
   double timeout = 0.0;
   std::string ompl_log;  // --ompl-log FILE: OMPL benchmark logs, one per angle (app/ompl_log.h)
+  std::vector<render::FigureFormat> formats;  // --formats
 };
 
 // Largest number of angles in --angles.
@@ -264,7 +268,7 @@ ExitCode RunMovingObjectPlan(const PlanArgs& pa, const planning::ScenarioOverrid
     WritePlanFrames(
         *scenario, r.executed, dir,
         [&stop](const render::Image&, const render::Image*) { stop.Poll(); }, &moving,
-        PlanFrameOptions{.stamp = !pa.no_stamp});
+        PlanFrameOptions{.stamp = !pa.no_stamp, .formats = pa.formats});
   }
   out.Commit();
   if (pa.json) {
@@ -322,6 +326,7 @@ void AddPlanCommands(CLI::App* root, CommandList* commands) {
   plan->add_option("--replan-sweeps", pa->replan_sweeps,
                    "AICO sweep budget of each re-plan (default 3)")
       ->check(CLI::Range(1, 1000));
+  AddFormatsFlag(plan, &pa->formats);
   plan->footer(
       "Writes DIR/trajectory.csv (step,time_s,<joints in robot order>) and DIR/report.json\n"
       "(planner, success, collision_checks, iterations, cost, time_s, start_writhe_total,\n"
@@ -373,7 +378,7 @@ void AddPlanCommands(CLI::App* root, CommandList* commands) {
            WritePlanFrames(
                *scenario, result.trajectory, out.staging(),
                [&stop](const render::Image&, const render::Image*) { stop.Poll(); }, nullptr,
-               PlanFrameOptions{.stamp = !pa->no_stamp});
+               PlanFrameOptions{.stamp = !pa->no_stamp, .formats = pa->formats});
          }
          out.Commit();
          if (pa->json) {
@@ -409,12 +414,15 @@ void AddPlanCommands(CLI::App* root, CommandList* commands) {
                      "also write OMPL benchmark logs (ompl_benchmark_statistics.py, Planner "
                      "Arena): FILE_<angle>deg.log, one experiment per angle");
   unwrap->add_option("-o,--output", ba->output, "output folder")->required();
+  AddFormatsFlag(unwrap, &ba->formats);
   unwrap->footer(
       "Writes DIR/unwrap.csv (angle_deg,planner,seed,success,failure_reason,collision_checks,\n"
       "narrow_phase_calls,time_s,path_length,reach_error_m,pole_offset_m) and\n"
-      "DIR/unwrap.png (mean collision checks of successful runs vs angle, log scale, one curve\n"
-      "per planner, x markers where a run failed). time_s is wall-clock; everything else is\n"
-      "deterministic. Exit 0 when the benchmark ran (failed runs are data, not errors).\n"
+      "DIR/unwrap.png (three panels over the angle, log scale: collision checks, narrow-phase\n"
+      "calls, wall time; median and interquartile band over the seeds, one colour per planner,\n"
+      "crosses where a run failed; --formats adds unwrap.svg/.pdf). time_s is wall-clock;\n"
+      "everything else is deterministic. Exit 0 when the benchmark ran (failed runs are data, not "
+      "errors).\n"
       "--ompl-log FILE: FILE with _<angle>deg before its extension per angle, in OMPL's\n"
       "benchmark log format (one planner per topoplan planner, one run per seed).");
   commands->push_back(
@@ -466,7 +474,9 @@ void AddPlanCommands(CLI::App* root, CommandList* commands) {
          }
          WriteFileAtomic((fs::path(out.staging()) / "unwrap.csv").string(), UnwrapCsv(result));
          if (const auto figure = UnwrapFigure(result)) {
-           render::WritePng((fs::path(out.staging()) / "unwrap.png").string(), *figure);
+           const std::string png = (fs::path(out.staging()) / "unwrap.png").string();
+           render::WriteFigure(png, *figure);
+           WriteVectorFormats(png, *figure, ba->formats);
          }
          if (log_dir) {
            for (size_t a = 0; a < result.angles_deg.size(); ++a) {

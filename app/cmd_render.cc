@@ -13,6 +13,7 @@
 #include "app/scene_builder.h"
 #include "app/scene_json.h"
 #include "render/diff.h"
+#include "render/figure.h"
 #include "render/image.h"
 #include "render/offscreen_context.h"
 #include "render/renderer.h"
@@ -32,8 +33,9 @@ struct RenderArgs {
 };
 
 struct HeatmapArgs {
-  std::string a_path, b_path, output, size = "640x480", title;
-  bool unsigned_variant = false;
+  std::string a_path, b_path, output, size = "640x480", title, row_label, col_label;
+  double clim = 0.0;
+  bool unsigned_variant = false, mark_peak = false;
 };
 
 struct DiffArgs {
@@ -123,32 +125,51 @@ void AddRenderCommands(CLI::App* root, CommandList* commands) {
 
   // heatmap ----------------------------------------------------------------------------------
   auto ha = std::make_shared<HeatmapArgs>();
-  CLI::App* heatmap =
-      root->add_subcommand("heatmap", "Writhe-matrix heatmap of two chains as a PNG figure");
+  CLI::App* heatmap = root->add_subcommand(
+      "heatmap", "Writhe-matrix heatmap of two chains as a figure (PNG, SVG or PDF)");
   heatmap->add_option("A", ha->a_path, "first chain CSV (rows)")->required();
   heatmap->add_option("B", ha->b_path, "second chain CSV (columns)")->required();
-  heatmap->add_option("-o,--output", ha->output, "output PNG")->required();
-  heatmap->add_option("--size", ha->size, "figure size WxH (default 640x480)");
+  heatmap->add_option("-o,--output", ha->output, "output figure: .png, .svg or .pdf")->required();
+  heatmap->add_option("--size", ha->size,
+                      "largest figure size WxH (default 640x480; the canvas follows the "
+                      "matrix's aspect)");
   heatmap->add_option("--title", ha->title, "title (default: chain names and total writhe)");
+  heatmap
+      ->add_option("--clim", ha->clim,
+                   "colour limit V: colours span [-V, V] (unsigned: [0, V]); default: the "
+                   "matrix's max |value|")
+      ->check(FiniteIn(1e-300, 1e300));
+  heatmap->add_option("--row-label", ha->row_label, "row axis caption (default: Segment of A)");
+  heatmap->add_option("--col-label", ha->col_label, "column axis caption (default: Segment of B)");
+  heatmap->add_flag("--mark-peak", ha->mark_peak,
+                    "outline the entry of largest |value| and name it under the axis");
   heatmap->add_flag("--unsigned", ha->unsigned_variant,
                     "unsigned solid-angle variant (sequential viridis colours)");
   heatmap->footer(
       "Signed writhe uses a diverging blue-white-red map with limits symmetric about 0;\n"
-      "cells are whole pixels; the colour bar shows the values.");
+      "cells are whole pixels in PNG, one <rect> each in SVG; text is real text in SVG/PDF.");
   commands->push_back(
       {heatmap, [ha]() {
          int width = 0, height = 0;
          ParseImageSize(ha->size, "--size", &width, &height);
          CheckOutputFile(ha->output, "-o");
+         render::FigureFormatForPath(ha->output, "-o");  // the format, checked before the work
          const topology::Chain a = topology::ReadChainCsv(ha->a_path);
          const topology::Chain b = topology::ReadChainCsv(ha->b_path);
          CheckWrithePairs(a.cols(), b.cols());
          topology::WritheOptions options;
          if (ha->unsigned_variant) options.variant = topology::WritheVariant::kUnsignedSolidAngle;
          const Eigen::MatrixXd w = topology::WritheMatrix(a, b, options);
-         render::WritePng(ha->output,
-                          WritheHeatmapFigure(w, Stem(ha->a_path), Stem(ha->b_path), width, height,
-                                              ha->title, !ha->unsigned_variant));
+         WritheFigureOptions f;
+         f.width = width;
+         f.height = height;
+         f.title = ha->title;
+         f.signed_values = !ha->unsigned_variant;
+         f.row_label = ha->row_label;
+         f.col_label = ha->col_label;
+         f.limit = ha->clim;
+         f.mark_peak = ha->mark_peak;
+         render::WriteFigure(ha->output, WritheFigure(w, Stem(ha->a_path), Stem(ha->b_path), f));
          std::printf("wrote %s (%ldx%ld writhe matrix, total %.6f)\n", ha->output.c_str(),
                      static_cast<long>(w.rows()), static_cast<long>(w.cols()), w.sum());
          return kExitOk;

@@ -8,7 +8,7 @@
 #include "app/command.h"
 #include "app/figures.h"
 #include "app/io.h"
-#include "render/image.h"
+#include "render/figure.h"
 #include "topology/polyline.h"
 #include "topology/winding.h"
 #include "topology/writhe.h"
@@ -71,7 +71,8 @@ void AddTopologyCommands(CLI::App* root, CommandList* commands) {
   writhe->add_flag("--unsigned", wa->unsigned_variant,
                    "unsigned solid angle Omega* in [0, 2pi) per entry (the thesis code's variant)");
   writhe->add_option("--heatmap", wa->heatmap_path,
-                     "also write the matrix as a heatmap figure (PNG; see `topoplan heatmap`)");
+                     "also write the matrix as a heatmap figure (.png, .svg or .pdf; see "
+                     "`topoplan heatmap`)");
   writhe->add_option("--heatmap-size", wa->heatmap_size, "heatmap size WxH (default 640x480)");
   writhe->footer(
       "Entry (i,j) = 1/(4pi) * double integral over segment i of A and segment j of B of\n"
@@ -85,6 +86,7 @@ void AddTopologyCommands(CLI::App* root, CommandList* commands) {
          if (!wa->heatmap_path.empty()) {
            ParseImageSize(wa->heatmap_size, "--heatmap-size", &width, &height);
            CheckOutputFile(wa->heatmap_path, "--heatmap");
+           render::FigureFormatForPath(wa->heatmap_path, "--heatmap");
          }
          topology::WritheOptions options;
          if (wa->unsigned_variant) options.variant = topology::WritheVariant::kUnsignedSolidAngle;
@@ -107,9 +109,12 @@ void AddTopologyCommands(CLI::App* root, CommandList* commands) {
            const auto stem = [](const std::string& p) {
              return std::filesystem::path(p).stem().string();
            };
-           render::WritePng(wa->heatmap_path,
-                            WritheHeatmapFigure(w, stem(wa->a_path), stem(wa->b_path), width,
-                                                height, "", !wa->unsigned_variant));
+           WritheFigureOptions f;
+           f.width = width;
+           f.height = height;
+           f.signed_values = !wa->unsigned_variant;
+           render::WriteFigure(wa->heatmap_path,
+                               WritheFigure(w, stem(wa->a_path), stem(wa->b_path), f), "--heatmap");
            std::fprintf(stderr, "wrote %s\n", wa->heatmap_path.c_str());
          }
          return kExitOk;

@@ -1,7 +1,6 @@
 // Figure helpers (see figures.h).
 #include "app/figures.h"
 
-#include <cstdio>
 #include <regex>
 #include <stdexcept>
 
@@ -23,26 +22,61 @@ void ParseImageSize(const std::string& text, const std::string& flag, int* width
   *height = h;
 }
 
+void AddFormatsFlag(CLI::App* command, std::vector<render::FigureFormat>* formats) {
+  *formats = {render::FigureFormat::kPng};
+  command
+      ->add_option_function<std::string>(
+          "--formats",
+          [formats](const std::string& list) {
+            *formats = render::ParseFigureFormats(list, "--formats");
+          },
+          "figure formats, a comma-separated subset of png,svg,pdf (default png)")
+      ->check([](const std::string& list) {
+        try {
+          render::ParseFigureFormats(list, "--formats");
+        } catch (const std::invalid_argument& e) {
+          return std::string(e.what()).substr(std::string("--formats: ").size());
+        }
+        return std::string();
+      });
+}
+
+std::vector<std::string> WriteVectorFormats(const std::string& png_path,
+                                            const render::Figure& figure,
+                                            const std::vector<render::FigureFormat>& formats) {
+  std::vector<render::FigureFormat> vector;
+  for (render::FigureFormat f : formats) {
+    if (f != render::FigureFormat::kPng) vector.push_back(f);
+  }
+  return render::WriteFigureFormats(png_path, figure, vector);
+}
+
+render::Figure WritheFigure(const Eigen::MatrixXd& w, const std::string& a_name,
+                            const std::string& b_name, const WritheFigureOptions& f) {
+  render::HeatmapOptions o;
+  o.scale = f.signed_values ? render::ColorScale::kDiverging : render::ColorScale::kSequential;
+  o.width = f.width;
+  o.height = f.height;
+  o.title = f.title.empty() ? "Writhe matrix " + a_name + " \u00d7 " + b_name + " (total " +
+                                  render::FormatNumber(w.sum(), 3) + ")"
+                            : f.title;
+  o.row_label = f.row_label.empty() ? "Segment of " + a_name : f.row_label;
+  o.col_label = f.col_label.empty() ? "Segment of " + b_name : f.col_label;
+  o.value_label = f.signed_values ? "Writhe" : "Solid angle (rad)";
+  o.limit = f.limit;
+  o.mark_peak = f.mark_peak;
+  return render::HeatmapFigure(w, o);
+}
+
 render::Image WritheHeatmapFigure(const Eigen::MatrixXd& w, const std::string& a_name,
                                   const std::string& b_name, int width, int height,
                                   const std::string& title, bool signed_values) {
-  render::HeatmapOptions o;
-  o.scale = signed_values ? render::ColorScale::kDiverging : render::ColorScale::kSequential;
-  o.width = width;
-  o.height = height;
-  if (title.empty()) {
-    char total[64];
-    std::snprintf(total, sizeof(total), "%.3f", w.sum());
-    std::string t = total;
-    if (!t.empty() && t[0] == '-') t = "\u2212" + t.substr(1);
-    o.title = "Writhe matrix " + a_name + " \u00d7 " + b_name + " (total " + t + ")";
-  } else {
-    o.title = title;
-  }
-  o.row_label = "segment of " + a_name;
-  o.col_label = "segment of " + b_name;
-  o.value_label = signed_values ? "writhe" : "solid angle (rad)";
-  return render::RenderHeatmap(w, o);
+  WritheFigureOptions f;
+  f.width = width;
+  f.height = height;
+  f.title = title;
+  f.signed_values = signed_values;
+  return WritheFigure(w, a_name, b_name, f).Raster();
 }
 
 }  // namespace app

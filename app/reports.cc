@@ -1,10 +1,12 @@
 #include "app/reports.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <iterator>
+#include <limits>
 #include <sstream>
 
 #include "app/figures.h"
@@ -12,6 +14,7 @@
 #include "app/scene_builder.h"
 #include "planning/grasp_quality.h"
 #include "planning/kinematics.h"
+#include "render/heatmap.h"
 #include "render/offscreen_context.h"
 #include "render/plot.h"
 #include "render/renderer.h"
@@ -104,6 +107,67 @@ std::string PlanSummaryLine(const planning::Scenario& s, const planning::PlanRep
   return line;
 }
 
+double PlanHeatmapLimit(const std::vector<Eigen::MatrixXd>& matrices, double clim) {
+  return clim > 0.0 ? clim : render::SequenceLimit(matrices);
+}
+
+namespace {
+
+// "arm" -> "Arm segment".
+std::string SegmentLabel(std::string chain) {
+  if (chain.empty()) return "Segment";
+  chain[0] = static_cast<char>(std::toupper(static_cast<unsigned char>(chain[0])));
+  return chain + " segment";
+}
+
+}  // namespace
+
+render::Figure PlanHeatmapFigure(const planning::Scenario& s, const Eigen::MatrixXd& w,
+                                 double time_s, double limit) {
+  WritheFigureOptions f;
+  f.width = 480;
+  f.height = 480;
+  f.limit = limit;
+  f.mark_peak = true;
+  f.title = "Writhe matrix at t = " + render::FormatNumber(time_s, 2) + " s (total " +
+            render::FormatNumber(w.sum(), 3, /*plus=*/true) + ")";
+  if (s.spec.writhe_report) {
+    f.row_label = SegmentLabel(s.spec.writhe_report->chain.name);
+    f.col_label = SegmentLabel(s.spec.writhe_report->object.name);
+  }
+  return WritheFigure(w, "robot chain", "object chain", f);
+}
+
+render::Figure WritheCostFigure(const std::string& scenario_name, const std::vector<double>& time_s,
+                                const std::vector<double>& writhe,
+                                const std::vector<double>& cost) {
+  render::PlotPanel top, bottom;
+  render::PlotSeries ws("", time_s, writhe);
+  ws.marker = render::Marker::kNone;
+  top.series = {ws};
+  top.axes.y_label = "Total writhe (turns)";
+  top.axes.legend = render::LegendPosition::kNone;
+  render::PlotSeries cs("", time_s, cost);
+  cs.marker = render::Marker::kNone;
+  cs.rgba = {214, 39, 40, 255};
+  bottom.series = {cs};
+  bottom.axes.x_label = "Time (s)";
+  bottom.axes.y_label = "Task cost";
+  bottom.axes.legend = render::LegendPosition::kNone;
+  bottom.axes.y_min = 0.0;
+  if (!time_s.empty()) {  // both panels on the same time axis
+    for (render::PlotPanel* p : {&top, &bottom}) {
+      p->axes.x_min = time_s.front();
+      p->axes.x_max = std::max(time_s.back(), time_s.front() + 1e-9);
+    }
+  }
+  render::PanelLayout layout;
+  layout.width = 640;
+  layout.height = 560;
+  layout.title = scenario_name + ": total writhe and task cost over the trajectory";
+  return render::PanelsFigure({top, bottom}, layout);
+}
+
 PlanFrames WritePlanFrames(
     const planning::Scenario& s, const planning::Trajectory& tr, const std::string& dir,
     const std::function<void(const render::Image& frame, const render::Image* heatmap)>& on_frame,
@@ -131,8 +195,7 @@ PlanFrames WritePlanFrames(
   SceneBuildOptions options;
   render::Camera camera;
   planning::TaskWorkspace ws(s.problem);
-  std::vector<double> x, writhe, cost;
-  double max_abs_w = 1e-9;
+  std::vector<double> x, writhe, cost;  // x: time (s)
   std::vector<Eigen::MatrixXd> matrices;
   for (int t = 0; t < frames.num_points(); ++t) {
     Eigen::MatrixXd W;
@@ -146,15 +209,13 @@ PlanFrames WritePlanFrames(
     } else {
       writhe.push_back(planning::ReportWritheTotal(s, frames.q.col(t), &W));
     }
-    if (W.size() > 0) max_abs_w = std::max(max_abs_w, W.cwiseAbs().maxCoeff());
     matrices.push_back(W);
-    x.push_back(t);
-    // Task cost at the matching time slice (RRT frames are mapped onto 0..T).
-    const int slice =
-        frames.num_points() > 1
-            ? static_cast<int>(std::lround(static_cast<double>(t) * s.problem.num_steps /
-                                           (frames.num_points() - 1)))
-            : 0;
+    // Task cost at the matching time slice (RRT frames are mapped onto 0..T); time τ · slice.
+    const double slice_t = frames.num_points() > 1 ? static_cast<double>(t) * s.problem.num_steps /
+                                                         (frames.num_points() - 1)
+                                                   : 0.0;
+    const int slice = static_cast<int>(std::lround(slice_t));
+    x.push_back(slice_t * planning::tau(s.problem));
     planning::EvaluateTasks(s.problem, slice, frames.q.col(t), true, &ws);
     cost.push_back(planning::TaskCost(s.problem, slice, Eigen::VectorXd(), ws));
   }
@@ -196,6 +257,7 @@ PlanFrames WritePlanFrames(
   heatmap_options.prefix = "heatmap_";
   heatmap_options.video = false;
   render::FrameWriter heatmap_writer((fs::path(dir) / "heatmaps").string(), heatmap_options);
+  const double heatmap_limit = PlanHeatmapLimit(matrices);  // one colour range for the sequence
   for (int t = 0; t < frames.num_points(); ++t) {
     planning::ForwardKinematics(s.robot, frames.q.col(t), &kin);
     if (moving)
@@ -208,10 +270,9 @@ PlanFrames WritePlanFrames(
     frame_writer.Add(frame, out.labels[t]);
     std::optional<render::Image> heatmap;
     if (matrices[t].size() > 0) {
-      char title[128];
-      std::snprintf(title, sizeof(title), "Writhe matrix, frame %d (total %+.3f)", t, writhe[t]);
-      heatmap = WritheHeatmapFigure(matrices[t], "robot chain", "object chain", 480, 480, title);
-      heatmap_writer.Add(*heatmap, out.labels[t]);
+      const render::Figure figure = PlanHeatmapFigure(s, matrices[t], x[t], heatmap_limit);
+      heatmap = figure.Raster();
+      WriteVectorFormats(heatmap_writer.Add(*heatmap, out.labels[t]), figure, frame_opts.formats);
     }
     if (on_frame) on_frame(frame, heatmap ? &*heatmap : nullptr);
     std::fprintf(stderr, "\rframes %d/%d", t + 1, frames.num_points());
@@ -220,26 +281,9 @@ PlanFrames WritePlanFrames(
   out.frames = frame_writer.Finish();
   out.heatmaps = heatmap_writer.Finish();
   if (!out.frames.video.empty()) std::fprintf(stderr, "wrote %s\n", out.frames.video.c_str());
-  const double max_cost = std::max(1e-12, *std::max_element(cost.begin(), cost.end()));
-  std::vector<double> cost_norm;
-  for (double c : cost) cost_norm.push_back(c / max_cost);
-  render::PlotSeries ws_series;
-  ws_series.label = "total writhe";
-  ws_series.x = x;
-  ws_series.y = writhe;
-  ws_series.marker = render::Marker::kNone;
-  render::PlotSeries cost_series;
-  cost_series.label = "task cost / max";
-  cost_series.x = x;
-  cost_series.y = cost_norm;
-  cost_series.marker = render::Marker::kNone;
-  render::PlotOptions po;
-  po.title = s.name + ": total writhe and task cost over the trajectory";
-  po.x_label = "frame";
-  po.y_label = "value";
-  po.legend = render::LegendPosition::kTopRight;
-  render::WritePng((fs::path(dir) / "writhe_cost.png").string(),
-                   render::RenderPlot({ws_series, cost_series}, po));
+  const render::Figure plot = WritheCostFigure(s.name, x, writhe, cost);
+  render::WriteFigure((fs::path(dir) / "writhe_cost.png").string(), plot);
+  WriteVectorFormats((fs::path(dir) / "writhe_cost.png").string(), plot, frame_opts.formats);
   return out;
 }
 
@@ -274,46 +318,98 @@ std::string UnwrapCsv(const planning::UnwrapBenchmarkResult& result) {
   return csv.str();
 }
 
-std::optional<render::Image> UnwrapFigure(const planning::UnwrapBenchmarkResult& result) {
-  std::vector<render::PlotSeries> plot;
-  for (size_t p = 0; p < result.planners.size(); ++p) {
-    render::PlotSeries ser;
-    ser.label = planning::PlannerName(result.planners[p]);
-    for (size_t a = 0; a < result.angles_deg.size(); ++a) {
-      ser.x.push_back(result.angles_deg[a]);
-      ser.y.push_back(planning::UnwrapSummaryCell(result, a, p).mean_checks);
+namespace {
+
+// Quantile q in [0, 1] of `v` (sorted in place), linear between order statistics.
+double Quantile(std::vector<double>* v, double q) {
+  std::sort(v->begin(), v->end());
+  const double pos = q * static_cast<double>(v->size() - 1);
+  const size_t k = static_cast<size_t>(pos);
+  if (k + 1 >= v->size()) return v->back();
+  return (*v)[k] + (pos - static_cast<double>(k)) * ((*v)[k + 1] - (*v)[k]);
+}
+
+}  // namespace
+
+std::optional<render::Figure> UnwrapFigure(const planning::UnwrapBenchmarkResult& result) {
+  if (result.runs.empty()) return std::nullopt;
+  struct Measure {
+    const char* title;
+    const char* y_label;
+    double (*value)(const planning::PlanReport&);
+  };
+  const Measure measures[3] = {
+      {"Collision checks", "Collision checks",
+       [](const planning::PlanReport& r) { return static_cast<double>(r.collision_checks); }},
+      {"Narrow-phase calls", "Narrow-phase calls",
+       [](const planning::PlanReport& r) { return static_cast<double>(r.narrow_phase_calls); }},
+      {"Wall time", "Wall time (s)", [](const planning::PlanReport& r) { return r.time_s; }}};
+  int seeds = 0;
+  for (const planning::UnwrapRun& r : result.runs) seeds = std::max(seeds, r.seed + 1);
+  std::vector<render::PlotPanel> panels;
+  for (const Measure& m : measures) {
+    render::PlotPanel panel;
+    for (size_t p = 0; p < result.planners.size(); ++p) {
+      render::PlotSeries ser;
+      ser.label = planning::PlannerName(result.planners[p]);
+      bool any_band = false;
+      for (double angle : result.angles_deg) {
+        std::vector<double> solved;
+        for (const planning::UnwrapRun& r : result.runs) {
+          if (r.planner != result.planners[p] || r.angle_deg != angle) continue;
+          // Zero cannot be drawn on a log axis: a run with no count sits at 1 (the axis floor).
+          const double v = std::max(m.value(r.report), m.value == measures[2].value ? 1e-4 : 1.0);
+          if (r.report.success) {
+            solved.push_back(v);
+          } else {
+            ser.failure_x.push_back(angle);
+            ser.failure_y.push_back(v);
+          }
+        }
+        const double nan = std::numeric_limits<double>::quiet_NaN();
+        ser.x.push_back(angle);
+        ser.y.push_back(solved.empty() ? nan : Quantile(&solved, 0.5));
+        ser.y_lo.push_back(solved.size() >= 2 ? Quantile(&solved, 0.25) : nan);
+        ser.y_hi.push_back(solved.size() >= 2 ? Quantile(&solved, 0.75) : nan);
+        any_band |= solved.size() >= 2;
+      }
+      if (!any_band) ser.y_lo.clear(), ser.y_hi.clear();
+      panel.series.push_back(ser);
     }
-    for (const planning::UnwrapRun& r : result.runs) {
-      if (r.planner != result.planners[p] || r.report.success) continue;
-      ser.failure_x.push_back(r.angle_deg);
-      ser.failure_y.push_back(static_cast<double>(std::max<long>(r.report.collision_checks, 1)));
+    panel.axes.title = m.title;
+    panel.axes.x_label = "Angle to unwrap (deg)";
+    panel.axes.y_label = m.y_label;
+    panel.axes.log_y = true;
+    panel.axes.legend =
+        panels.empty() ? render::LegendPosition::kTopLeft : render::LegendPosition::kNone;
+    // Headroom above the data (a third of the decades shown) for the legend and the failure
+    // markers at the budget.
+    double y_top = 0.0, y_bottom = std::numeric_limits<double>::infinity();
+    for (const auto& ser : panel.series) {
+      for (const std::vector<double>* v : {&ser.y, &ser.y_lo, &ser.y_hi, &ser.failure_y}) {
+        for (double y : *v) {
+          if (std::isfinite(y) && y > 0.0) {
+            y_top = std::max(y_top, y);
+            y_bottom = std::min(y_bottom, y);
+          }
+        }
+      }
     }
-    plot.push_back(ser);
-  }
-  render::PlotOptions po;
-  po.width = 800;
-  po.height = 560;
-  po.title = "Unwrapping: collision checks vs angle to unwrap (mean of successful runs)";
-  po.x_label = "Angle to unwrap (degrees)";
-  po.y_label = "collision checks";
-  po.log_y = true;
-  bool any_finite = false;
-  for (const auto& ser : plot) {
-    for (double y : ser.y) any_finite |= std::isfinite(y);
-    any_finite |= !ser.failure_y.empty();
-  }
-  if (!any_finite) return std::nullopt;
-  // Headroom above the largest value so failure markers (drawn at the budget) are not cut by the
-  // top of the frame.
-  double y_top = 0.0;
-  for (const auto& ser : plot) {
-    for (double y : ser.y) {
-      if (std::isfinite(y)) y_top = std::max(y_top, y);
+    if (y_top > 0.0) {
+      const double lo = std::floor(std::log10(y_bottom)), hi = std::log10(y_top);
+      panel.axes.y_min = std::pow(10.0, lo);
+      panel.axes.y_max = std::pow(10.0, std::ceil(hi + 0.5 * std::max(1.0, hi - lo)));
     }
-    for (double y : ser.failure_y) y_top = std::max(y_top, y);
+    panels.push_back(panel);
   }
-  if (y_top > 0.0) po.y_max = 2.5 * y_top;
-  return render::RenderPlot(plot, po);
+  render::PanelLayout layout;
+  layout.width = 1380;
+  layout.height = 480;
+  layout.columns = 3;
+  layout.title = "Unwrapping (Fig. 4.5): median over the solved runs of " + std::to_string(seeds) +
+                 (seeds == 1 ? " seed" : " seeds") +
+                 (seeds >= 2 ? ", band: interquartile range" : "") + "; \u2715 failed run";
+  return render::PanelsFigure(panels, layout);
 }
 
 std::string UnwrapHtmlTable(const planning::UnwrapBenchmarkResult& result) {
@@ -503,57 +599,67 @@ std::string GraspSummaryMarkdown(const phys::GraspTrialsResult& result) {
   return md.str();
 }
 
-render::Image GraspSummaryFigure(const phys::GraspTrialsResult& result) {
-  std::vector<render::PlotSeries> series;
-  const render::Marker markers[4] = {render::Marker::kCircle, render::Marker::kSquare,
-                                     render::Marker::kTriangle, render::Marker::kDiamond};
-  const size_t n = result.grasps.size();
-  // Methods side by side within ±0.36 of the grasp (0.12 apart for up to 6 methods).
-  const double methods = static_cast<double>(result.methods.size());
-  const double spacing = std::min(0.12, 0.72 / std::max(1.0, methods));
+GraspSummaryData GraspSummaryDataOf(const phys::GraspTrialsResult& result) {
+  GraspSummaryData d;
+  d.title = "SDH grasp transfer: gravity directions held (\u03bc = " +
+            render::FormatNumber(result.stability.sim.mu, 2) + ")";
+  d.y_label = "Gravity directions held (of 6)";
+  d.y_max = 6.0;
+  for (const planning::HumanGrasp& g : result.grasps) d.grasps.push_back(g.name);
   for (size_t mi = 0; mi < result.methods.size(); ++mi) {
     const phys::GraspMethodSummary& s = result.summary[mi];
-    render::PlotSeries ps;
-    std::ostringstream label;
-    label << planning::ToString(s.method) << " (" << s.stable << "/" << n << " stable)";
-    ps.label = label.str();
-    for (size_t gi = 0; gi < n; ++gi) {
-      ps.x.push_back(static_cast<double>(gi + 1) +
-                     spacing * (static_cast<double>(mi) - (methods - 1.0) / 2.0));
-      ps.y.push_back(result.trials[gi][mi].stability.directions_passed);
+    d.methods.push_back(std::string(planning::ToString(s.method)) + " (" +
+                        std::to_string(s.stable) + "/" + std::to_string(s.grasps) + " stable)");
+    d.value.emplace_back();
+    for (size_t gi = 0; gi < result.grasps.size(); ++gi) {
+      d.value.back().push_back(result.trials[gi][mi].stability.directions_passed);
     }
-    ps.line = false;
-    ps.marker = markers[mi % 4];
-    series.push_back(ps);
   }
-  render::PlotOptions po;
-  po.width = 900;
-  po.height = 560;
-  po.title = "SDH grasp transfer: gravity directions held (mu " +
-             std::to_string(result.stability.sim.mu).substr(0, 4) + ")";
-  po.x_label = "grasp (row of summary.md)";
-  po.y_label = "directions held";
-  po.x_min = 0.5;
-  po.x_max = n + 0.5;
-  po.y_min = -0.5;
-  po.y_max = 7.5;
-  po.legend = render::LegendPosition::kTopLeft;
-  return render::RenderPlot(series, po);
-}
-
-std::string WriteGraspOutputs(const phys::GraspTrialsResult& result, const std::string& dir) {
-  return WriteGraspOutputs(result, dir, GraspReportJson(result));
+  return d;
 }
 
 std::string WriteGraspOutputs(const phys::GraspTrialsResult& result, const std::string& dir,
-                              const nlohmann::json& report) {
+                              const std::vector<render::FigureFormat>& formats) {
+  return WriteGraspOutputs(result, dir, GraspReportJson(result), formats);
+}
+
+render::Figure GraspSummaryFigure(const GraspSummaryData& d) {
+  render::BarChart chart;
+  chart.categories = d.grasps;
+  for (size_t m = 0; m < d.methods.size(); ++m) {
+    render::BarSeries b;
+    b.label = d.methods[m];
+    b.values = d.value.at(m);
+    if (!d.lo.empty()) {
+      b.lo = d.lo.at(m);
+      b.hi = d.hi.at(m);
+    }
+    chart.series.push_back(b);
+  }
+  render::PlotOptions po;
+  po.width = 960;
+  po.height = 560;
+  po.title = d.title;
+  po.x_label = "Grasp";
+  po.y_label = d.y_label;
+  po.y_min = 0.0;
+  po.y_max = d.y_max;
+  po.legend = render::LegendPosition::kOutsideRight;
+  return render::BarChartFigure(chart, po);
+}
+
+std::string WriteGraspOutputs(const phys::GraspTrialsResult& result, const std::string& dir,
+                              const nlohmann::json& report,
+                              const std::vector<render::FigureFormat>& formats) {
   fs::create_directories(dir);
   const std::string text = report.dump(1) + "\n";
   WriteFileAtomic((fs::path(dir) / "report.json").string(), text);
   WriteFileAtomic((fs::path(dir) / "summary.md").string(), GraspSummaryMarkdown(result));
   if (!result.grasps.empty()) {  // a run stopped before its first grasp has nothing to plot
-    render::WriteFileAtomically((fs::path(dir) / "summary.png").string(),
-                                render::EncodePng(GraspSummaryFigure(result)));
+    const render::Figure figure = GraspSummaryFigure(GraspSummaryDataOf(result));
+    const std::string png = (fs::path(dir) / "summary.png").string();
+    render::WriteFigure(png, figure);
+    WriteVectorFormats(png, figure, formats);
   }
   return text;
 }
@@ -581,20 +687,6 @@ std::string GraspHtmlTable(const phys::GraspTrialsResult& result) {
   return t.str();
 }
 
-std::string HtmlEscape(const std::string& s) {
-  std::string out;
-  for (char c : s) {
-    if (c == '<') {
-      out += "&lt;";
-    } else if (c == '>') {
-      out += "&gt;";
-    } else if (c == '&') {
-      out += "&amp;";
-    } else {
-      out += c;
-    }
-  }
-  return out;
-}
+std::string HtmlEscape(const std::string& s) { return render::XmlEscape(s); }
 
 }  // namespace app

@@ -6,11 +6,13 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "app/io.h"
 #include "planning/physics/grasp_trials.h"
 #include "planning/planner.h"
 #include "planning/unwrap_benchmark.h"
+#include "render/figure.h"
 #include "render/frames.h"
 #include "render/image.h"
 
@@ -46,9 +48,21 @@ std::string PlanSummaryLine(const planning::Scenario& scenario, const planning::
 
 // Writes DIR/frames/frame_*.png (the robot at every trajectory point; RRT paths resampled to at
 // most 100 frames), DIR/heatmaps/heatmap_*.png (writhe matrix of the report pair per frame, when
-// the scenario has one) and DIR/writhe_cost.png (total writhe and task cost / max over the
-                           const MovingObjectFrames* moving = nullptr,
-                           const PlanFrameOptions& options = {});
+// the scenario has one; one colour range for the whole sequence, PlanHeatmapLimit) and
+// DIR/writhe_cost.png (WritheCostFigure). Every robot frame uses one camera that fits the robot's
+// swept volume over the whole trajectory and the scenario's box task regions (FitSceneCamera),
+// draws those boxes (AddTaskBoxes), and, with options.stamp, carries the scenario name and its
+// time stamp in the top-left corner; contact-sheet labels are the time stamps. options.formats
+// adds .svg/.pdf of every heatmap and of writhe_cost next to the PNGs (PNG is always written).
+// `on_frame`, if given, sees every robot frame and its heatmap (null when none). Throws
+// EnvironmentError when there is no GL context.
+// With `moving` (re-planning, planning/replan.h), frame t shows object `moving->object` at
+// moving->positions[t] (orientation kept) and its writhe (heatmap, curve) uses the report object
+// chain moved with it; the task cost is that of the scenario's problem (objects at home).
+struct PlanFrameOptions {
+  bool stamp = true;  // scenario name and time in a corner of each robot frame (--no-stamp)
+  std::vector<render::FigureFormat> formats;  // --formats: vector copies of the figures
+};
 struct PlanFrames {
   render::FrameSequence frames, heatmaps;
   // Per robot frame: "t = 1.25 s" (time slice × dt), or "path 37%" (share of the joint-space path
@@ -66,6 +80,20 @@ PlanFrames WritePlanFrames(const planning::Scenario& scenario,
                            const MovingObjectFrames* moving = nullptr,
                            const PlanFrameOptions& options = {});
 
+// The colour limit of a heatmap sequence: `clim` when > 0, else the largest |entry| over all
+// matrices (render::SequenceLimit): symmetric, the same for every frame.
+double PlanHeatmapLimit(const std::vector<Eigen::MatrixXd>& matrices, double clim = 0.0);
+
+// The writhe heatmap of the report pair at time `time_s` of a plan: rows "<Chain> segment",
+// columns "<Object> segment" (names from the scenario's writhe_report), colour limit `limit`,
+// title "Writhe matrix at t = <time> s (total <sum>)".
+render::Figure PlanHeatmapFigure(const planning::Scenario& scenario, const Eigen::MatrixXd& w,
+                                 double time_s, double limit);
+
+// Total writhe (turns) and task cost over time (s) on two panels sharing the time axis.
+render::Figure WritheCostFigure(const std::string& scenario_name, const std::vector<double>& time_s,
+                                const std::vector<double>& writhe, const std::vector<double>& cost);
+
 // A plan report (PlanReportJson) as a two-column HTML table of its main fields.
 std::string PlanReportHtml(const nlohmann::json& report);
 
@@ -75,10 +103,11 @@ std::string PlanReportHtml(const nlohmann::json& report);
 // time_s,path_length,reach_error_m,pole_offset_m", one row per run in result.runs order.
 std::string UnwrapCsv(const planning::UnwrapBenchmarkResult& result);
 
-// unwrap.png: mean collision checks of successful runs vs angle (log y), one curve per planner in
-// the result's planner order, x markers at the failed runs' check counts. Empty when there is
-// nothing to draw (no successful run and no failure).
-std::optional<render::Image> UnwrapFigure(const planning::UnwrapBenchmarkResult& result);
+// unwrap.png (Fig. 4.5): three panels over the angle to unwrap, log y: collision checks,
+// narrow-phase calls and wall time. Per planner (one colour each, result order): the median over
+// the seeds' successful runs, an interquartile band when an angle has at least two, and a cross
+// at each failed run's value. Empty when there is nothing to draw (no run at all).
+std::optional<render::Figure> UnwrapFigure(const planning::UnwrapBenchmarkResult& result);
 
 // HTML table: one row per angle, one column per planner (result order): "solved/runs, mean checks
 // of successful runs" (&ndash; when none solved), the same numbers as the figure.
@@ -100,22 +129,40 @@ nlohmann::json GraspReportJson(const planning::physics::GraspTrialsResult& resul
 // intervals; with perturb > 0 each cell also gives "perturbed s/N" and a perturbed-rate row.
 std::string GraspSummaryMarkdown(const planning::physics::GraspTrialsResult& result);
 
-// summary.png: directions held per grasp, one marker series per method.
-render::Image GraspSummaryFigure(const planning::physics::GraspTrialsResult& result);
+// Input of the grasp summary figure: one group of bars per grasp, one bar (colour) per method,
+// with an optional interval [lo, hi] per bar, e.g. a 95% confidence interval over perturbed
+// trials. value[m][g] is method m on grasp g; lo and hi are empty or have value's shape (NaN:
+// no whisker on that bar).
+struct GraspSummaryData {
+  std::string title;
+  std::string y_label;
+  double y_max = 1.0;  // top of the value axis
+  std::vector<std::string> grasps, methods;
+  std::vector<std::vector<double>> value, lo, hi;
+};
+
+// Today's single runs: gravity directions held out of 6 per grasp and method (no whiskers);
+// method names carry their stable count ("winding (3/8 stable)").
+GraspSummaryData GraspSummaryDataOf(const planning::physics::GraspTrialsResult& result);
+
+// summary.png: grouped bars, grasp names on the x axis, legend of methods at the right.
+render::Figure GraspSummaryFigure(const GraspSummaryData& data);
 
 // Writes DIR/report.json (GraspReportJson, 1-space indent), DIR/summary.md and DIR/summary.png
-// (not when result.grasps is empty: a run stopped before its first grasp); returns the
-// report.json text.
+// (plus summary.svg/.pdf per `formats`; no figure when result.grasps is empty: a run stopped
+// before its first grasp); returns the report.json text.
 std::string WriteGraspOutputs(const planning::physics::GraspTrialsResult& result,
-                              const std::string& dir);
+                              const std::string& dir,
+                              const std::vector<render::FigureFormat>& formats = {});
 // The same with a given report.json (e.g. GraspReportJson with a "status" of a stopped run).
 std::string WriteGraspOutputs(const planning::physics::GraspTrialsResult& result,
-                              const std::string& dir, const nlohmann::json& report);
+                              const std::string& dir, const nlohmann::json& report,
+                              const std::vector<render::FigureFormat>& formats = {});
 
 // HTML table of the same numbers as summary.md (header and cells from result.methods).
 std::string GraspHtmlTable(const planning::physics::GraspTrialsResult& result);
 
-// `s` with <, >, & escaped for HTML text.
+// `s` with <, >, & and " escaped for HTML text (render::XmlEscape).
 std::string HtmlEscape(const std::string& s);
 
 }  // namespace app

@@ -728,7 +728,7 @@ PYBIND11_MODULE(_core, m) {
         const auto result = UnwrapResultFromRows(rows, angles, planners, seeds);
         const auto figure = app::UnwrapFigure(result);
         if (!figure) return py::none();
-        return ImageArray(*figure);
+        return ImageArray(figure->Raster());
       },
       py::arg("rows"), py::arg("angles"), py::arg("planners"), py::arg("seeds"),
       "The figure of `topoplan bench unwrap` (mean collision checks of successful runs vs angle)\n"

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "render/internal/canvas.h"
+#include "render/internal/painter.h"
 #include "render/internal/text.h"
 #include "render/internal/ticks.h"
 
@@ -80,25 +81,47 @@ std::array<std::uint8_t, 3> ViridisColor(double t) {
   return Interpolate(kViridis, t);
 }
 
+double SequenceLimit(const std::vector<Eigen::MatrixXd>& matrices) {
+  double max_abs = 0.0;
+  for (const Eigen::MatrixXd& m : matrices) {
+    for (Eigen::Index i = 0; i < m.size(); ++i) {
+      if (std::isfinite(m.data()[i])) max_abs = std::max(max_abs, std::abs(m.data()[i]));
+    }
+  }
+  return max_abs > 0.0 ? max_abs : 1.0;
+}
+
+namespace {
+
+// Margins around the matrix (pixels) for a figure of text sizes `sz`.
+struct Margins {
+  int top, bottom, left, bar_block;
+};
+Margins MarginsFor(int rows, const HeatmapOptions& o, const TextSizes& sz) {
+  const Font& font = Font::Regular();
+  Margins m;
+  m.top = o.title.empty() ? 12 : static_cast<int>(std::ceil(sz.title * 1.2f)) + 16;
+  m.bottom = static_cast<int>(sz.tick + sz.label) + kTickLen + 18 +
+             (o.mark_peak ? static_cast<int>(std::ceil(sz.tick * 1.5f)) : 0);
+  const float widest_row = font.Width(std::to_string(rows - 1), sz.tick);
+  m.left = static_cast<int>(std::ceil(widest_row)) + kTickLen + 10 + static_cast<int>(sz.label) + 8;
+  m.bar_block = 14 + 14 + kTickLen + 4 + static_cast<int>(font.Width("\u22120.0000", sz.tick)) + 8 +
+                static_cast<int>(sz.label) + 6;
+  return m;
+}
+
+}  // namespace
+
 HeatmapLayout ComputeHeatmapLayout(int rows, int cols, const HeatmapOptions& o) {
   if (rows < 1 || cols < 1) throw std::invalid_argument("heatmap: empty matrix");
   if (o.width < 160 || o.height < 120) {
     throw std::invalid_argument("heatmap: figure size " + std::to_string(o.width) + "x" +
                                 std::to_string(o.height) + " is below the minimum 160x120");
   }
-  const Font& font = Font::Regular();
-  const auto [kTitlePx, kLabelPx, kTickPx] = SizesFor(o.width, o.height);
-  // Margins: title, tick labels and captions around the matrix; colour bar on the right.
-  const int top = o.title.empty() ? 12 : static_cast<int>(std::ceil(kTitlePx * 1.2f)) + 16;
-  const int bottom = static_cast<int>(kTickPx + kLabelPx) + kTickLen + 18;
-  const float widest_row = font.Width(std::to_string(rows - 1), kTickPx);
-  const int left =
-      static_cast<int>(std::ceil(widest_row)) + kTickLen + 10 + static_cast<int>(kLabelPx) + 8;
-  const int bar_block = 14 + 14 + kTickLen + 4 +
-                        static_cast<int>(font.Width("\u22120.0000", kTickPx)) + 8 +
-                        static_cast<int>(kLabelPx) + 6;
-  const int avail_w = std::max(1, o.width - left - bar_block - 6);
-  const int avail_h = std::max(1, o.height - top - bottom);
+  const TextSizes sz = SizesFor(o.width, o.height);
+  const Margins m = MarginsFor(rows, o, sz);
+  const int avail_w = std::max(1, o.width - m.left - m.bar_block - 6);
+  const int avail_h = std::max(1, o.height - m.top - m.bottom);
 
   HeatmapLayout L;
   auto edges = [](int n, int origin, int span, std::vector<int>* e) {
@@ -121,33 +144,45 @@ HeatmapLayout ComputeHeatmapLayout(int rows, int cols, const HeatmapOptions& o) 
     L.plot_w = std::min(avail_w, cols * std::max(cell_w, 1));
     L.plot_h = std::min(avail_h, rows * std::max(cell_h, 1));
   }
-  // Centre the whole group (row labels, matrix, colour bar) horizontally.
-  L.plot_x = left + (avail_w - L.plot_w) / 2;
-  L.plot_y = top + (avail_h - L.plot_h) / 2;
+  // The colour bar keeps a readable height even next to a flat matrix, centred on it.
+  L.bar_w = 14;
+  L.bar_h = L.plot_h >= 80 ? L.plot_h : std::min(avail_h, 120);
+  L.width = o.width;
+  L.height = o.height;
+  if (o.fit_to_matrix) {  // shrink the canvas to the matrix, the colour bar and the title
+    const int title_w =
+        o.title.empty() ? 0 : static_cast<int>(std::ceil(Font::Bold().Width(o.title, sz.title)));
+    L.width = std::clamp(std::max(m.left + L.plot_w + m.bar_block + 6, title_w + 16), 160, o.width);
+    L.height = std::clamp(m.top + std::max(L.plot_h, L.bar_h) + m.bottom, 120, o.height);
+  }
+  const int free_w = std::max(0, L.width - m.left - m.bar_block - 6 - L.plot_w);
+  const int free_h = std::max(0, L.height - m.top - m.bottom - L.plot_h);
+  // Centre the whole group (row labels, matrix, colour bar).
+  L.plot_x = m.left + free_w / 2;
+  L.plot_y = m.top + free_h / 2;
   edges(cols, L.plot_x, L.plot_w, &L.col_edges);
   edges(rows, L.plot_y, L.plot_h, &L.row_edges);
   L.bar_x = L.plot_x + L.plot_w + 14;
-  L.bar_w = 14;
-  // The colour bar keeps a readable height even next to a flat matrix, centred on it.
-  L.bar_h = L.plot_h >= 80 ? L.plot_h : std::min(avail_h, 120);
   L.bar_y = L.plot_y + (L.plot_h - L.bar_h) / 2;
   return L;
 }
 
-Image RenderHeatmap(const Eigen::MatrixXd& values, const HeatmapOptions& o) {
+namespace {
+
+void DrawHeatmap(const Eigen::MatrixXd& values, const HeatmapOptions& o, const HeatmapLayout& L,
+                 internal::Painter* p) {
   const int rows = static_cast<int>(values.rows()), cols = static_cast<int>(values.cols());
-  const HeatmapLayout L = ComputeHeatmapLayout(rows, cols, o);
   const Font& font = Font::Regular();
-  const Font& bold = Font::Bold();
   const auto [kTitlePx, kLabelPx, kTickPx] = SizesFor(o.width, o.height);
-  Image img(o.width, o.height, 255, 255, 255);
 
   // Colour scale and limits.
   double max_abs = 0.0;
   bool any_negative = false;
+  Eigen::Index peak = -1;
   for (Eigen::Index i = 0; i < values.size(); ++i) {
     const double v = values.data()[i];
     if (!std::isfinite(v)) continue;
+    if (peak < 0 || std::abs(v) > max_abs) peak = i;
     max_abs = std::max(max_abs, std::abs(v));
     any_negative = any_negative || v < 0.0;
   }
@@ -158,15 +193,14 @@ Image RenderHeatmap(const Eigen::MatrixXd& values, const HeatmapOptions& o) {
     return diverging ? DivergingColor(v / limit) : ViridisColor(v / limit);
   };
 
-  // Cells.
+  // Cells, row-major.
   for (int i = 0; i < rows; ++i) {
     for (int j = 0; j < cols; ++j) {
-      internal::FillRect(&img, L.col_edges[j], L.row_edges[i], L.col_edges[j + 1],
-                         L.row_edges[i + 1], color_of(values(i, j)));
+      p->Fill(L.col_edges[j], L.row_edges[i], L.col_edges[j + 1], L.row_edges[i + 1],
+              color_of(values(i, j)), "cell");
     }
   }
-  internal::StrokeRect(&img, L.plot_x - 1, L.plot_y - 1, L.plot_x + L.plot_w + 1,
-                       L.plot_y + L.plot_h + 1, kFrame);
+  p->Stroke(L.plot_x - 1, L.plot_y - 1, L.plot_x + L.plot_w + 1, L.plot_y + L.plot_h + 1, kFrame);
 
   // Index ticks: a step of 1, 2, 5, 10, ... so that labels do not crowd.
   auto index_step = [&](int n, int span, float label_px) {
@@ -182,51 +216,82 @@ Image RenderHeatmap(const Eigen::MatrixXd& values, const HeatmapOptions& o) {
   const int x_axis_y = L.plot_y + L.plot_h + 1;
   for (int j = 0; j < cols; j += col_step) {
     const int cx = (L.col_edges[j] + L.col_edges[j + 1]) / 2;
-    internal::FillRect(&img, cx, x_axis_y, cx + 1, x_axis_y + kTickLen, kFrame);
-    font.Draw(&img, static_cast<float>(cx) + 0.5f, x_axis_y + kTickLen + 2 + font.Ascent(kTickPx),
-              std::to_string(j), kTickPx, kInk, Align::kCenter);
+    p->Fill(cx, x_axis_y, cx + 1, x_axis_y + kTickLen, kFrame);
+    p->Text(static_cast<float>(cx) + 0.5f, x_axis_y + kTickLen + 2 + font.Ascent(kTickPx),
+            std::to_string(j), kTickPx, kInk, Align::kCenter);
   }
+  const float mid_line = 0.5f * (font.Ascent(kTickPx) - font.Descent(kTickPx));
   for (int i = 0; i < rows; i += row_step) {
     const int cy = (L.row_edges[i] + L.row_edges[i + 1]) / 2;
-    internal::FillRect(&img, L.plot_x - 1 - kTickLen, cy, L.plot_x - 1, cy + 1, kFrame);
-    font.Draw(&img, static_cast<float>(L.plot_x - kTickLen - 4),
-              static_cast<float>(cy) + 0.5f + 0.5f * (font.Ascent(kTickPx) - font.Descent(kTickPx)),
-              std::to_string(i), kTickPx, kInk, Align::kRight);
+    p->Fill(L.plot_x - 1 - kTickLen, cy, L.plot_x - 1, cy + 1, kFrame);
+    p->Text(static_cast<float>(L.plot_x - kTickLen - 4), static_cast<float>(cy) + 0.5f + mid_line,
+            std::to_string(i), kTickPx, kInk, Align::kRight);
   }
-  // Axis captions and title.
-  font.Draw(&img, L.plot_x + 0.5f * L.plot_w,
-            x_axis_y + kTickLen + 2 + kTickPx + 6 + font.Ascent(kLabelPx), o.col_label, kLabelPx,
-            kInk, Align::kCenter);
+  // Axis captions, title and the peak note.
+  const float col_label_y = x_axis_y + kTickLen + 2 + kTickPx + 6 + font.Ascent(kLabelPx);
+  p->Text(L.plot_x + 0.5f * L.plot_w, col_label_y, o.col_label, kLabelPx, kInk, Align::kCenter);
   const float widest_row = font.Width(std::to_string(rows - 1), kTickPx);
-  font.DrawVertical(&img, L.plot_x - kTickLen - 10 - widest_row - 0.5f * kLabelPx,
-                    L.plot_y + 0.5f * L.plot_h, o.row_label, kLabelPx, kInk);
+  p->VerticalText(L.plot_x - kTickLen - 10 - widest_row - 0.5f * kLabelPx,
+                  L.plot_y + 0.5f * L.plot_h, o.row_label, kLabelPx, kInk);
   if (!o.title.empty()) {
-    bold.Draw(&img, 0.5f * o.width, 8 + bold.Ascent(kTitlePx), o.title, kTitlePx, kInk,
-              Align::kCenter);
+    p->Text(0.5f * L.width, 8 + Font::Bold().Ascent(kTitlePx), o.title, kTitlePx, kInk,
+            Align::kCenter, /*bold=*/true);
+  }
+  if (o.mark_peak && peak >= 0) {
+    const int pi = static_cast<int>(peak % rows), pj = static_cast<int>(peak / rows);
+    const int x0 = L.col_edges[pj], x1 = L.col_edges[pj + 1];
+    const int y0 = L.row_edges[pi], y1 = L.row_edges[pi + 1];
+    p->Stroke(x0 - 1, y0 - 1, x1 + 1, y1 + 1, {255, 255, 255}, 1);
+    p->Stroke(x0 - 3, y0 - 3, x1 + 3, y1 + 3, kInk, 2);
+    const std::string note = "Peak (outlined): row " + std::to_string(pi) + ", column " +
+                             std::to_string(pj) + " (" + FormatNumber(values(pi, pj), 3) + ")";
+    p->Text(L.plot_x + 0.5f * L.plot_w,
+            col_label_y + font.Descent(kLabelPx) + 4 + font.Ascent(kTickPx), note, kTickPx, kInk,
+            Align::kCenter);
   }
 
   // Colour bar: one colour per pixel row, top = +limit.
   const double lo = diverging ? -limit : 0.0, hi = limit;
   for (int y = 0; y < L.bar_h; ++y) {
     const double v = hi - (hi - lo) * (y + 0.5) / L.bar_h;
-    internal::FillRect(&img, L.bar_x, L.bar_y + y, L.bar_x + L.bar_w, L.bar_y + y + 1, color_of(v));
+    p->Fill(L.bar_x, L.bar_y + y, L.bar_x + L.bar_w, L.bar_y + y + 1, color_of(v), "bar");
   }
-  internal::StrokeRect(&img, L.bar_x - 1, L.bar_y - 1, L.bar_x + L.bar_w + 1, L.bar_y + L.bar_h + 1,
-                       kFrame);
+  p->Stroke(L.bar_x - 1, L.bar_y - 1, L.bar_x + L.bar_w + 1, L.bar_y + L.bar_h + 1, kFrame);
   float widest_tick = 0.0f;
   for (const internal::Tick& t : internal::NiceTicks(lo, hi, std::max(2, L.bar_h / 40))) {
     const int y =
         L.bar_y + static_cast<int>(std::lround((hi - t.value) / (hi - lo) * (L.bar_h - 1)));
     const int x = L.bar_x + L.bar_w + 1;
-    internal::FillRect(&img, x, y, x + kTickLen, y + 1, kFrame);
-    font.Draw(&img, static_cast<float>(x + kTickLen + 3),
-              y + 0.5f + 0.5f * (font.Ascent(kTickPx) - font.Descent(kTickPx)), t.label, kTickPx,
-              kInk, Align::kLeft);
+    p->Fill(x, y, x + kTickLen, y + 1, kFrame);
+    p->Text(static_cast<float>(x + kTickLen + 3), y + 0.5f + mid_line, t.label, kTickPx, kInk,
+            Align::kLeft);
     widest_tick = std::max(widest_tick, font.Width(t.label, kTickPx));
   }
-  font.DrawVertical(&img, L.bar_x + L.bar_w + kTickLen + 3 + widest_tick + 6 + 0.5f * kLabelPx,
-                    L.bar_y + 0.5f * L.bar_h, o.value_label, kLabelPx, kInk);
+  p->VerticalText(L.bar_x + L.bar_w + kTickLen + 3 + widest_tick + 6 + 0.5f * kLabelPx,
+                  L.bar_y + 0.5f * L.bar_h, o.value_label, kLabelPx, kInk);
+}
+
+}  // namespace
+
+Image RenderHeatmap(const Eigen::MatrixXd& values, const HeatmapOptions& o) {
+  const HeatmapLayout L =
+      ComputeHeatmapLayout(static_cast<int>(values.rows()), static_cast<int>(values.cols()), o);
+  Image img(L.width, L.height, 255, 255, 255);
+  DrawHeatmap(values, o, L, internal::MakeRasterPainter(&img).get());
   return img;
+}
+
+Figure HeatmapFigure(const Eigen::MatrixXd& values, const HeatmapOptions& options) {
+  return Figure([values, options] { return RenderHeatmap(values, options); },
+                [values, options](FigureFormat format) {
+                  const HeatmapLayout L = ComputeHeatmapLayout(
+                      static_cast<int>(values.rows()), static_cast<int>(values.cols()), options);
+                  const auto painter = format == FigureFormat::kPdf
+                                           ? internal::MakePdfPainter(L.width, L.height)
+                                           : internal::MakeSvgPainter(L.width, L.height);
+                  DrawHeatmap(values, options, L, painter.get());
+                  return painter->Finish();
+                });
 }
 
 }  // namespace render

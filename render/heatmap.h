@@ -3,15 +3,19 @@
 //
 // Layout: a title on top; the matrix with row 0 at the top (matrix convention) and column 0 on
 // the left; cells snapped to whole pixels (square when the matrix fits, otherwise integer cell
-// edges); integer index ticks on both axes with axis labels; a colour bar on the right with
-// value ticks and a caption. Text is DejaVu Sans via stb_truetype.
+// edges; a long thin matrix gets cells up to 4:1); integer index ticks on both axes with axis
+// labels; a colour bar on the right with value ticks and a caption. The canvas shrinks to the
+// matrix (a 20×1 matrix is a strip, not a square with white space). Text is DejaVu Sans
+// (stb_truetype in PNG, <text> in SVG, embedded by cairo in PDF).
 #pragma once
 
 #include <Eigen/Core>
 #include <array>
 #include <cstdint>
 #include <string>
+#include <vector>
 
+#include "render/figure.h"
 #include "render/image.h"
 
 namespace render {
@@ -32,20 +36,30 @@ enum class ColorScale {
 };
 
 struct HeatmapOptions {
-  int width = 640;  // figure size in pixels (>= 160 x 120)
+  // Figure size in pixels (>= 160 x 120); with fit_to_matrix the largest size, the canvas
+  // shrinking to the matrix's aspect (never below 160 x 120 or the title's width).
+  int width = 640;
   int height = 480;
+  bool fit_to_matrix = true;
   std::string title;                  // drawn in bold above the matrix; empty: none
-  std::string row_label = "row";      // y axis caption, e.g. "segment of A (hopf_a)"
-  std::string col_label = "column";   // x axis caption
-  std::string value_label = "value";  // colour bar caption, e.g. "writhe"
+  std::string row_label = "Row";      // y axis caption, e.g. "Arm segment"
+  std::string col_label = "Column";   // x axis caption, e.g. "Pole segment"
+  std::string value_label = "Value";  // colour bar caption, e.g. "Writhe"
   ColorScale scale = ColorScale::kAuto;
   // Colour limit L; values beyond are clamped. <= 0: max |value| over finite entries (1 if all
-  // are zero).
+  // are zero). A sequence of figures passes one limit (SequenceLimit) so its colours compare.
   double limit = 0.0;
+  // Outline the cell of the largest |entry| and name it ("peak: row i, column j (v)") below.
+  bool mark_peak = false;
 };
+
+// The colour limit of a sequence of matrices: max |value| over the finite entries of all of
+// them (1 when all are zero or there are none).
+double SequenceLimit(const std::vector<Eigen::MatrixXd>& matrices);
 
 // Pixel geometry of a heatmap figure (all integers; cell edges are whole pixels).
 struct HeatmapLayout {
+  int width = 0, height = 0;                       // canvas size
   int plot_x = 0, plot_y = 0;                      // top-left pixel of cell (0, 0)
   int plot_w = 0, plot_h = 0;                      // matrix area in pixels
   int bar_x = 0, bar_y = 0, bar_w = 0, bar_h = 0;  // colour bar rectangle
@@ -61,5 +75,10 @@ HeatmapLayout ComputeHeatmapLayout(int rows, int cols, const HeatmapOptions& opt
 // Renders the figure. Non-finite entries are drawn grey. Throws std::invalid_argument as
 // ComputeHeatmapLayout, and render::EnvironmentError when the DejaVu font is not installed.
 Image RenderHeatmap(const Eigen::MatrixXd& values, const HeatmapOptions& options);
+
+// The same figure in any format: PNG as RenderHeatmap; SVG with one <rect class="cell"> per
+// matrix entry (row-major), one <rect class="bar"> per colour-bar pixel row and <text> labels;
+// PDF (one page, cairo) with the same geometry. Throws as RenderHeatmap (when encoded).
+Figure HeatmapFigure(const Eigen::MatrixXd& values, const HeatmapOptions& options);
 
 }  // namespace render

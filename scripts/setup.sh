@@ -13,6 +13,7 @@ REQUIRED=(
   libglfw3-dev libimgui-dev libstb-dev            # interactive window, UI, image I/O
   libpng-dev zlib1g-dev                           # fast PNG encoder for frame sequences
   libplplot-dev plplot-driver-cairo               # plots
+  libcairo2-dev                                   # PDF figures (heatmaps)
   fonts-dejavu-core                               # font for labels
   libassimp-dev liburdfdom-dev libtinyxml-dev     # meshes, URDF (+ TinyXML, used directly)
   libfcl-dev libccd-dev libqhull-dev              # collision, convex hulls of meshes

@@ -114,6 +114,11 @@ float Font::Descent(float px) const {
   return -stbtt_ScaleForPixelHeight(&data_->info, px) * static_cast<float>(descent);
 }
 
+float Font::EmSize(float px) const {
+  return stbtt_ScaleForPixelHeight(&data_->info, px) /
+         stbtt_ScaleForMappingEmToPixels(&data_->info, 1.0f);
+}
+
 void Font::Draw(Image* image, float x, float y, std::string_view text, float px,
                 const std::array<std::uint8_t, 3>& rgb, Align align) const {
   if (align == Align::kCenter) x -= 0.5f * Width(text, px);

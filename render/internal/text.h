@@ -33,6 +33,9 @@ class Font {
   float Width(std::string_view text, float px) const;
   float Ascent(float px) const;   // > 0, pixels above the baseline
   float Descent(float px) const;  // > 0, pixels below the baseline
+  // Em size (the font size of SVG and cairo) of text `px` high: px · unitsPerEm / (ascent −
+  // descent).
+  float EmSize(float px) const;
 
   // Draws `text` with its baseline at row y; x is the left end, centre or right end per `align`.
   void Draw(Image* image, float x, float y, std::string_view text, float px,

@@ -58,7 +58,11 @@ void CheckWrithe(const std::string& share) {
   options.width = 320;
   options.height = 240;
   const render::Image image = render::RenderHeatmap(w, options);
-  Check(image.width == 320 && image.height == 240, "heatmap image size");
+  const render::HeatmapLayout layout =
+      render::ComputeHeatmapLayout(static_cast<int>(w.rows()), static_cast<int>(w.cols()), options);
+  Check(image.width == layout.width && image.height == layout.height && image.width <= 320 &&
+            image.height <= 240,
+        "heatmap image size (the canvas follows the matrix, within 320x240)");
   Check(render::SameImage(render::DecodePng(render::EncodePng(image), "heatmap"), image),
         "heatmap PNG round trip");
 }

@@ -1,7 +1,8 @@
-// Golden images (snapshots/<suite>/<case>.png, 320x240) produced through the same code as the
-// CLI: scene files via app::LoadSceneFile, heatmaps via app::WritheHeatmapFigure, plots via
-// render::RenderPlot. UPDATE_SNAPSHOTS=1 rewrites them; failures write actual/expected/diff
-// images into <build>/snapshot-diff/<suite>/.
+// Golden images (snapshots/<suite>/<case>.png, at most 320x240) produced through the same code as
+// the CLI: scene files via app::LoadSceneFile, heatmaps via app::WritheHeatmapFigure /
+// app::WritheFigure, plots via render::RenderPlot, render::PanelsFigure and render::BarChartFigure.
+// UPDATE_SNAPSHOTS=1 rewrites them; failures write actual/expected/diff images into
+// <build>/snapshot-diff/<suite>/.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -66,6 +67,64 @@ TEST(SnapshotTest, HopfLinkHeatmap) {
                  "heatmap_hopf");
 }
 
+// A 20x1 matrix (arm against a one-segment pole) is a strip with named axes and its peak marked.
+TEST(SnapshotTest, StripHeatmapWithPeak) {
+  Eigen::MatrixXd w(20, 1);
+  for (int i = 0; i < 20; ++i) w(i, 0) = 0.04 * std::sin(0.5 * i) - 0.002 * i;
+  app::WritheFigureOptions f;
+  f.width = kW;
+  f.height = kH;
+  f.row_label = "Arm segment";
+  f.col_label = "Pole segment";
+  f.mark_peak = true;
+  ExpectSnapshot(app::WritheFigure(w, "arm", "pole", f).Raster(), "figures", "heatmap_strip");
+}
+
+// Two panels with their own axes (writhe and cost over time) and grouped bars with whiskers.
+TEST(SnapshotTest, PanelsAndBars) {
+  std::vector<double> t, writhe, cost;
+  for (int k = 0; k <= 50; ++k) {
+    t.push_back(0.1 * k);
+    writhe.push_back(-2.0 * std::exp(-0.08 * k));
+    cost.push_back(300.0 * std::exp(-0.15 * k) + 5.0);
+  }
+  PlotPanel top, bottom;
+  top.series = {PlotSeries("", t, writhe)};
+  top.series[0].marker = Marker::kNone;
+  top.axes.y_label = "Total writhe (turns)";
+  top.axes.legend = LegendPosition::kNone;
+  bottom.series = {PlotSeries("", t, cost)};
+  bottom.series[0].marker = Marker::kNone;
+  bottom.series[0].rgba = {214, 39, 40, 255};
+  bottom.axes.x_label = "Time (s)";
+  bottom.axes.y_label = "Task cost";
+  bottom.axes.y_min = 0.0;
+  bottom.axes.legend = LegendPosition::kNone;
+  PanelLayout layout;
+  layout.width = kW;
+  layout.height = kH;
+  ExpectSnapshot(PanelsFigure({top, bottom}, layout).Raster(), "figures", "plot_panels");
+
+  BarChart chart;
+  chart.categories = {"power", "pinch", "tripod"};
+  BarSeries a, b;
+  a.label = "winding";
+  a.values = {6, 4, 5};
+  a.lo = {5, 2, NAN};
+  a.hi = {6, 5, NAN};
+  b.label = "joint";
+  b.values = {3, 0, 6};
+  chart.series = {a, b};
+  PlotOptions o;
+  o.width = kW;
+  o.height = kH;
+  o.y_label = "Directions held";
+  o.y_min = 0;
+  o.y_max = 6;
+  o.legend = LegendPosition::kOutsideRight;
+  ExpectSnapshot(BarChartFigure(chart, o).Raster(), "figures", "plot_bars");
+}
+
 TEST(SnapshotTest, UnwrapPlotWithFailures) {
   std::vector<PlotSeries> series(3);
   series[0].label = "AICO";
@@ -91,8 +150,8 @@ TEST(SnapshotTest, UnwrapPlotWithFailures) {
   o.height = kH;
   o.log_y = true;
   o.title = "Collision checks vs angle to unwrap";
-  o.x_label = "angle to unwrap [deg]";
-  o.y_label = "collision checks";
+  o.x_label = "Angle to unwrap (deg)";
+  o.y_label = "Collision checks";
   ExpectSnapshot(RenderPlot(series, o), "figures", "plot_unwrap");
 }
 
