@@ -33,6 +33,15 @@ double StepControlCost(const MotionProblem& p, const Eigen::VectorXd& metric, do
   return p.dynamic ? p.h_rate / tau * sum : p.w_rate * sum;
 }
 
+// M ← A M Aᵀ for the double integrator's A = [[I, cI], [0, I]] (n × n blocks; c = τ for A,
+// −τ for A⁻¹), in O(d²): the rows of the top block gain c × the bottom rows, then the left
+// columns gain c × the right columns.
+void ApplyTransition(double c, Eigen::MatrixXd* m) {
+  const Eigen::Index n = m->rows() / 2;
+  m->topRows(n) += c * m->bottomRows(n);
+  m->leftCols(n) += c * m->rightCols(n);
+}
+
 // The solver's view of one run: problem, options, workspace and derived constants.
 class Aico {
  public:
@@ -179,10 +188,11 @@ void Aico::UpdateForward(int t) {
   AicoState& s = st();
   AbsorbTaskMessage(t - 1, s.Sinv[t - 1], s.s[t - 1]);
   if (p_.dynamic) {
-    s.s[t].noalias() = w.A * w.vtmp2;
-    w.tmp.noalias() = w.A * w.Sbar;
-    w.tmp2 = w.Qbar;
-    w.tmp2.noalias() += w.tmp * w.A.transpose();
+    s.s[t] = w.vtmp2;
+    s.s[t].head(n_) += tau_ * w.vtmp2.tail(n_);  // A s̄
+    w.tmp = w.Sbar;
+    ApplyTransition(tau_, &w.tmp);  // A S̄ Aᵀ
+    w.tmp2 = w.Qbar + w.tmp;
   } else {
     s.s[t] = w.vtmp2;
     w.tmp2 = w.Winv + w.Sbar;
@@ -200,10 +210,10 @@ void Aico::UpdateBackward(int t) {
   }
   AbsorbTaskMessage(t + 1, s.Vinv[t + 1], s.v[t + 1]);  // w.Sbar = V̄
   if (p_.dynamic) {
-    s.v[t].noalias() = w.Ainv * w.vtmp2;
+    s.v[t] = w.vtmp2;
+    s.v[t].head(n_) -= tau_ * w.vtmp2.tail(n_);  // A⁻¹ v̄
     w.tmp = w.Qbar + w.Sbar;
-    w.tmp2.noalias() = w.Ainv * w.tmp;
-    w.tmp.noalias() = w.tmp2 * w.Ainv.transpose();
+    ApplyTransition(-tau_, &w.tmp);  // A⁻¹ (Q̄ + V̄) A⁻ᵀ
     InvertSpd(w.tmp, &s.Vinv[t]);
   } else {
     s.v[t] = w.vtmp2;

@@ -42,16 +42,13 @@ std::vector<Eigen::Matrix4d> Poses(const SimState& s) {
   return out;
 }
 
-class StabilityStepTest : public ::testing::TestWithParam<double> {
- protected:
-  static void SetUpTestSuite() { runtime_ = new OdeRuntime(); }
-  static void TearDownTestSuite() {
-    delete runtime_;
-    runtime_ = nullptr;
-  }
-  static OdeRuntime* runtime_;
-};
-OdeRuntime* StabilityStepTest::runtime_ = nullptr;
+// The program's one ODE runtime (the RAII guard allows a single instance).
+OdeRuntime& Runtime() {
+  static OdeRuntime runtime;
+  return runtime;
+}
+
+class StabilityStepTest : public ::testing::TestWithParam<double> {};
 
 // Closing target 1.3: an enveloping grasp; −0.3: an open hand (early exits when the bottle falls).
 TEST_P(StabilityStepTest, SteppingEqualsOneShot) {
@@ -62,13 +59,13 @@ TEST_P(StabilityStepTest, SteppingEqualsOneShot) {
   std::vector<Eigen::Matrix4d> one_shot_poses;
   std::vector<long> steps_per_phase(StabilityRun::kNumPhases, 0);
   const StabilityResult one_shot =
-      TestGraspStability(*runtime_, hand, bottle, opt, [&](int phase, const GraspSimulation& sim) {
+      TestGraspStability(Runtime(), hand, bottle, opt, [&](int phase, const GraspSimulation& sim) {
         one_shot_poses = Poses(sim.state());
         ++steps_per_phase[phase];
       });
 
   // One physics step at a time.
-  StabilityRun run(*runtime_, hand, bottle, opt);
+  StabilityRun run(Runtime(), hand, bottle, opt);
   EXPECT_EQ(run.phase(), 0);
   EXPECT_STREQ(run.phase_name(), "closing");
   EXPECT_TRUE(run.gravity().isZero());
@@ -95,7 +92,7 @@ TEST_P(StabilityStepTest, SteppingEqualsOneShot) {
   EXPECT_EQ(steps, total);
 
   // One phase at a time: seven calls, each ending its phase.
-  StabilityRun phased(*runtime_, hand, bottle, opt);
+  StabilityRun phased(Runtime(), hand, bottle, opt);
   for (int p = 0; p < StabilityRun::kNumPhases; ++p) {
     phased.StepPhase();
     EXPECT_EQ(phased.phase(), p);
