@@ -359,7 +359,8 @@ void AddPlanCommands(CLI::App* root, CommandList* commands) {
                  std::fprintf(stderr, "\rsweep %3d  cost %-12.6g %s", sweep, cost,
                               accepted ? "accepted" : "rejected");
                  stop.Poll();
-               });
+               },
+               [&stop] { stop.Poll(); });
          } catch (const StopRequested& e) {
            const nlohmann::json report =
                StoppedReportJson(e, {{"scenario", scenario->name},

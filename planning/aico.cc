@@ -33,6 +33,15 @@ double StepControlCost(const MotionProblem& p, const Eigen::VectorXd& metric, do
   return p.dynamic ? p.h_rate / tau * sum : p.w_rate * sum;
 }
 
+// M ← A M Aᵀ for the double integrator's A = [[I, cI], [0, I]] (n × n blocks; c = τ for A,
+// −τ for A⁻¹), in O(d²): the rows of the top block gain c × the bottom rows, then the left
+// columns gain c × the right columns.
+void ApplyTransition(double c, Eigen::MatrixXd* m) {
+  const Eigen::Index n = m->rows() / 2;
+  m->topRows(n) += c * m->bottomRows(n);
+  m->leftCols(n) += c * m->rightCols(n);
+}
+
 // The solver's view of one run: problem, options, workspace and derived constants.
 class Aico {
  public:
@@ -48,7 +57,15 @@ class Aico {
     SetUpProcess();
   }
 
-  AicoResult Run(const AicoCallback& callback, const Trajectory* init);
+  // Initialises the beliefs (rollout or `init`) and their cost; done() if max_iterations <= 0.
+  void Start(const Trajectory* init);
+  // One sweep with its accept/reject decision and convergence test; a no-op once done().
+  AicoStep Step();
+  bool done() const { return last_.done; }
+  const AicoStep& last() const { return last_; }
+  const AicoResult& result() const { return result_; }
+  double lambda() const { return lambda_; }
+  const AicoState& state() const { return ws_->state; }
 
  private:
   AicoState& st() { return ws_->state; }
@@ -70,12 +87,17 @@ class Aico {
   double EvaluateAll();
   void Sweep(int sweep);
   void Export(AicoResult* result) const;
+  void Finish(SolveStatus status);
 
   const MotionProblem& p_;
-  const AicoOptions& o_;
+  const AicoOptions o_;
   AicoWorkspace* ws_;
   int n_, d_, T_;
   double tau_, lambda_;
+  AicoResult result_;
+  AicoStep last_;
+  int backtracks_ = 0;
+  long evals0_ = 0, coll0_ = 0;
   Eigen::VectorXd metric_;
   std::vector<Eigen::VectorXd> err_;  // per task residual buffer, allocated once per run
 };
@@ -166,10 +188,11 @@ void Aico::UpdateForward(int t) {
   AicoState& s = st();
   AbsorbTaskMessage(t - 1, s.Sinv[t - 1], s.s[t - 1]);
   if (p_.dynamic) {
-    s.s[t].noalias() = w.A * w.vtmp2;
-    w.tmp.noalias() = w.A * w.Sbar;
-    w.tmp2 = w.Qbar;
-    w.tmp2.noalias() += w.tmp * w.A.transpose();
+    s.s[t] = w.vtmp2;
+    s.s[t].head(n_) += tau_ * w.vtmp2.tail(n_);  // A s̄
+    w.tmp = w.Sbar;
+    ApplyTransition(tau_, &w.tmp);  // A S̄ Aᵀ
+    w.tmp2 = w.Qbar + w.tmp;
   } else {
     s.s[t] = w.vtmp2;
     w.tmp2 = w.Winv + w.Sbar;
@@ -187,10 +210,10 @@ void Aico::UpdateBackward(int t) {
   }
   AbsorbTaskMessage(t + 1, s.Vinv[t + 1], s.v[t + 1]);  // w.Sbar = V̄
   if (p_.dynamic) {
-    s.v[t].noalias() = w.Ainv * w.vtmp2;
+    s.v[t] = w.vtmp2;
+    s.v[t].head(n_) -= tau_ * w.vtmp2.tail(n_);  // A⁻¹ v̄
     w.tmp = w.Qbar + w.Sbar;
-    w.tmp2.noalias() = w.Ainv * w.tmp;
-    w.tmp.noalias() = w.tmp2 * w.Ainv.transpose();
+    ApplyTransition(-tau_, &w.tmp);  // A⁻¹ (Q̄ + V̄) A⁻ᵀ
     InvertSpd(w.tmp, &s.Vinv[t]);
   } else {
     s.v[t] = w.vtmp2;
@@ -383,10 +406,9 @@ void Aico::Export(AicoResult* result) const {
   result->control_cost = s.cost - task;
 }
 
-AicoResult Aico::Run(const AicoCallback& callback, const Trajectory* init) {
-  AicoResult result;
-  const long evals0 = ws_->tasks.evaluations;
-  const long coll0 = CollisionQueries(p_, ws_->tasks);
+void Aico::Start(const Trajectory* init) {
+  evals0_ = ws_->tasks.evaluations;
+  coll0_ = CollisionQueries(p_, ws_->tasks);
   err_.clear();
   for (const Task& task : p_.tasks) err_.emplace_back(Eigen::VectorXd::Zero(task.feature->dim()));
   Trajectory rollout;
@@ -395,49 +417,89 @@ AicoResult Aico::Run(const AicoCallback& callback, const Trajectory* init) {
     init = &rollout;
   }
   Initialise(init);
-  if (!o_.accept_first_sweep) result.cost_history.push_back(st().cost);
-  int backtracks = 0;
-  result.status = SolveStatus::kMaxIterations;
-  for (int sweep = 0; sweep < o_.max_iterations; ++sweep) {
-    ws_->backup = ws_->state;  // same sizes: no allocation
-    Sweep(sweep);
-    // Belief step against the previous sweep's belief, then the true cost at the beliefs.
-    double b_step = 0.0;
-    for (int t = 0; t <= T_; ++t) {
-      b_step = std::max(b_step, (st().b[t] - st().bref[t]).lpNorm<Eigen::Infinity>());
-      st().bref[t] = st().b[t];
-    }
-    const double cost = EvaluateAll();
-    ++result.iterations;
-    const bool accepted =
-        std::isfinite(cost) && (cost <= ws_->backup.cost || (sweep == 0 && o_.accept_first_sweep));
-    if (!accepted) {
-      std::swap(ws_->state, ws_->backup);
-      lambda_ *= 10.0;
-      ++result.rejected;
-      ++backtracks;
-    } else {
-      lambda_ /= 5.0;
-      backtracks = 0;
-      result.cost_history.push_back(cost);
-    }
-    if (callback) {
-      Export(&result);
-      callback(sweep, cost, accepted, result.trajectory);
-    }
-    if (accepted && b_step < o_.tolerance) {
-      result.status = SolveStatus::kConverged;
-      break;
-    }
-    if (backtracks > o_.max_backtracks) {
-      result.status = SolveStatus::kDiverged;
-      break;
-    }
+  if (!o_.accept_first_sweep) result_.cost_history.push_back(st().cost);
+  backtracks_ = 0;
+  last_ = AicoStep{};
+  if (o_.max_iterations <= 0) {
+    Finish(SolveStatus::kMaxIterations);
+  } else {
+    Export(&result_);
+    result_.task_evaluations = ws_->tasks.evaluations - evals0_;
+    result_.collision_queries = CollisionQueries(p_, ws_->tasks) - coll0_;
   }
-  Export(&result);
-  result.task_evaluations = ws_->tasks.evaluations - evals0;
-  result.collision_queries = CollisionQueries(p_, ws_->tasks) - coll0;
-  return result;
+}
+
+void Aico::Finish(SolveStatus status) {
+  result_.status = status;
+  last_.status = status;
+  last_.done = true;
+  Export(&result_);
+  result_.task_evaluations = ws_->tasks.evaluations - evals0_;
+  result_.collision_queries = CollisionQueries(p_, ws_->tasks) - coll0_;
+}
+
+AicoStep Aico::Step() {
+  if (last_.done) return last_;
+  const int sweep = result_.iterations;
+  ws_->backup = ws_->state;  // same sizes: no allocation
+  Sweep(sweep);
+  // Belief step against the previous sweep's belief, then the true cost at the beliefs.
+  double b_step = 0.0;
+  for (int t = 0; t <= T_; ++t) {
+    b_step = std::max(b_step, (st().b[t] - st().bref[t]).lpNorm<Eigen::Infinity>());
+    st().bref[t] = st().b[t];
+  }
+  const double cost = EvaluateAll();
+  ++result_.iterations;
+  const bool accepted =
+      std::isfinite(cost) && (cost <= ws_->backup.cost || (sweep == 0 && o_.accept_first_sweep));
+  if (!accepted) {
+    std::swap(ws_->state, ws_->backup);
+    lambda_ *= 10.0;
+    ++result_.rejected;
+    ++backtracks_;
+  } else {
+    lambda_ /= 5.0;
+    backtracks_ = 0;
+    result_.cost_history.push_back(cost);
+  }
+  last_ = AicoStep{SolveStatus::kMaxIterations, sweep, cost, accepted, false};
+  if (accepted && b_step < o_.tolerance) {
+    Finish(SolveStatus::kConverged);
+  } else if (backtracks_ > o_.max_backtracks) {
+    Finish(SolveStatus::kDiverged);
+  } else if (result_.iterations >= o_.max_iterations) {
+    Finish(SolveStatus::kMaxIterations);
+  } else {
+    Export(&result_);
+    result_.task_evaluations = ws_->tasks.evaluations - evals0_;
+    result_.collision_queries = CollisionQueries(p_, ws_->tasks) - coll0_;
+  }
+  return last_;
+}
+
+void CheckInput(const MotionProblem& problem, const AicoOptions& options, const Trajectory* init) {
+  ValidateProblem(problem);
+  if (init != nullptr && (init->num_dofs() != problem.q0.size() ||
+                          init->num_points() != problem.num_steps + 1 || !init->q.allFinite())) {
+    throw std::invalid_argument(
+        "SolveAico: init trajectory is " + std::to_string(init->num_dofs()) + "x" +
+        std::to_string(init->num_points()) + ", expected " + std::to_string(problem.q0.size()) +
+        "x" + std::to_string(problem.num_steps + 1));
+  }
+  if (!(options.tolerance > 0.0) || !(options.damping >= 0.0) || !(options.max_step > 0.0) ||
+      options.max_iterations < 0) {
+    throw std::invalid_argument("SolveAico: need tolerance > 0, damping >= 0, max_step > 0");
+  }
+}
+
+// Steps `aico` until done, calling `callback` after each sweep.
+AicoResult RunToEnd(Aico* aico, const AicoCallback& callback) {
+  while (!aico->done()) {
+    const AicoStep step = aico->Step();
+    if (callback) callback(step.sweep, step.cost, step.accepted, aico->result().trajectory);
+  }
+  return aico->result();
 }
 
 }  // namespace
@@ -455,27 +517,47 @@ AicoWorkspace::AicoWorkspace(const MotionProblem& problem) : tasks(problem) {
   llt.compute(Eigen::MatrixXd::Identity(d, d));
 }
 
+struct AicoSolver::Impl {
+  Impl(const MotionProblem& p, const AicoOptions& o) : ws(p), aico(p, o, &ws) {}
+  AicoWorkspace ws;
+  Aico aico;
+};
+
+AicoSolver::AicoSolver(const MotionProblem& problem, const AicoOptions& options,
+                       const Trajectory* init) {
+  CheckInput(problem, options, init);
+  impl_ = std::make_unique<Impl>(problem, options);
+  impl_->aico.Start(init);
+}
+
+AicoSolver::~AicoSolver() = default;
+
+AicoStep AicoSolver::Step() { return impl_->aico.Step(); }
+
+AicoResult AicoSolver::Solve(const AicoCallback& callback) {
+  return RunToEnd(&impl_->aico, callback);
+}
+
+bool AicoSolver::done() const { return impl_->aico.done(); }
+int AicoSolver::sweeps() const { return impl_->aico.result().iterations; }
+double AicoSolver::cost() const { return impl_->aico.state().cost; }
+double AicoSolver::damping() const { return impl_->aico.lambda(); }
+const Trajectory& AicoSolver::trajectory() const { return impl_->aico.result().trajectory; }
+const AicoState& AicoSolver::state() const { return impl_->aico.state(); }
+AicoResult AicoSolver::result() const { return impl_->aico.result(); }
+
 AicoResult SolveAico(const MotionProblem& problem, const AicoOptions& options, AicoWorkspace* ws,
                      const AicoCallback& callback, const Trajectory* init) {
-  ValidateProblem(problem);
   const int d = state_dim(problem);
+  ValidateProblem(problem);
   if (ws == nullptr || static_cast<int>(ws->state.b.size()) != problem.num_steps + 1 ||
       ws->state.b[0].size() != d) {
     throw std::invalid_argument("SolveAico: workspace was built for another problem size");
   }
-  if (init != nullptr && (init->num_dofs() != problem.q0.size() ||
-                          init->num_points() != problem.num_steps + 1 || !init->q.allFinite())) {
-    throw std::invalid_argument(
-        "SolveAico: init trajectory is " + std::to_string(init->num_dofs()) + "x" +
-        std::to_string(init->num_points()) + ", expected " + std::to_string(problem.q0.size()) +
-        "x" + std::to_string(problem.num_steps + 1));
-  }
-  if (!(options.tolerance > 0.0) || !(options.damping >= 0.0) || !(options.max_step > 0.0) ||
-      options.max_iterations < 0) {
-    throw std::invalid_argument("SolveAico: need tolerance > 0, damping >= 0, max_step > 0");
-  }
+  CheckInput(problem, options, init);
   Aico aico(problem, options, ws);
-  return aico.Run(callback, init);
+  aico.Start(init);
+  return RunToEnd(&aico, callback);
 }
 
 double TrajectoryCost(const MotionProblem& problem, const Eigen::MatrixXd& q,

@@ -24,6 +24,7 @@
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
 #include <functional>
+#include <memory>
 #include <vector>
 
 #include "planning/task.h"
@@ -98,6 +99,53 @@ struct AicoResult {
 // current trajectory (the restored one after a rejection).
 using AicoCallback =
     std::function<void(int sweep, double cost, bool accepted, const Trajectory& trajectory)>;
+
+// One sweep's outcome (AicoSolver::Step). `status` is the solver's status after the sweep:
+// kMaxIterations while it is still running (the result so far is usable), the final status once
+// `done` (kConverged, kMaxIterations, kDiverged). `cost` is the true cost of the sweep's beliefs
+// (the rejected ones' too); `sweep` its 0-based index.
+struct AicoStep {
+  SolveStatus status = SolveStatus::kMaxIterations;
+  int sweep = -1;
+  double cost = 0.0;
+  bool accepted = false;
+  bool done = false;
+};
+
+// Resumable AICO (the shape of Crocoddyl's/OMPL's solvers): the constructor validates the input
+// (as SolveAico), builds its own AicoWorkspace, initialises the beliefs (rollout or `init`, T+1
+// configurations; copied) and evaluates their cost; Step() runs exactly one sweep. Keeps a
+// reference to `problem` (it must outlive the solver and stay unchanged); copies `options`.
+// Stepping to the end gives bit-identical results to Solve() and to SolveAico.
+class AicoSolver {
+ public:
+  AicoSolver(const MotionProblem& problem, const AicoOptions& options,
+             const Trajectory* init = nullptr);
+  ~AicoSolver();
+  AicoSolver(const AicoSolver&) = delete;
+  AicoSolver& operator=(const AicoSolver&) = delete;
+
+  // One sweep (forward and backward pass, cost at the beliefs, accept or reject with the damping
+  // update, convergence test). After done() a no-op returning the last step again.
+  AicoStep Step();
+  // Steps until done; `callback` after each sweep (sweep, cost, accepted, trajectory()).
+  AicoResult Solve(const AicoCallback& callback = {});
+
+  bool done() const;
+  int sweeps() const;      // sweeps run so far (accepted + rejected)
+  double cost() const;     // true cost of the current (last accepted) beliefs
+  double damping() const;  // current λ
+  // q part of the current beliefs, n × (T+1), dt = τ (the restored beliefs after a rejection).
+  const Trajectory& trajectory() const;
+  // All messages and beliefs, per slice (d = state dimension).
+  const AicoState& state() const;
+  // The result so far (status kMaxIterations while running); the final one once done().
+  AicoResult result() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
 
 // Runs AICO from `init` (T+1 configurations; nullptr = q0 repeated, zero velocity). Throws
 // std::invalid_argument for an invalid problem (ValidateProblem) or init size; returns a status

@@ -26,6 +26,9 @@ constexpr std::span<const EnumName<Planner>> EnumNames(Planner) { return kPlanne
 
 namespace {
 
+// RRT iterations between two polls (about 20 validity checks each at most).
+constexpr std::int64_t kRrtPollIterations = 16;
+
 bool NeedsOmpl(Planner p) { return p == Planner::kOmplRrt || p == Planner::kOmplRrtConnect; }
 
 // The validity checker of every planner and of every output-path check: inside the joint limits
@@ -157,7 +160,7 @@ PlanVerdict JudgePlan(const Scenario& s, const Trajectory& path) {
 }
 
 PlanResult RunPlanner(const Scenario& s, Planner planner, unsigned seed,
-                      const AicoCallback& callback) {
+                      const AicoCallback& callback, const PollFn& poll) {
   PlanResult out;
   PlanReport& rep = out.report;
   rep.planner = PlannerName(planner);
@@ -206,15 +209,19 @@ PlanResult RunPlanner(const Scenario& s, Planner planner, unsigned seed,
     }
     rp.start = s.problem.q0;
     rp.goal = s.goal_q;
-    std::mt19937 rng(seed);
     RrtResult r;
     switch (planner) {
       case Planner::kRrt:
-        r = PlanRrt(rp, s.rrt, valid, &rng);
+      case Planner::kBiRrt: {
+        // In chunks of iterations, polling between them (same result as one PlanRrt call).
+        RrtSolver solver(rp, s.rrt, valid, std::mt19937(seed), planner == Planner::kBiRrt);
+        while (!solver.done()) {
+          solver.Step(kRrtPollIterations);
+          if (poll) poll();
+        }
+        r = solver.result();
         break;
-      case Planner::kBiRrt:
-        r = PlanBiRrt(rp, s.rrt, valid, &rng);
-        break;
+      }
       case Planner::kOmplRrt:
       case Planner::kOmplRrtConnect:
 #ifdef TOPOPLAN_HAVE_OMPL

@@ -2,6 +2,7 @@
 // the tests and the benchmarks; the success criteria and the report metrics.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -92,9 +93,11 @@ struct PlanResult {
 // checker (joint limits + InCollision, one counted query per state) inside the joint-limit box.
 // `seed` seeds the RRTs' std::mt19937. OMPL planners: the same checker, box, goal, scenario.rrt
 // options (range, resolution, goal_bias, max_checks) and seed, through OMPL (no path
-// simplification). The AICO callback, if given, is forwarded.
+// simplification). The AICO callback, if given, is forwarded. `poll`, if given, is called every
+// few RRT/BiRRT iterations; it may throw to abort the run (the CLI's interrupt/--timeout check).
+using PollFn = std::function<void()>;
 PlanResult RunPlanner(const Scenario& scenario, Planner planner, unsigned seed,
-                      const AicoCallback& callback = {});
+                      const AicoCallback& callback = {}, const PollFn& poll = {});
 
 // Judges `path` (non-empty) by the scenario's success criteria, the same for every planner
 // (uncounted queries on a collision state of its own). The path is resampled with

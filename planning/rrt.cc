@@ -1,9 +1,11 @@
 #include "planning/rrt.h"
 
+#include <atomic>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include "planning/random.h"
 
@@ -150,97 +152,189 @@ EdgeResult Extend(const std::vector<RrtNode>& tree, Setup* s, int* near) {
 
 }  // namespace
 
-RrtResult PlanRrt(const RrtProblem& problem, const RrtOptions& options, const ValidityFn& valid,
-                  std::mt19937* rng) {
-  RrtResult result;
-  Setup setup{Checker{valid, options.max_checks}};
-  if (!Prepare(problem, options, &setup, &result)) return result;
+struct RrtSolver::Impl {
+  Impl(const RrtProblem& p, const RrtOptions& o, ValidityFn v, std::mt19937 r, bool bi)
+      : problem(p),
+        options(o),
+        valid(std::move(v)),
+        rng(r),
+        bidirectional(bi),
+        setup{Checker{valid, o.max_checks}} {}
 
-  std::vector<RrtNode> tree;
-  tree.push_back({problem.start, -1});
-  result.status = SolveStatus::kBudgetExhausted;
-  while (!setup.check.exhausted() && result.iterations < options.max_iterations) {
-    ++result.iterations;
-    const bool to_goal = UniformUnit(rng) < options.goal_bias;
-    if (to_goal) {
-      setup.q_rand = problem.goal;
-    } else {
-      SampleUniform(problem, rng, &setup.q_rand);
-    }
-    int near = 0;
-    const EdgeResult edge = Extend(tree, &setup, &near);
-    if (edge == EdgeResult::kBudget) break;
-    if (edge == EdgeResult::kInvalid) continue;
-    tree.push_back({setup.q_new, near});
-    if ((setup.q_new - problem.goal).norm() <= 1e-12) {
-      std::vector<int> idx;
-      AppendBranch(tree, static_cast<int>(tree.size()) - 1, false, &idx);
-      std::vector<const RrtNode*> nodes;
-      for (int i : idx) nodes.push_back(&tree[i]);
-      result.path = ToTrajectory(nodes, setup.n);
-      result.status = SolveStatus::kConverged;
-      break;
+  // One sampling iteration (the loop bodies of PlanRrt / PlanBiRrt); sets done on a path or on
+  // the budget.
+  void IterateRrt();
+  void IterateBiRrt();
+  void Finish(SolveStatus s) {
+    status = s;
+    done = true;
+  }
+
+  const RrtProblem problem;
+  const RrtOptions options;
+  const ValidityFn valid;
+  std::mt19937 rng;
+  const bool bidirectional;
+  Setup setup;
+  std::vector<RrtNode> trees[2];
+  int grow = 0;  // BiRRT: index of the tree that grows this iteration
+  std::int64_t iterations = 0;
+  SolveStatus status = SolveStatus::kBudgetExhausted;
+  bool done = false;
+  std::atomic<bool> stop{false};
+  Trajectory path;
+};
+
+void RrtSolver::Impl::IterateRrt() {
+  std::vector<RrtNode>& tree = trees[0];
+  ++iterations;
+  const bool to_goal = UniformUnit(&rng) < options.goal_bias;
+  if (to_goal) {
+    setup.q_rand = problem.goal;
+  } else {
+    SampleUniform(problem, &rng, &setup.q_rand);
+  }
+  int near = 0;
+  const EdgeResult edge = Extend(tree, &setup, &near);
+  if (edge == EdgeResult::kBudget) return Finish(SolveStatus::kBudgetExhausted);
+  if (edge == EdgeResult::kInvalid) return;
+  tree.push_back({setup.q_new, near});
+  if ((setup.q_new - problem.goal).norm() <= 1e-12) {
+    std::vector<int> idx;
+    AppendBranch(tree, static_cast<int>(tree.size()) - 1, false, &idx);
+    std::vector<const RrtNode*> nodes;
+    for (int i : idx) nodes.push_back(&tree[i]);
+    path = ToTrajectory(nodes, setup.n);
+    Finish(SolveStatus::kConverged);
+  }
+}
+
+void RrtSolver::Impl::IterateBiRrt() {
+  ++iterations;
+  std::vector<RrtNode>& a = trees[grow];
+  std::vector<RrtNode>& b = trees[1 - grow];
+  // Target: a random node of the other tree (goal_bias) or a uniform sample.
+  if (UniformUnit(&rng) < options.goal_bias) {
+    setup.q_rand = b[UniformIndex(&rng, static_cast<std::uint32_t>(b.size()))].q;
+  } else {
+    SampleUniform(problem, &rng, &setup.q_rand);
+  }
+  int near = 0;
+  const EdgeResult edge = Extend(a, &setup, &near);
+  if (edge == EdgeResult::kBudget) return Finish(SolveStatus::kBudgetExhausted);
+  if (edge == EdgeResult::kValid) {
+    a.push_back({setup.q_new, near});
+    const int added = static_cast<int>(a.size()) - 1;
+    // Try to join the trees through the other tree's nearest node.
+    const int other = Nearest(b, setup.q_new);
+    if ((b[other].q - setup.q_new).norm() <= setup.range) {
+      const EdgeResult join =
+          CheckEdge(setup.q_new, b[other].q, setup.resolution, &setup.check, &setup.tmp);
+      if (join == EdgeResult::kBudget) return Finish(SolveStatus::kBudgetExhausted);
+      if (join == EdgeResult::kValid) {
+        // Path: start tree root .. joint, then goal tree joint .. root.
+        const int start_end = grow == 0 ? added : other;
+        const int goal_end = grow == 0 ? other : added;
+        std::vector<int> from_start, from_goal;
+        AppendBranch(trees[0], start_end, false, &from_start);
+        AppendBranch(trees[1], goal_end, true, &from_goal);
+        std::vector<const RrtNode*> nodes;
+        for (int i : from_start) nodes.push_back(&trees[0][i]);
+        for (int i : from_goal) nodes.push_back(&trees[1][i]);
+        path = ToTrajectory(nodes, setup.n);
+        return Finish(SolveStatus::kConverged);
+      }
     }
   }
-  result.checks = setup.check.count;
-  result.tree_size = static_cast<int>(tree.size());
-  return result;
+  grow = 1 - grow;
+}
+
+RrtSolver::RrtSolver(const RrtProblem& problem, const RrtOptions& options, ValidityFn valid,
+                     std::mt19937 rng, bool bidirectional)
+    : impl_(std::make_unique<Impl>(problem, options, std::move(valid), rng, bidirectional)) {
+  RrtResult unused;
+  if (!Prepare(problem, options, &impl_->setup, &unused)) {
+    impl_->Finish(SolveStatus::kInvalidInput);
+    return;
+  }
+  impl_->trees[0].push_back({problem.start, -1});
+  if (bidirectional) impl_->trees[1].push_back({problem.goal, -1});
+}
+
+RrtSolver::RrtSolver(const RrtProblem& problem, const RrtOptions& options, ValidityFn valid,
+                     std::uint64_t seed, bool bidirectional)
+    : RrtSolver(problem, options, std::move(valid), std::mt19937(seed), bidirectional) {}
+
+RrtSolver::~RrtSolver() = default;
+
+std::int64_t RrtSolver::Step(std::int64_t k) {
+  Impl& m = *impl_;
+  std::int64_t done_now = 0;
+  for (; done_now < k && !m.done; ++done_now) {
+    if (m.stop.load(std::memory_order_relaxed)) {
+      m.Finish(SolveStatus::kBudgetExhausted);
+      break;
+    }
+    if (m.setup.check.exhausted() || m.iterations >= m.options.max_iterations) {
+      m.Finish(SolveStatus::kBudgetExhausted);
+      break;
+    }
+    if (m.bidirectional) {
+      m.IterateBiRrt();
+    } else {
+      m.IterateRrt();
+    }
+  }
+  return done_now;
+}
+
+void RrtSolver::RequestStop() { impl_->stop.store(true); }
+bool RrtSolver::stop_requested() const { return impl_->stop.load(); }
+bool RrtSolver::done() const { return impl_->done || impl_->stop.load(); }
+SolveStatus RrtSolver::status() const { return impl_->status; }
+std::int64_t RrtSolver::checks() const { return impl_->setup.check.count; }
+std::int64_t RrtSolver::iterations() const { return impl_->iterations; }
+int RrtSolver::num_trees() const { return impl_->bidirectional ? 2 : 1; }
+const std::mt19937& RrtSolver::rng() const { return impl_->rng; }
+
+const std::vector<RrtNode>& RrtSolver::tree(int i) const {
+  if (i < 0 || i >= num_trees()) {
+    throw std::invalid_argument("RrtSolver::tree: index " + std::to_string(i) + " of " +
+                                std::to_string(num_trees()) + " trees");
+  }
+  return impl_->trees[i];
+}
+
+RrtResult RrtSolver::result() const {
+  RrtResult r;
+  r.status = impl_->status;
+  r.path = impl_->path;
+  r.checks = impl_->setup.check.count;
+  r.iterations = impl_->iterations;
+  r.tree_size = static_cast<int>(impl_->trees[0].size() + impl_->trees[1].size());
+  return r;
+}
+
+namespace {
+
+RrtResult RunToEnd(const RrtProblem& problem, const RrtOptions& options, const ValidityFn& valid,
+                   std::mt19937* rng, bool bidirectional) {
+  RrtSolver solver(problem, options, valid, *rng, bidirectional);
+  while (!solver.done()) solver.Step(std::numeric_limits<std::int64_t>::max());
+  *rng = solver.rng();
+  return solver.result();
+}
+
+}  // namespace
+
+RrtResult PlanRrt(const RrtProblem& problem, const RrtOptions& options, const ValidityFn& valid,
+                  std::mt19937* rng) {
+  return RunToEnd(problem, options, valid, rng, false);
 }
 
 RrtResult PlanBiRrt(const RrtProblem& problem, const RrtOptions& options, const ValidityFn& valid,
                     std::mt19937* rng) {
-  RrtResult result;
-  Setup setup{Checker{valid, options.max_checks}};
-  if (!Prepare(problem, options, &setup, &result)) return result;
-
-  std::vector<RrtNode> trees[2];
-  trees[0].push_back({problem.start, -1});
-  trees[1].push_back({problem.goal, -1});
-  int grow = 0;  // index of the tree that grows this iteration
-  result.status = SolveStatus::kBudgetExhausted;
-  while (!setup.check.exhausted() && result.iterations < options.max_iterations) {
-    ++result.iterations;
-    std::vector<RrtNode>& a = trees[grow];
-    std::vector<RrtNode>& b = trees[1 - grow];
-    // Target: a random node of the other tree (goal_bias) or a uniform sample.
-    if (UniformUnit(rng) < options.goal_bias) {
-      setup.q_rand = b[UniformIndex(rng, static_cast<std::uint32_t>(b.size()))].q;
-    } else {
-      SampleUniform(problem, rng, &setup.q_rand);
-    }
-    int near = 0;
-    const EdgeResult edge = Extend(a, &setup, &near);
-    if (edge == EdgeResult::kBudget) break;
-    if (edge == EdgeResult::kValid) {
-      a.push_back({setup.q_new, near});
-      const int added = static_cast<int>(a.size()) - 1;
-      // Try to join the trees through the other tree's nearest node.
-      const int other = Nearest(b, setup.q_new);
-      if ((b[other].q - setup.q_new).norm() <= setup.range) {
-        const EdgeResult join =
-            CheckEdge(setup.q_new, b[other].q, setup.resolution, &setup.check, &setup.tmp);
-        if (join == EdgeResult::kBudget) break;
-        if (join == EdgeResult::kValid) {
-          // Path: start tree root .. joint, then goal tree joint .. root.
-          const int start_end = grow == 0 ? added : other;
-          const int goal_end = grow == 0 ? other : added;
-          std::vector<int> from_start, from_goal;
-          AppendBranch(trees[0], start_end, false, &from_start);
-          AppendBranch(trees[1], goal_end, true, &from_goal);
-          std::vector<const RrtNode*> nodes;
-          for (int i : from_start) nodes.push_back(&trees[0][i]);
-          for (int i : from_goal) nodes.push_back(&trees[1][i]);
-          result.path = ToTrajectory(nodes, setup.n);
-          result.status = SolveStatus::kConverged;
-          break;
-        }
-      }
-    }
-    grow = 1 - grow;
-  }
-  result.checks = setup.check.count;
-  result.tree_size = static_cast<int>(trees[0].size() + trees[1].size());
-  return result;
+  return RunToEnd(problem, options, valid, rng, true);
 }
 
 bool PathIsValid(const Trajectory& path, double resolution, const ValidityFn& valid,

@@ -11,6 +11,7 @@
 #include <Eigen/Core>
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <random>
 #include <vector>
 
@@ -58,12 +59,56 @@ struct RrtNode {
   int parent = -1;
 };
 
+// Resumable RRT / BiRRT (the algorithms of PlanRrt / PlanBiRrt below): the constructor checks the
+// arguments (throws as PlanRrt), copies the problem, options and checker, and checks the start and
+// goal states (invalid → done() with kInvalidInput); Step(k) grows up to k iterations. The trees
+// are readable between steps. Running Step to the end gives bit-identical paths, checks,
+// iterations and trees to PlanRrt / PlanBiRrt with the same generator state; Step(1) repeated
+// equals one Step(max). Not thread-safe except RequestStop.
+class RrtSolver {
+ public:
+  // `rng`: the generator state to start from (PlanRrt's *rng); `seed`: std::mt19937(seed).
+  RrtSolver(const RrtProblem& problem, const RrtOptions& options, ValidityFn valid,
+            std::mt19937 rng, bool bidirectional);
+  RrtSolver(const RrtProblem& problem, const RrtOptions& options, ValidityFn valid,
+            std::uint64_t seed, bool bidirectional);
+  ~RrtSolver();
+  RrtSolver(const RrtSolver&) = delete;
+  RrtSolver& operator=(const RrtSolver&) = delete;
+
+  // Runs up to k >= 0 sampling iterations; stops early when a path is found, the check budget or
+  // max_iterations is reached (done() afterwards) or a stop was requested. Returns the number of
+  // iterations run by this call.
+  std::int64_t Step(std::int64_t k);
+  // Asks a running or future Step to return at the next iteration boundary and ends the run
+  // (done(), status kBudgetExhausted unless already finished). Safe to call from another thread.
+  void RequestStop();
+  bool stop_requested() const;
+
+  bool done() const;
+  // kConverged (path found), kInvalidInput, or kBudgetExhausted (also while running: no path yet).
+  SolveStatus status() const;
+  std::int64_t checks() const;      // validity calls so far (start and goal included)
+  std::int64_t iterations() const;  // sampling iterations so far
+  int num_trees() const;            // 1 (RRT: rooted at start) or 2 (BiRRT: start, goal)
+  // Nodes of tree i in insertion order; node 0 is the root, parents index into the same tree.
+  const std::vector<RrtNode>& tree(int i) const;
+  // The result so far (path empty until found).
+  RrtResult result() const;
+  // The generator state after the iterations run so far.
+  const std::mt19937& rng() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
 // Uni-directional RRT (LaValle 1998) from start toward goal with goal bias: each iteration draws
 // q_rand uniformly in the box (or q_rand = goal with probability goal_bias), extends the nearest
 // node by at most `range`, and adds the new node if the edge is valid. Succeeds when an added node
 // is the goal itself. Checks the start state first (invalid start or goal → kInvalidInput).
 // Throws std::invalid_argument on inconsistent sizes, non-finite values or lower > upper.
-// Deterministic for a given *rng state.
+// Deterministic for a given *rng state (advanced as the run consumed it). A loop over RrtSolver.
 RrtResult PlanRrt(const RrtProblem& problem, const RrtOptions& options, const ValidityFn& valid,
                   std::mt19937* rng);
 

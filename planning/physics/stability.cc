@@ -20,107 +20,164 @@ void Drift(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b, double* slip,
   *rot = std::abs(d.angle()) * kRadToDeg;
 }
 
-}  // namespace
-
-StabilityResult TestGraspStability(const OdeRuntime& runtime, const SimHand& hand,
-                                   const SimObject& object, const StabilityOptions& options,
-                                   const StepCallback& on_step) {
+void CheckOptions(const StabilityOptions& options) {
   if (!(options.close_time >= 0) || !(options.trial_time > 0) || !(options.max_slip > 0) ||
       !(options.max_rotation_deg > 0) || !std::isfinite(options.gravity)) {
     throw std::invalid_argument(
         "stability options: need close_time >= 0, trial_time > 0, "
         "max_slip > 0, max_rotation_deg > 0 and finite gravity");
   }
-  GraspSimulation sim(runtime, hand, object, options.sim);
-  StabilityResult result;
+}
+
+const StabilityOptions& Checked(const StabilityOptions& options) {
+  CheckOptions(options);
+  return options;
+}
+
+}  // namespace
+
+StabilityRun::StabilityRun(const OdeRuntime& runtime, const SimHand& hand, const SimObject& object,
+                           const StabilityOptions& options, const StepCallback& on_step)
+    : options_(Checked(options)), on_step_(on_step), sim_(runtime, hand, object, options.sim) {
   static const char* kLabels[6] = {"+x", "-x", "+y", "-y", "+z", "-z"};
-  result.directions.resize(6);
+  result_.directions.resize(6);
   for (int d = 0; d < 6; ++d) {
-    result.directions[d].label = kLabels[d];
+    result_.directions[d].label = kLabels[d];
     Eigen::Vector3d g = Eigen::Vector3d::Zero();
-    g[d / 2] = (d % 2 == 0 ? 1.0 : -1.0) * options.gravity;
-    result.directions[d].gravity_palm = g;
+    g[d / 2] = (d % 2 == 0 ? 1.0 : -1.0) * options_.gravity;
+    result_.directions[d].gravity_palm = g;
   }
+  close_steps_ = static_cast<int>(std::lround(options_.close_time / options_.sim.dt));
+  trial_steps_ = static_cast<int>(std::lround(options_.trial_time / options_.sim.dt));
+  CheckPhaseEnd();  // a closing phase of zero steps ends at once
+}
 
-  // Phase 1: close the hand on the object with gravity off.
-  const int close_steps = static_cast<int>(std::lround(options.close_time / options.sim.dt));
-  for (int k = 0; k < close_steps && !sim.state().blown_up; ++k) {
-    sim.Step();
-    ++result.total_steps;
-    if (on_step) on_step(0, sim);
-  }
-  result.closure_contact_links = sim.state().num_contact_links;
-  result.closure_max_depth = sim.state().max_depth;
-  result.closure_contacts = sim.state().contacts;
-  result.closure_world_from_object = sim.state().world_from_object;
-  if (sim.state().blown_up) {
-    result.status = StabilityStatus::kBlownUp;
-    result.message = "closing phase: " + sim.state().blowup_reason;
-    for (DirectionResult& d : result.directions) {
-      d.blown_up = true;
-      d.blowup_reason = result.message;
-    }
-    return result;
-  }
-  if (result.closure_contact_links < options.min_contact_links) {
-    result.status = StabilityStatus::kNoGrasp;
-    result.message = "after closing only " + std::to_string(result.closure_contact_links) +
-                     " hand link(s) touch the object";
-  }
-  const Eigen::Isometry3d reference = PalmFromObject(sim.state());
-  const Eigen::Matrix3d world_from_palm = sim.state().world_from_link[0].linear();
-  const SimSnapshot closed = sim.SaveState();
+const char* StabilityRun::phase_name() const {
+  static const char* kNames[kNumPhases] = {"closing",    "gravity +x", "gravity -x", "gravity +y",
+                                           "gravity -y", "gravity +z", "gravity -z"};
+  return kNames[phase_];
+}
 
-  // Phase 2: one trial per palm axis direction, each from the post-closure state.
-  const int trial_steps = static_cast<int>(std::lround(options.trial_time / options.sim.dt));
-  for (int d = 0; d < 6; ++d) {
-    DirectionResult& dir = result.directions[d];
-    sim.RestoreState(closed);
-    sim.SetGravity(world_from_palm * dir.gravity_palm);
-    for (int k = 0; k < trial_steps; ++k) {
-      sim.Step();
-      ++dir.steps;
-      if (on_step) on_step(d + 1, sim);
-      if (sim.state().blown_up) break;
-      double slip = 0, rot = 0;
-      Drift(reference, PalmFromObject(sim.state()), &slip, &rot);
-      if (slip > options.early_exit_slip) break;
-    }
-    result.total_steps += dir.steps;
-    const SimState& s = sim.state();
+double StabilityRun::sim_time() const {
+  const int steps =
+      phase_ == 0 ? closing_done_ : closing_done_ + result_.directions[phase_ - 1].steps;
+  return steps * options_.sim.dt;
+}
+
+bool StabilityRun::StepPhysics() {
+  while (!done_ && phase_finished_) BeginNextPhase();
+  if (done_) return false;
+  sim_.Step();
+  if (phase_ == 0) {
+    ++closing_done_;
+    ++result_.total_steps;
+  } else {
+    ++result_.directions[phase_ - 1].steps;
+  }
+  if (on_step_) on_step_(phase_, sim_);
+  CheckPhaseEnd();
+  return true;
+}
+
+void StabilityRun::StepPhase() {
+  if (done_) return;
+  const int target = phase_finished_ ? phase_ + 1 : phase_;
+  while (!done_ && (phase_ < target || (phase_ == target && !phase_finished_))) StepPhysics();
+}
+
+// Records the end of the current phase if it has ended (reads the simulation only).
+void StabilityRun::CheckPhaseEnd() {
+  const SimState& s = sim_.state();
+  if (phase_ == 0) {
+    if (closing_done_ < close_steps_ && !s.blown_up) return;
+    phase_finished_ = true;
+    result_.closure_contact_links = s.num_contact_links;
+    result_.closure_max_depth = s.max_depth;
+    result_.closure_contacts = s.contacts;
+    result_.closure_world_from_object = s.world_from_object;
     if (s.blown_up) {
-      dir.blown_up = true;
-      dir.blowup_reason = s.blowup_reason;
-      continue;
+      result_.status = StabilityStatus::kBlownUp;
+      result_.message = "closing phase: " + s.blowup_reason;
+      for (DirectionResult& d : result_.directions) {
+        d.blown_up = true;
+        d.blowup_reason = result_.message;
+      }
+      done_ = true;
+      return;
     }
-    Drift(reference, PalmFromObject(s), &dir.slip_m, &dir.rotation_deg);
-    dir.contact_links = s.num_contact_links;
-    dir.passed = dir.slip_m < options.max_slip && dir.rotation_deg < options.max_rotation_deg &&
-                 dir.contact_links >= options.min_contact_links;
+    if (result_.closure_contact_links < options_.min_contact_links) {
+      result_.status = StabilityStatus::kNoGrasp;
+      result_.message = "after closing only " + std::to_string(result_.closure_contact_links) +
+                        " hand link(s) touch the object";
+    }
+    reference_ = PalmFromObject(s);
+    world_from_palm_ = s.world_from_link[0].linear();
+    closed_ = sim_.SaveState();
+    return;
   }
+  DirectionResult& dir = result_.directions[phase_ - 1];
+  if (dir.steps < trial_steps_ && !s.blown_up) {
+    if (dir.steps == 0) return;
+    double slip = 0, rot = 0;
+    Drift(reference_, PalmFromObject(s), &slip, &rot);
+    if (!(slip > options_.early_exit_slip)) return;
+  }
+  phase_finished_ = true;
+  result_.total_steps += dir.steps;
+  if (s.blown_up) {
+    dir.blown_up = true;
+    dir.blowup_reason = s.blowup_reason;
+  } else {
+    Drift(reference_, PalmFromObject(s), &dir.slip_m, &dir.rotation_deg);
+    dir.contact_links = s.num_contact_links;
+    dir.passed = dir.slip_m < options_.max_slip && dir.rotation_deg < options_.max_rotation_deg &&
+                 dir.contact_links >= options_.min_contact_links;
+  }
+  if (phase_ == kNumPhases - 1) Summarise();
+}
 
-  // Summary.
+// From a finished phase to the next gravity direction: the post-closure state, its gravity.
+void StabilityRun::BeginNextPhase() {
+  ++phase_;
+  phase_finished_ = false;
+  DirectionResult& dir = result_.directions[phase_ - 1];
+  sim_.RestoreState(closed_);
+  gravity_ = world_from_palm_ * dir.gravity_palm;
+  sim_.SetGravity(gravity_);
+  CheckPhaseEnd();  // a trial of zero steps ends at once
+}
+
+void StabilityRun::Summarise() {
   bool any_blowup = false;
-  for (const DirectionResult& d : result.directions) {
+  for (const DirectionResult& d : result_.directions) {
     if (d.blown_up) {
       any_blowup = true;
       continue;
     }
-    result.directions_passed += d.passed ? 1 : 0;
-    result.max_slip_m = std::max(result.max_slip_m, d.slip_m);
-    result.max_rotation_deg = std::max(result.max_rotation_deg, d.rotation_deg);
+    result_.directions_passed += d.passed ? 1 : 0;
+    result_.max_slip_m = std::max(result_.max_slip_m, d.slip_m);
+    result_.max_rotation_deg = std::max(result_.max_rotation_deg, d.rotation_deg);
   }
   if (any_blowup) {
-    result.status = StabilityStatus::kBlownUp;
-    for (const DirectionResult& d : result.directions) {
+    result_.status = StabilityStatus::kBlownUp;
+    for (const DirectionResult& d : result_.directions) {
       if (d.blown_up) {
-        result.message = "gravity " + d.label + ": " + d.blowup_reason;
+        result_.message = "gravity " + d.label + ": " + d.blowup_reason;
         break;
       }
     }
   }
-  result.stable = result.status == StabilityStatus::kTested && result.directions_passed == 6;
-  return result;
+  result_.stable = result_.status == StabilityStatus::kTested && result_.directions_passed == 6;
+  done_ = true;
+}
+
+StabilityResult TestGraspStability(const OdeRuntime& runtime, const SimHand& hand,
+                                   const SimObject& object, const StabilityOptions& options,
+                                   const StepCallback& on_step) {
+  StabilityRun run(runtime, hand, object, options, on_step);
+  while (run.StepPhysics()) {
+  }
+  return run.result();
 }
 
 }  // namespace planning::physics

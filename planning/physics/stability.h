@@ -68,10 +68,65 @@ struct StabilityResult {
 // Phase: 0 = closing, 1..6 = gravity direction index + 1.
 using StepCallback = std::function<void(int phase, const GraspSimulation& sim)>;
 
+// The protocol as a resumable run: StepPhysics() advances one physics step, StepPhase() to the end
+// of the current phase (closing, or one gravity direction); the simulation (bodies, contacts),
+// the applied gravity, the phase and the simulated time are readable between steps. A phase's
+// end is recorded right after its last step; the next phase's set-up (restoring the post-closure
+// state, setting its gravity) happens at the start of the next step, so between steps the
+// simulation always shows the state just simulated. Stepping to the end gives bit-identical
+// results to TestGraspStability. Keeps references to `runtime` (must outlive the run); copies
+// the options. Throws std::invalid_argument as TestGraspStability.
+class StabilityRun {
+ public:
+  static constexpr int kNumPhases = 7;  // 0 = closing, 1..6 = gravity +x, −x, +y, −y, +z, −z
+
+  StabilityRun(const OdeRuntime& runtime, const SimHand& hand, const SimObject& object,
+               const StabilityOptions& options, const StepCallback& on_step = {});
+
+  // One physics step (after setting up the next phase if the current one has ended). Returns
+  // false, doing nothing, once done().
+  bool StepPhysics();
+  // Steps until the phase being simulated ends (a finished phase: the next one). No-op if done().
+  void StepPhase();
+
+  bool done() const { return done_; }
+  int phase() const { return phase_; }  // 0..6 as kNumPhases
+  bool phase_finished() const { return phase_finished_; }
+  const char* phase_name() const;  // "closing", "gravity +x", ...
+  // Simulated time of the current state [s]: from the start of closing along this phase's branch
+  // (closing time + trial time in a gravity phase).
+  double sim_time() const;
+  // World-frame gravity now applied [m/s²] (zero while closing).
+  const Eigen::Vector3d& gravity() const { return gravity_; }
+  const GraspSimulation& simulation() const { return sim_; }
+  const SimState& state() const { return sim_.state(); }  // bodies, joints, contacts
+  // The result so far: closure fields once closing ended, direction entries once each ended;
+  // final (summary filled) once done().
+  const StabilityResult& result() const { return result_; }
+
+ private:
+  void CheckPhaseEnd();
+  void BeginNextPhase();
+  void Summarise();
+
+  StabilityOptions options_;
+  StepCallback on_step_;
+  GraspSimulation sim_;
+  StabilityResult result_;
+  int close_steps_ = 0, trial_steps_ = 0, closing_done_ = 0;
+  int phase_ = 0;
+  bool phase_finished_ = false, done_ = false;
+  Eigen::Vector3d gravity_ = Eigen::Vector3d::Zero();
+  Eigen::Isometry3d reference_ = Eigen::Isometry3d::Identity();  // post-closure palm-from-object
+  Eigen::Matrix3d world_from_palm_ = Eigen::Matrix3d::Identity();
+  SimSnapshot closed_;
+};
+
 // Runs the protocol: build the simulation, close for close_time with zero gravity, save the
 // state, then for each direction restore it and simulate trial_time with gravity
 // options.gravity along that palm axis. `on_step` (optional) is called after every step.
-// Deterministic. Throws std::invalid_argument for a bad description (see GraspSimulation).
+// Deterministic. A loop over StabilityRun::StepPhysics. Throws std::invalid_argument for a bad
+// description (see GraspSimulation).
 StabilityResult TestGraspStability(const OdeRuntime& runtime, const SimHand& hand,
                                    const SimObject& object, const StabilityOptions& options,
                                    const StepCallback& on_step = {});

@@ -70,6 +70,37 @@ void BM_AicoSolveOnly720(benchmark::State& state) {
 }
 BENCHMARK(BM_AicoSolveOnly720)->Unit(benchmark::kMillisecond);
 
+// One full AICO solve (AicoSolver: rollout start, sweeps to convergence) at 360° and 720°.
+void BM_AicoSolverUnwrap(benchmark::State& state) {
+  const planning::Scenario& s = Unwrap(static_cast<double>(state.range(0)));
+  planning::AicoResult r;
+  for (auto _ : state) {
+    planning::AicoSolver solver(s.problem, s.aico);
+    r = solver.Solve();
+    benchmark::DoNotOptimize(r.cost);
+  }
+  state.counters["sweeps"] = r.iterations;
+  state.counters["task_evaluations"] = static_cast<double>(r.task_evaluations);
+}
+BENCHMARK(BM_AicoSolverUnwrap)->Arg(360)->Arg(720)->Unit(benchmark::kMillisecond);
+
+// One sweep (message passing, relocation, cost at the beliefs) at 720°: the k-th sweep of a solve,
+// k = 0, 1, ... (a fresh solver, set up untimed, once the previous one is done).
+void BM_AicoOneSweep720(benchmark::State& state) {
+  const planning::Scenario& s = Unwrap(720);
+  std::unique_ptr<planning::AicoSolver> solver;
+  for (auto _ : state) {
+    if (!solver || solver->done()) {
+      state.PauseTiming();
+      solver = std::make_unique<planning::AicoSolver>(s.problem, s.aico);
+      state.ResumeTiming();
+    }
+    const planning::AicoStep step = solver->Step();
+    benchmark::DoNotOptimize(step.cost);
+  }
+}
+BENCHMARK(BM_AicoOneSweep720)->Unit(benchmark::kMillisecond);
+
 // The writhe-continuation start and final-pose estimate (scenario loading).
 void BM_LoadUnwrap720(benchmark::State& state) {
   planning::ScenarioOverrides o;
