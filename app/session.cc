@@ -80,6 +80,7 @@ struct Session::PlanOutput {
   long rrt_checks = 0;
   bool finished = false;
   bool stepped = false;  // started by kStep: keep showing the last slice
+  bool follow = true;    // show each new sweep (a re-plan keeps playing the old trajectory)
   std::string what = "plan", error;
 };
 
@@ -116,6 +117,16 @@ void RunRecordingEnd(Output* out, Fn&& job) {
 
 }  // namespace
 
+std::shared_ptr<Session::PlanOutput> Session::NewPlanJob(long budget, const char* stepped_name,
+                                                         Worker::Job* job) {
+  auto out = std::make_shared<PlanOutput>();
+  out->stepped = budget >= 0;
+  plan_out_ = out;
+  job->name = budget >= 0 ? stepped_name : "plan";
+  job->budget = budget;
+  return out;
+}
+
 void Session::DropJob() {
   worker_.Cancel();
   plan_out_.reset();
@@ -149,14 +160,10 @@ void Session::StartPlan(Settings* settings, long budget) {
     StartRrt(settings, budget);
     return;
   }
-  auto out = std::make_shared<PlanOutput>();
-  out->stepped = budget >= 0;
-  plan_out_ = out;
+  Worker::Job job;
+  const std::shared_ptr<PlanOutput> out = NewPlanJob(budget, "step", &job);
   std::shared_ptr<const planning::Scenario> scenario = scenario_;
   const unsigned seed = settings->planner.seed;
-  Worker::Job job;
-  job.name = budget >= 0 ? "step" : "plan";
-  job.budget = budget;
   job.run = [out, scenario, planner, seed](Worker& worker) {
     RunRecordingEnd(out.get(), [&] {
       planning::AicoCallback record;
@@ -192,14 +199,10 @@ int GraspPointLink(const planning::Robot& robot) {
 
 void Session::StartRrt(Settings* settings, long budget) {
   const planning::Planner planner = planning::ParsePlanner(settings->planner.planner);
-  auto out = std::make_shared<PlanOutput>();
-  out->stepped = budget >= 0;
-  plan_out_ = out;
+  Worker::Job job;
+  const std::shared_ptr<PlanOutput> out = NewPlanJob(budget, "rrt_step", &job);
   std::shared_ptr<const planning::Scenario> scenario = scenario_;
   const unsigned seed = settings->planner.seed;
-  Worker::Job job;
-  job.name = budget >= 0 ? "rrt_step" : "plan";
-  job.budget = budget;
   job.run = [out, scenario, planner, seed](Worker& worker) {
     RunRecordingEnd(out.get(), [&] {
       const planning::Scenario& s = *scenario;
@@ -323,6 +326,7 @@ void Session::StartMove(const SessionCommand& c, Settings* settings) {
   ++plan_version_;
   auto out = std::make_shared<PlanOutput>();
   out->what = "re-plan after moving " + c.text;
+  out->follow = false;
   plan_out_ = out;
   Worker::Job job;
   job.name = "move";
@@ -439,7 +443,7 @@ void Session::Poll(Settings* settings) {
     for (size_t k = had; k < out->sweeps.size(); ++k) sweeps_.push_back(out->sweeps[k]);
     if (sweeps_.size() != had) {
       ++plan_version_;
-      if (!out->result) {  // follow the newest sweep, its last slice
+      if (!out->result && out->follow) {  // show the newest sweep, its last slice
         settings->sweep = static_cast<int>(sweeps_.size()) - 1;
         settings->frame = std::max(0, num_frames(*settings) - 1);
         const SweepRecord& s = sweeps_.back();
@@ -939,7 +943,7 @@ void WriteStatusJson(const std::string& path, const std::string& planner, const 
                      const std::vector<double>& frame_ms, long frames_while_planning) {
   nlohmann::json j;
   j["planner"] = planner;
-  j["planning"] = st.computing && (st.job == "plan" || st.job == "step" || st.job == "move");
+  j["planning"] = st.computing && st.job != "grasp";  // plan, step, rrt_step, move
   j["held"] = st.held;
   j["job"] = st.job;
   j["sweep"] = st.sweep;

@@ -174,6 +174,9 @@ class Session {
   // iteration per worker checkpoint, publishing its trees.
   void StartRrt(Settings* settings, long budget);
   void StartMove(const SessionCommand& command, Settings* settings);
+  // The output of a new plan job (shown from now on) and the job's name ("plan", or
+  // `stepped_name` when budget >= 0) and budget.
+  std::shared_ptr<PlanOutput> NewPlanJob(long budget, const char* stepped_name, Worker::Job* job);
   // Cancels the worker's job and forgets its output (the job ends at its next checkpoint).
   void DropJob();
   void ShowPlanResult(Settings* settings);
