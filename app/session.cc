@@ -521,7 +521,10 @@ void Session::Poll(Settings* settings) {
         grasp_->result = out->replay.result;
         grasp_->winding_error = out->replay.winding_error;
         grasp_->finished = true;
-        if (!out->stepped) settings->grasp.frame = 0;  // a finished test replays from its start
+        if (!out->stepped) {  // a finished test replays from its start, framed on it
+          settings->grasp.frame = 0;
+          settings->camera_initialised = false;
+        }
         std::ostringstream msg;
         msg << grasp_->grasp << " (" << grasp_->method << "): " << grasp_->result.directions_passed
             << "/6 gravity directions held, "
