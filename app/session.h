@@ -1,7 +1,9 @@
 // app::Session: the state behind the interactive window and its headless twin — the loaded
 // scenario or robot scene, the latest plan with every AICO sweep, and the commands that change
 // them. UI buttons and `--script` lines both become SessionCommands; nothing else mutates a
-// Session.
+// Session. Plans, re-plans and ODE simulations run on a worker thread (app/worker.h): the draw
+// thread applies commands, calls Poll() once per frame to take over finished sweeps, results and
+// simulation frames, and never waits for a solve (only kPlan and Wait() do, for scripts/tests).
 #pragma once
 
 #include <Eigen/Core>
@@ -13,6 +15,7 @@
 
 #include "app/robot_scene.h"
 #include "app/settings.h"
+#include "app/worker.h"
 #include "planning/kinematics.h"
 #include "planning/physics/grasp_simulation.h"
 #include "planning/physics/stability.h"
@@ -25,15 +28,24 @@ namespace app {
 struct SessionCommand {
   enum class Kind {
     kLoad,       // text = scenario / URDF / scene JSON path
-    kPlan,       // run settings.planner on the scenario; shows the final trajectory
-    kStep,       // show the next AICO sweep (plans first, recording every sweep, if needed)
+    kPlan,       // run settings.planner on the scenario and wait; shows the final trajectory
+    kPlanAsync,  // start settings.planner on the worker and return; sweeps appear as they come
+    kStep,       // value = N: run N more real AICO sweeps on the worker (starts a stepped solve if
+                 // none is parked), then hold the solver; shows the latest sweep
+    kRrtStep,    // value = N: grow the RRT/BiRRT trees of settings.planner by N iterations
+    kCancel,     // stop the worker's job at its next sweep/step; its partial output is dropped
     kPlay,       // start playback of the shown trajectory
     kPause,      // stop playback
-    kSeek,       // value = time slice to show
+    kSeek,       // value = time to show [s] from the trajectory's start (rounded to a slice)
     kSetJoint,   // value = angle [rad] of joint index `index` (clears the trajectory)
     kReset,      // back to the start configuration, no trajectory
-    kGraspRun,   // transfer settings.grasp to the SDH and run the ODE stability test, recording it
+    kGraspRun,   // transfer settings.grasp to the SDH and run the ODE stability test on the
+                 // worker, recording it
     kGraspStep,  // value = recorded simulation frames to advance (negative: back)
+    kSimStep,    // value = N: advance the live ODE test by N physics steps (starts one if none is
+                 // parked), then hold it
+    kMove,       // text = object, position = new world position [m] of its frame: moves the object
+                 // and re-plans on the worker, warm-started from the shown trajectory
   };
   SessionCommand() = default;
   explicit SessionCommand(Kind k, std::string t = "", int i = 0, double v = 0.0)
@@ -43,6 +55,7 @@ struct SessionCommand {
   std::string text;
   int index = 0;
   double value = 0.0;
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();
 };
 
 // One AICO sweep as recorded through the solver's callback.
@@ -67,15 +80,53 @@ struct GraspReplay {
   int stride = 20;  // steps between recorded frames (20 ms at 1 kHz)
   planning::physics::StabilityResult result;
   double winding_error = 0.0;  // |robot winding − target| of the transfer
+  bool finished = false;       // false while the live simulation runs or is held between steps
+};
+
+// One RRT/BiRRT tree as drawn: the grasp point (sdh_grasp_link, else the robot's last link) of
+// every node's configuration [m, world frame] and the node's parent (−1: the root).
+struct RrtTreeView {
+  std::vector<Eigen::Vector3d> points;
+  std::vector<int> parents;
+};
+
+// What the worker is doing, for the progress display and `status FILE`.
+struct WorkerStatus {
+  std::string job;                      // "plan", "step", "grasp", "move" or "" when idle
+  bool computing = false;               // a job runs now (not held between steps)
+  bool held = false;                    // a stepped job waits for the next step
+  int sweep = 0;                        // AICO sweeps done so far (latest plan)
+  int max_sweeps = 0;                   // their limit (settings.planner.max_iterations)
+  double cost = 0.0;                    // cost of the latest sweep
+  long rrt_nodes = 0;                   // nodes of the RRT trees (0 when none is shown)
+  long rrt_checks = 0, rrt_budget = 0;  // collision checks used / allowed
+  double sim_time_s = 0.0;              // simulated time of the latest ODE frame
 };
 
 class Session {
  public:
   Session() = default;
+  Session(const Session&) = delete;
+  Session& operator=(const Session&) = delete;
+  // Cancels and joins the worker's job.
+  ~Session();
 
   // Applies one command; may update `settings` (shown sweep, frame, playback). Throws
-  // std::invalid_argument for bad arguments (unknown file, joint index out of range).
+  // std::invalid_argument for bad arguments (unknown file, joint index out of range, unknown
+  // object). Commands that replace the scenario or the plan cancel the worker's job first (its
+  // output is dropped) without waiting for it.
   void Apply(const SessionCommand& command, Settings* settings);
+  // Takes over what the worker produced since the last call (sweeps, the result, simulation
+  // frames) and starts queued jobs; call once per frame. Never blocks on a running job.
+  void Poll(Settings* settings);
+  // Blocks until the worker is idle or holds a stepped job, then Poll()s (scripts and tests).
+  void Wait(Settings* settings);
+  WorkerStatus worker_status(const Settings& settings) const;
+  // True while a job runs or is held between steps.
+  bool busy() const { return worker_.busy(); }
+  // True when nothing runs: the worker is idle (and its output taken over) or holds a stepped
+  // job. Scripts' plan/step/wait/grasp lines keep drawing frames until this holds.
+  bool settled() const;
 
   // Advances playback by settings->play_stride slices when playing (stops at the end).
   void Tick(Settings* settings) const;
@@ -94,11 +145,18 @@ class Session {
   int num_frames(const Settings& settings) const;
   // Writhe matrix of the scenario's report pair at q (empty when the scenario has none).
   Eigen::MatrixXd WritheAt(const Eigen::VectorXd& q) const;
+  // Time step [s] between the shown trajectory's slices (τ of the scenario; 1 without one).
+  double ShownDt(const Settings& settings) const;
+  // max |W_ij| over every slice of the shown trajectory (or the shown q without one): one fixed,
+  // symmetric colour range [−limit, limit] for the heatmap while it plays. Cached per plan/sweep.
+  double HeatmapLimit(const Settings& settings) const;
 
   const std::vector<SweepRecord>& sweeps() const { return sweeps_; }
   const std::optional<planning::PlanResult>& result() const { return result_; }
   const Eigen::VectorXd& joint_q() const { return joint_q_; }
   const std::optional<GraspReplay>& grasp() const { return grasp_; }
+  // The trees of the latest RRT/BiRRT plan as they grow (tree 0 from the start, 1 from the goal).
+  const std::vector<RrtTreeView>& rrt_trees() const { return rrt_trees_; }
   // World-frame gravity [m/s²] during recorded grasp frame `frame` (zero while closing).
   Eigen::Vector3d GraspGravity(int frame) const;
   // One line describing the last action, for the status bar and logs.
@@ -106,36 +164,74 @@ class Session {
   void set_status(const std::string& status) { status_ = status; }
 
  private:
+  struct PlanOutput;
+  struct GraspOutput;
   void Load(const std::string& path, const Settings& settings);
-  void Plan(Settings* settings, bool record_sweeps);
-  void RunGrasp(Settings* settings);
+  // Starts settings.planner on the worker (budget < 0: to the end; else that many AICO sweeps).
+  void StartPlan(Settings* settings, long budget);
+  void StartGrasp(Settings* settings, long budget);
+  // The RRT/BiRRT of settings.planner as a resumable solver (planning::RrtSolver), one
+  // iteration per worker checkpoint, publishing its trees.
+  void StartRrt(Settings* settings, long budget);
+  void StartMove(const SessionCommand& command, Settings* settings);
+  // The output of a new plan job (shown from now on) and the job's name ("plan", or
+  // `stepped_name` when budget >= 0) and budget.
+  std::shared_ptr<PlanOutput> NewPlanJob(long budget, const char* stepped_name, Worker::Job* job);
+  // Cancels the worker's job and forgets its output (the job ends at its next checkpoint).
+  void DropJob();
+  void ShowPlanResult(Settings* settings);
 
-  std::unique_ptr<planning::Scenario> scenario_;
+  std::shared_ptr<planning::Scenario> scenario_;
   std::optional<RobotScene> robot_scene_;
   Eigen::VectorXd joint_q_;  // slider configuration
   std::optional<planning::PlanResult> result_;
   std::vector<SweepRecord> sweeps_;
   std::optional<GraspReplay> grasp_;
+  std::vector<RrtTreeView> rrt_trees_;
+  long rrt_checks_ = 0;
   std::string status_;
+  long plan_version_ = 0;  // bumped whenever sweeps_ or result_ change
+  mutable std::pair<long, int> heatmap_key_{-1, 0};
+  mutable double heatmap_limit_ = 0.0;
+  std::shared_ptr<PlanOutput> plan_out_;    // output of the plan job being shown, if any
+  std::shared_ptr<GraspOutput> grasp_out_;  // output of the live simulation, if any
+  Worker worker_;  // last: destroyed (cancelled and joined) before the state its job writes to
 };
 
-// Parses a `--script` file: one command per line, `#` comments. Lines:
-//   load PATH | plan | step | play | pause | seek SLICE | joint INDEX ANGLE | reset |
+// Writes `status` (and the recent frame times [ms]) as the JSON object {"planner", "planning",
+// "held", "job", "sweep", "max_sweeps", "cost", "rrt_nodes", "rrt_checks", "sim_time_s",
+// "frame_ms": [...], "frames_while_planning"} to `path`, through a temporary file renamed into
+// place (never a half-written file). Throws std::invalid_argument when it cannot be written.
+void WriteStatusJson(const std::string& path, const std::string& planner,
+                     const WorkerStatus& status, const std::vector<double>& frame_ms,
+                     long frames_while_planning);
+
+// Parses a `--script` file: one command per line, `#` comments. Lines (ScriptUsage() lists
+// them):
+//   load PATH | plan [async] | step [N] | wait | cancel | rrt_step N | sim_step N |
+//   move OBJECT X Y Z | status FILE | play | pause | seek SECONDS | joint INDEX ANGLE | reset |
 //   toggle chains|collision|grid|contacts|heatmap|cost | planner aico|rrt|birrt | seed N |
-//   camera YAW PITCH DISTANCE | frames N (render N frames) | screenshot PATH |
-//   click WIDGET (press a named widget, e.g. "Plan", "chains") | quit
+//   camera YAW PITCH DISTANCE [TX TY TZ] | frames N (draw N frames) | screenshot PATH |
+//   click WIDGET (press a named widget, e.g. "Plan", "chains") | grasp NAME METHOD |
+//   grasp_step N | quit
 // Session commands come back as Commands; view-only lines are applied to `settings` at the
-// right moment by RunScript (viewer). Throws std::invalid_argument naming file and line, also for
-// numbers out of range: frames N in [1, kMaxScriptFrames] (all frames lines together <=
-// kMaxScriptTotalFrames), seed in [0, 2^32 − 1], finite numbers elsewhere; files larger than
-// topology::kMaxInputFileBytes are refused.
+// right moment by RunScript (viewer). Throws std::invalid_argument "FILE:LINE: ..." for unknown
+// verbs, wrong argument counts and bad values, listing the valid choices as "(valid: a, b, c)";
+// also for numbers out of range: frames N in [1, kMaxScriptFrames] (all frames lines together <=
+// kMaxScriptTotalFrames), step/rrt_step/sim_step N in [1, 1e6], seed in [0, 2^32 − 1], finite
+// numbers elsewhere; files larger than topology::kMaxInputFileBytes are refused.
 inline constexpr int kMaxScriptFrames = 100000;
 inline constexpr long long kMaxScriptTotalFrames = 1000000;
 struct ScriptLine {
+  std::string file;
   int line = 0;
   std::string verb;
   std::vector<std::string> args;
 };
 std::vector<ScriptLine> ParseScript(const std::string& path);
+// "(valid: a, b, c)": the one format in which script and UI errors list the valid choices.
+std::string ValidChoices(const std::vector<std::string>& choices);
+// The toggles `toggle NAME` accepts.
+const std::vector<std::string>& ScriptToggles();
 
 }  // namespace app

@@ -46,6 +46,14 @@ struct GraspSettings {
   int frame = 0;                       // recorded simulation frame shown
 };
 
+// Moving an object with the mouse (modifier + drag) or `move OBJECT X Y Z`.
+struct MoveSettings {
+  std::string object;  // the object a modifier-drag moves ("" = the scenario's first object)
+  bool dragging = false;
+  Eigen::Vector3d start = Eigen::Vector3d::Zero();   // its position when the drag began [m]
+  Eigen::Vector3d offset = Eigen::Vector3d::Zero();  // accumulated drag [m]
+};
+
 struct Settings {
   std::string scenario_path;
   RobotInputOptions robot_input;  // --package-path, --srdf: used by every load
@@ -61,6 +69,7 @@ struct Settings {
   bool playing = false;
   int play_stride = 1;  // slices advanced per rendered frame while playing
   GraspSettings grasp;
+  MoveSettings move;
 };
 
 }  // namespace app

@@ -18,9 +18,11 @@ void AddViewCommand(CLI::App* root, CommandList* commands) {
   view->add_option("--screenshot", o->screenshot,
                    "run headless (OSMesa) and write the final frame, UI included, to this PNG");
   view->add_option("--script", o->script,
-                   "command file: load, plan, step, play, pause, seek T, joint I A, reset, toggle "
-                   "NAME, planner P, seed N, camera YAW PITCH DIST, frames N, click WIDGET, "
-                   "screenshot PNG, quit");
+                   "command file, one per line: load PATH, plan [async], step [N], wait, cancel, "
+                   "rrt_step N, sim_step N, move OBJECT X Y Z, status FILE, play, pause, seek "
+                   "SECONDS, joint I A, reset, toggle NAME, planner P, seed N, camera YAW PITCH "
+                   "DIST [TX TY TZ], frames N, click WIDGET, screenshot PNG, grasp NAME METHOD, "
+                   "grasp_step N, quit");
   view->add_flag("--headless", o->headless, "no window even without --screenshot");
   AddRobotInputFlags(view, &o->robot_input, nullptr);
   view->add_flag("!--no-overlay", o->overlay, "headless frames without the UI panels");
@@ -29,8 +31,10 @@ void AddViewCommand(CLI::App* root, CommandList* commands) {
   view->add_flag("--print-widgets", o->print_widgets,
                  "print the screen rectangles of the named widgets (for scripted clicks)");
   view->footer(
-      "Mouse: left drag orbits, right drag pans, wheel zooms. Buttons: Plan, Step sweep (shows the "
-      "next AICO sweep), Play/Pause and the timeline scrubber; joint sliders move the robot.");
+      "Mouse: left drag orbits, right drag pans, wheel zooms, Shift + left drag moves the chosen "
+      "object (re-plans on release). Buttons: Plan (on a worker thread; the window keeps drawing), "
+      "Step sweep (runs one more real AICO sweep), Cancel, Play/Pause and the timeline scrubber "
+      "(seconds); joint sliders move the robot.");
   commands->push_back({view, [o, size]() {
                          ParseImageSize(*size, "--size", &o->width, &o->height);
                          if (o->width < 64 || o->height < 64) {

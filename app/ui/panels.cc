@@ -25,6 +25,36 @@ ImU32 Diverging(float v) {
                                                white.z + t * (end.z - white.z), 1.0f));
 }
 
+// The worker's progress (sweep k of max and cost; simulated time) and its Cancel button, shown
+// while a job runs or holds between steps.
+void ProgressRow(const Session& session, const Settings& s, std::vector<SessionCommand>* commands,
+                 WidgetRects* rects) {
+  const WorkerStatus w = session.worker_status(s);
+  if (w.job.empty()) return;
+  char text[96];
+  float fraction = 0.0f;
+  if (w.job == "grasp") {
+    std::snprintf(text, sizeof text, "t %.3f s%s", w.sim_time_s, w.held ? " (held)" : "");
+    fraction = static_cast<float>(std::min(1.0, w.sim_time_s / 12.5));
+  } else if (w.rrt_nodes > 0 || w.job == "rrt_step") {
+    std::snprintf(text, sizeof text, "%ld nodes, checks %ld/%ld%s", w.rrt_nodes, w.rrt_checks,
+                  w.rrt_budget, w.held ? " (held)" : "");
+    fraction = w.rrt_budget > 0
+                   ? static_cast<float>(w.rrt_checks) / static_cast<float>(w.rrt_budget)
+                   : 0.0f;
+  } else {
+    std::snprintf(text, sizeof text, "sweep %d/%d, cost %.3g%s", w.sweep, w.max_sweeps, w.cost,
+                  w.held ? " (held)" : "");
+    fraction =
+        w.max_sweeps > 0 ? static_cast<float>(w.sweep) / static_cast<float>(w.max_sweeps) : 0.0f;
+  }
+  ImGui::ProgressBar(std::clamp(fraction, 0.0f, 1.0f), ImVec2(-70.0f, 0.0f), text);
+  Remember("progress", rects);
+  ImGui::SameLine();
+  if (ImGui::Button("Cancel")) commands->emplace_back(SessionCommand::Kind::kCancel);
+  Remember("Cancel", rects);
+}
+
 void ScenarioPanel(const Session& session, const std::vector<std::string>& scenarios, Settings* s,
                    std::vector<SessionCommand>* commands, WidgetRects* rects) {
   ImGui::SetNextWindowPos(ImVec2(10, 10), ImGuiCond_Always);
@@ -54,18 +84,29 @@ void ScenarioPanel(const Session& session, const std::vector<std::string>& scena
     if (ImGui::InputInt("seed", &seed)) s->planner.seed = static_cast<unsigned>(std::max(0, seed));
     ImGui::SliderInt("sweeps", &s->planner.max_iterations, 1, 100);
     float damping = static_cast<float>(s->planner.damping);
-    if (ImGui::SliderFloat("damping", &damping, 0.01f, 100.0f, "%.2f",
-                           ImGuiSliderFlags_Logarithmic)) {
+    // A drag field: its value text has no slider grab drawn over it.
+    if (ImGui::DragFloat("damping", &damping, 0.01f, 0.01f, 100.0f, "%.2f",
+                         ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_AlwaysClamp)) {
       s->planner.damping = damping;
     }
-    if (ImGui::Button("Plan")) commands->emplace_back(SessionCommand::Kind::kPlan);
+    Remember("damping", rects);
+    if (ImGui::Button("Plan")) commands->emplace_back(SessionCommand::Kind::kPlanAsync);
     Remember("Plan", rects);
     ImGui::SameLine();
-    if (ImGui::Button("Step sweep")) commands->emplace_back(SessionCommand::Kind::kStep);
+    if (ImGui::Button("Step sweep"))
+      commands->emplace_back(SessionCommand::Kind::kStep, "", 0, 1.0);
     Remember("Step sweep", rects);
     ImGui::SameLine();
     if (ImGui::Button("Reset")) commands->emplace_back(SessionCommand::Kind::kReset);
     Remember("Reset", rects);
+    if (s->planner.planner == "rrt" || s->planner.planner == "birrt") {
+      ImGui::SameLine();
+      if (ImGui::Button("Step 50")) {
+        commands->emplace_back(SessionCommand::Kind::kRrtStep, "", 0, 50.0);
+      }
+      Remember("Rrt step", rects);
+    }
+    ProgressRow(session, *s, commands, rects);
   }
 
   // Timeline ------------------------------------------------------------------------------------
@@ -79,16 +120,18 @@ void ScenarioPanel(const Session& session, const std::vector<std::string>& scena
     }
     Remember("Play", rects);
     ImGui::SameLine();
-    int frame = s->frame;
-    if (ImGui::SliderInt("t", &frame, 0, frames - 1)) {
-      commands->emplace_back(SessionCommand::Kind::kSeek, "", 0, static_cast<double>(frame));
+    const double dt = session.ShownDt(*s);
+    float t = static_cast<float>(s->frame * dt);
+    if (ImGui::SliderFloat("t [s]", &t, 0.0f, static_cast<float>((frames - 1) * dt), "%.2f s")) {
+      commands->emplace_back(SessionCommand::Kind::kSeek, "", 0, static_cast<double>(t));
     }
     Remember("timeline", rects);
     if (!session.sweeps().empty()) {
-      int sweep = s->sweep;
-      if (ImGui::SliderInt("sweep", &sweep, -1, static_cast<int>(session.sweeps().size()) - 1,
-                           sweep < 0 ? "final" : "%d")) {
-        s->sweep = sweep;
+      // Sweeps counted from 1 like the progress row; 0 = the final result.
+      int shown = s->sweep + 1;
+      if (ImGui::SliderInt("sweep", &shown, 0, static_cast<int>(session.sweeps().size()),
+                           shown == 0 ? "final" : "%d")) {
+        s->sweep = shown - 1;
         s->frame = std::min(s->frame, session.num_frames(*s) - 1);
       }
     }
@@ -125,6 +168,18 @@ void ScenarioPanel(const Session& session, const std::vector<std::string>& scena
   ImGui::SameLine();
   ImGui::Checkbox("cost plot", &s->view.cost_panel);
   if (ImGui::Button("Frame camera")) s->camera_initialised = false;
+  if (const planning::Scenario* sc = session.scenario(); sc && !sc->spec.objects.empty()) {
+    ImGui::SameLine();
+    const std::string current =
+        s->move.object.empty() ? sc->spec.objects.front().name : s->move.object;
+    ImGui::SetNextItemWidth(100.0f);
+    if (ImGui::BeginCombo("Shift+drag", current.c_str())) {
+      for (const planning::ObjectSpec& o : sc->spec.objects) {
+        if (ImGui::Selectable(o.name.c_str(), o.name == current)) s->move.object = o.name;
+      }
+      ImGui::EndCombo();
+    }
+  }
   ImGui::TextWrapped("%s", session.status().c_str());
   ImGui::End();
 }
@@ -150,7 +205,8 @@ void GraspPanel(const Session& session, const std::vector<std::string>& grasps, 
   if (ImGui::Button("Transfer + test")) commands->emplace_back(SessionCommand::Kind::kGraspRun);
   Remember("Transfer + test", rects);
   ImGui::SameLine();
-  if (ImGui::Button("Step")) commands->emplace_back(SessionCommand::Kind::kGraspStep, "", 0, 1.0);
+  // One recorded frame's worth (20 ms) of the live simulation.
+  if (ImGui::Button("Step")) commands->emplace_back(SessionCommand::Kind::kSimStep, "", 0, 20.0);
   Remember("Grasp step", rects);
   ImGui::SameLine();
   ImGui::Checkbox("show", &s->grasp.active);
@@ -178,8 +234,9 @@ void HeatmapPanel(const Session& session, const Settings& s) {
   ImGui::Begin("writhe matrix", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize);
   ImGui::Text("%ldx%ld  total %+.3f (%.0f deg)", static_cast<long>(w.rows()),
               static_cast<long>(w.cols()), w.sum(), 360.0 * std::abs(w.sum()));
-  // Cells snapped to whole pixels (deterministic across rasterisers), limits symmetric about 0.
-  const double limit = std::max(1e-9, w.cwiseAbs().maxCoeff());
+  // Cells snapped to whole pixels (deterministic across rasterisers); one symmetric range for the
+  // whole shown trajectory, so colours do not rescale while it plays.
+  const double limit = session.HeatmapLimit(s);
   const int max_side = 200;
   const int cell_w = std::max(1, max_side / static_cast<int>(w.cols()));
   const int cell_h = std::max(1, std::min(cell_w * 4, max_side / static_cast<int>(w.rows())));
@@ -197,7 +254,29 @@ void HeatmapPanel(const Session& session, const Settings& s) {
   }
   ImGui::Dummy(
       ImVec2(static_cast<float>(cell_w * w.cols()), static_cast<float>(cell_h * w.rows())));
-  ImGui::Text("rows: robot, |max| %.3g", limit);
+  // Colour bar: −limit .. 0 .. +limit, in whole-pixel columns.
+  const float bar_w = static_cast<float>(cell_w * w.cols());
+  ImVec2 b = ImGui::GetCursorScreenPos();
+  b.x = std::floor(b.x);
+  b.y = std::floor(b.y);
+  const int columns = std::max(2, static_cast<int>(bar_w));
+  for (int i = 0; i < columns; ++i) {
+    const float v = -1.0f + 2.0f * (static_cast<float>(i) + 0.5f) / static_cast<float>(columns);
+    dl->AddRectFilled(ImVec2(b.x + static_cast<float>(i), b.y),
+                      ImVec2(b.x + static_cast<float>(i + 1), b.y + 10.0f), Diverging(v));
+  }
+  ImGui::Dummy(ImVec2(bar_w, 10.0f));
+  char lo[32], hi[32];
+  std::snprintf(lo, sizeof lo, "%+.3g", -limit);
+  std::snprintf(hi, sizeof hi, "%+.3g", limit);
+  const float y = std::floor(ImGui::GetCursorScreenPos().y);
+  const ImU32 ink = ImGui::GetColorU32(ImGuiCol_Text);
+  dl->AddText(ImVec2(b.x, y), ink, lo);
+  dl->AddText(ImVec2(std::floor(b.x + 0.5f * bar_w - 0.5f * ImGui::CalcTextSize("0").x), y), ink,
+              "0");
+  dl->AddText(ImVec2(std::floor(b.x + bar_w - ImGui::CalcTextSize(hi).x), y), ink, hi);
+  ImGui::Dummy(ImVec2(bar_w, ImGui::GetTextLineHeight()));
+  ImGui::TextWrapped("rows: robot links; colours fixed over the trajectory");
   ImGui::End();
 }
 
@@ -207,10 +286,11 @@ void CostPanel(const Session& session, const Settings& s) {
   std::vector<float> costs;
   for (const SweepRecord& r : sweeps)
     costs.push_back(static_cast<float>(std::log10(std::max(r.cost, 1e-12))));
+  // Anchored at its bottom-right corner and sized to its content (no clipped rows).
   ImGui::SetNextWindowPos(
-      ImVec2(static_cast<float>(s.width) - 290.0f, static_cast<float>(s.height) - 150.0f),
-      ImGuiCond_Always);
-  ImGui::SetNextWindowSize(ImVec2(280, 140), ImGuiCond_Always);
+      ImVec2(static_cast<float>(s.width) - 10.0f, static_cast<float>(s.height) - 10.0f),
+      ImGuiCond_Always, ImVec2(1.0f, 1.0f));
+  ImGui::SetNextWindowSize(ImVec2(280, 0), ImGuiCond_Always);
   ImGui::Begin("cost per sweep", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize);
   char label[64];
   std::snprintf(label, sizeof label, "last %.4g", sweeps.back().cost);

@@ -28,28 +28,133 @@ TEST_F(SessionTest, LoadsScenarioWithStartConfigurationAndWrithe) {
   EXPECT_GT(std::abs(w.sum()), 1.0);  // the start coil wraps the pole
 }
 
-TEST_F(SessionTest, StepShowsSweepsInOrderAndPlanShowsTheResult) {
-  session_.Apply(SessionCommand(SessionCommand::Kind::kStep), &settings_);
-  ASSERT_FALSE(session_.sweeps().empty());
+TEST_F(SessionTest, StepRunsRealSweepsThatMatchTheFullPlan) {
+  // The full plan, for reference.
+  session_.Apply(SessionCommand(SessionCommand::Kind::kPlan), &settings_);
+  ASSERT_TRUE(session_.result().has_value());
+  const std::vector<SweepRecord> full = session_.sweeps();
+  const Eigen::MatrixXd full_q = session_.result()->trajectory.q;
+  ASSERT_GT(full.size(), 4u);
+
+  // Stepping: each step runs exactly one more sweep, then the solver is held.
+  session_.Apply(SessionCommand(SessionCommand::Kind::kReset), &settings_);
+  session_.Apply(SessionCommand(SessionCommand::Kind::kStep, "", 0, 1.0), &settings_);
+  session_.Wait(&settings_);
+  ASSERT_EQ(session_.sweeps().size(), 1u);
   EXPECT_EQ(settings_.sweep, 0);
-  const Eigen::VectorXd q_sweep0 = session_.ShownQ(settings_);
-  session_.Apply(SessionCommand(SessionCommand::Kind::kStep), &settings_);
-  EXPECT_EQ(settings_.sweep, 1);
-  // Stepping through every recorded sweep moves the shown end configuration.
-  double moved = 0.0;
-  for (size_t k = 1; k < session_.sweeps().size(); ++k) {
-    session_.Apply(SessionCommand(SessionCommand::Kind::kStep), &settings_);
-    moved = std::max(moved, (session_.ShownQ(settings_) - q_sweep0).norm());
+  EXPECT_TRUE(session_.worker_status(settings_).held);
+  EXPECT_FALSE(session_.result().has_value());
+  session_.Apply(SessionCommand(SessionCommand::Kind::kStep, "", 0, 2.0), &settings_);
+  session_.Wait(&settings_);
+  ASSERT_EQ(session_.sweeps().size(), 3u);
+  EXPECT_EQ(settings_.sweep, 2);
+  for (size_t k = 0; k < 3; ++k) {
+    EXPECT_EQ(session_.sweeps()[k].cost, full[k].cost);
+    EXPECT_EQ(session_.sweeps()[k].q, full[k].q);
   }
-  EXPECT_EQ(settings_.sweep, static_cast<int>(session_.sweeps().size()) - 1);
-  EXPECT_GT(moved, 0.1);
-  // The final trajectory (sweep −1) ends unwrapped.
+  // Stepping on to the end gives the plan's result, bit for bit.
+  session_.Apply(SessionCommand(SessionCommand::Kind::kStep, "", 0, 1000.0), &settings_);
+  session_.Wait(&settings_);
+  ASSERT_TRUE(session_.result().has_value());
+  EXPECT_EQ(session_.result()->trajectory.q, full_q);
+  EXPECT_FALSE(session_.busy());
+  // The final trajectory (sweep −1) ends unwrapped; seek takes seconds (2 s = the last slice).
   settings_.sweep = -1;
+  session_.Apply(SessionCommand(SessionCommand::Kind::kSeek, "", 0, 1.0), &settings_);
+  EXPECT_EQ(settings_.frame, 25);  // T = 50 over 2 s
   session_.Apply(SessionCommand(SessionCommand::Kind::kSeek, "", 0, 1e9), &settings_);
   EXPECT_EQ(settings_.frame, session_.num_frames(settings_) - 1);
   EXPECT_LT(std::abs(session_.WritheAt(session_.ShownQ(settings_)).sum()), 0.1);
-  ASSERT_TRUE(session_.result().has_value());
   EXPECT_TRUE(session_.result()->report.success);
+  // One colour range for the whole trajectory: at least every slice's own maximum.
+  const double limit = session_.HeatmapLimit(settings_);
+  for (int f = 0; f < session_.num_frames(settings_); f += 10) {
+    settings_.frame = f;
+    EXPECT_LE(session_.WritheAt(session_.ShownQ(settings_)).cwiseAbs().maxCoeff(), limit);
+  }
+}
+
+TEST_F(SessionTest, CancelledPlanLeavesNoThreadAndNoResult) {
+  session_.Apply(SessionCommand(SessionCommand::Kind::kPlanAsync), &settings_);
+  EXPECT_TRUE(session_.busy());
+  session_.Apply(SessionCommand(SessionCommand::Kind::kCancel), &settings_);
+  session_.Wait(&settings_);
+  EXPECT_FALSE(session_.busy());  // the job's thread is joined
+  EXPECT_TRUE(session_.settled());
+  EXPECT_FALSE(session_.result().has_value());
+  EXPECT_NE(session_.status().find("cancelled"), std::string::npos) << session_.status();
+  // A held stepped solve is cancelled the same way.
+  session_.Apply(SessionCommand(SessionCommand::Kind::kStep, "", 0, 2.0), &settings_);
+  session_.Wait(&settings_);
+  EXPECT_TRUE(session_.busy());
+  session_.Apply(SessionCommand(SessionCommand::Kind::kCancel), &settings_);
+  session_.Wait(&settings_);
+  EXPECT_FALSE(session_.busy());
+  EXPECT_FALSE(session_.result().has_value());
+  // Loading while a plan runs drops the plan without waiting for it.
+  session_.Apply(SessionCommand(SessionCommand::Kind::kPlanAsync), &settings_);
+  session_.Apply(SessionCommand(SessionCommand::Kind::kReset), &settings_);
+  session_.Wait(&settings_);
+  EXPECT_FALSE(session_.result().has_value());
+  EXPECT_TRUE(session_.sweeps().empty());
+}
+
+TEST(SessionRrtTest, RrtStepGrowsTheTreesAndEndsOnThePlannersPath) {
+  setenv("TOPOPLAN_ASSETS", TOPOPLAN_SOURCE_DIR "/assets", 1);
+  Session session;
+  Settings settings;
+  settings.planner.planner = "rrt";
+  session.Apply(SessionCommand(SessionCommand::Kind::kLoad, "reach_through_ring"), &settings);
+  session.Apply(SessionCommand(SessionCommand::Kind::kRrtStep, "", 0, 2.0), &settings);
+  session.Wait(&settings);
+  ASSERT_EQ(session.rrt_trees().size(), 1u);
+  const size_t after_two = session.rrt_trees()[0].points.size();
+  EXPECT_GE(after_two, 1u);
+  EXPECT_LE(after_two, 3u);  // the root + at most one node per iteration
+  EXPECT_EQ(session.rrt_trees()[0].parents[0], -1);
+  if (!session.result()) {
+    EXPECT_TRUE(session.worker_status(settings).held);
+    EXPECT_GT(session.worker_status(settings).rrt_checks, 0);
+  }
+  // Stepping to the end gives RunPlanner's path, bit for bit (same seed, same solver).
+  session.Apply(SessionCommand(SessionCommand::Kind::kRrtStep, "", 0, 1e6), &settings);
+  session.Wait(&settings);
+  ASSERT_TRUE(session.result().has_value()) << session.status();
+  const planning::PlanResult direct =
+      planning::RunPlanner(*session.scenario(), planning::Planner::kRrt, settings.planner.seed);
+  EXPECT_EQ(session.result()->trajectory.q, direct.trajectory.q);
+  EXPECT_EQ(session.result()->report.iterations, direct.report.iterations);
+  EXPECT_GE(session.worker_status(settings).rrt_nodes, static_cast<long>(after_two));
+  // `step` is for AICO only and says so.
+  try {
+    session.Apply(SessionCommand(SessionCommand::Kind::kStep, "", 0, 1.0), &settings);
+    FAIL();
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("(valid: aico"), std::string::npos) << e.what();
+  }
+}
+
+TEST(SessionMoveTest, MovingTheRingRePlansWarmStarted) {
+  setenv("TOPOPLAN_ASSETS", TOPOPLAN_SOURCE_DIR "/assets", 1);
+  Session session;
+  Settings settings;
+  session.Apply(SessionCommand(SessionCommand::Kind::kLoad, "reach_through_ring"), &settings);
+  session.Apply(SessionCommand(SessionCommand::Kind::kPlan), &settings);
+  ASSERT_TRUE(session.result().has_value());
+  SessionCommand move(SessionCommand::Kind::kMove, "ring");
+  move.position = Eigen::Vector3d(0.5, 0.03, 0.96);
+  session.Apply(move, &settings);
+  session.Wait(&settings);
+  ASSERT_TRUE(session.result().has_value()) << session.status();
+  EXPECT_EQ(session.result()->report.planner, "aico (warm start)");
+  EXPECT_EQ(session.scenario()->spec.objects.at(0).xyz, move.position);
+  move.text = "table";
+  try {
+    session.Apply(move, &settings);
+    FAIL();
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("(valid: ring)"), std::string::npos) << e.what();
+  }
 }
 
 TEST_F(SessionTest, PlaybackAdvancesAndStopsAtTheEnd) {
@@ -95,12 +200,58 @@ TEST(ScriptTest, ParsesCommandsAndRejectsBadLinesWithFileAndLine) {
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find(":2: unknown command 'fly'"), std::string::npos);
   }
-  {
-    std::ofstream f(path);
-    f << "seek\n";
-  }
-  EXPECT_THROW(ParseScript(path), std::invalid_argument);
+  const auto error = [&](const std::string& text) {
+    std::ofstream(path) << text;
+    try {
+      ParseScript(path);
+    } catch (const std::invalid_argument& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  // One format: FILE:LINE: ..., valid choices as "(valid: a, b, c)".
+  EXPECT_NE(error("step\nfly away\n").find(path + ":2: unknown command 'fly' (valid: load, plan,"),
+            std::string::npos);
+  EXPECT_NE(error("seek\n").find(path + ":1: 'seek' takes 1 argument(s), got 0: seek SECONDS"),
+            std::string::npos);
+  EXPECT_NE(error("toggle fog\n")
+                .find(path + ":1: unknown toggle 'fog' (valid: chains, collision, grid, contacts, "
+                             "heatmap, cost)"),
+            std::string::npos);
+  EXPECT_NE(error("plan later\n").find(path + ":1: unknown plan mode 'later' (valid: async)"),
+            std::string::npos);
+  EXPECT_NE(error("planner dijkstra\n").find("(valid: aico, rrt, birrt"), std::string::npos);
+  EXPECT_NE(error("camera 1 2 3 4\n").find(path + ":1: 'camera' takes 3 or 6 arguments"),
+            std::string::npos);
+  EXPECT_NE(error("step 0\n").find(path + ":1: '0' is out of range [1, 1e+06]"), std::string::npos);
+  EXPECT_NE(error("move ring 1 x 3\n").find(path + ":1: 'x' is not a finite number"),
+            std::string::npos);
+  EXPECT_NE(error("grasp power_bottle magic\n").find("(valid: winding, joint, fingertip)"),
+            std::string::npos);
+  EXPECT_EQ(error("plan async\nstep\nstep 3\nwait\ncancel\nrrt_step 5\nsim_step 2\n"
+                  "move ring 0.5 0 1\nstatus s.json\ncamera 0 20 3 0 0 1\n"),
+            "no error");
   EXPECT_THROW(ParseScript("/nonexistent/script.txt"), std::invalid_argument);
+}
+
+TEST(StatusJsonTest, WritesEveryFieldThroughARename) {
+  const std::string path = std::filesystem::temp_directory_path() / "topoplan_status_test.json";
+  WorkerStatus st;
+  st.job = "plan";
+  st.computing = true;
+  st.sweep = 3;
+  st.cost = 12.5;
+  WriteStatusJson(path, "aico", st, {16.0, 17.5}, 2);
+  std::ifstream in(path);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  for (const char* key :
+       {"\"planner\": \"aico\"", "\"planning\": true", "\"sweep\": 3", "\"cost\": 12.5",
+        "\"rrt_nodes\": 0", "\"sim_time_s\": 0.0", "\"frame_ms\": [", "17.5"}) {
+    EXPECT_NE(text.find(key), std::string::npos) << key << " in " << text;
+  }
+  EXPECT_FALSE(std::filesystem::exists(path + ".tmp"));
+  EXPECT_THROW(WriteStatusJson("/nonexistent/dir/s.json", "aico", st, {}, 0),
+               std::invalid_argument);
 }
 
 }  // namespace
@@ -115,8 +266,20 @@ TEST(GraspReplayTest, TransfersRecordsAndStepsTheStabilityTest) {
   Settings settings;
   settings.grasp.grasp = "power_bottle";
   settings.grasp.method = "winding";
-  session.Apply(SessionCommand(SessionCommand::Kind::kGraspRun), &settings);
+  // A live simulation held after 5 physics steps (1 ms each), then 5 more.
+  session.Apply(SessionCommand(SessionCommand::Kind::kSimStep, "", 0, 5.0), &settings);
+  session.Wait(&settings);
   ASSERT_TRUE(session.grasp().has_value());
+  EXPECT_FALSE(session.grasp()->finished);
+  EXPECT_NEAR(session.worker_status(settings).sim_time_s, 0.005, 1e-9);
+  session.Apply(SessionCommand(SessionCommand::Kind::kSimStep, "", 0, 5.0), &settings);
+  session.Wait(&settings);
+  EXPECT_NEAR(session.worker_status(settings).sim_time_s, 0.010, 1e-9);
+  // The whole test, run on the worker.
+  session.Apply(SessionCommand(SessionCommand::Kind::kGraspRun), &settings);
+  session.Wait(&settings);
+  ASSERT_TRUE(session.grasp().has_value());
+  EXPECT_TRUE(session.grasp()->finished);
   const GraspReplay& g = *session.grasp();
   // 0.5 s closing + 6 × 2 s at 1 kHz, one frame every 20 steps (trials may stop early).
   EXPECT_GT(g.frames.size(), 100u);

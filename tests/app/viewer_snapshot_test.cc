@@ -4,6 +4,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 
 #include "app/ui/viewer.h"
 #include "render/diff.h"
@@ -47,11 +48,13 @@ TEST_F(ViewerSnapshotTest, StartOfUnwrapWithPanels) {
 }
 
 TEST_F(ViewerSnapshotTest, ClickingPlanThenSeekingShowsTheUnwoundArm) {
-  const render::Image planned = RunScript("planned", "click Plan\nframes 3\nseek 50\nframes 2\n");
+  // The Plan button starts the plan on the worker; `wait` keeps drawing until it is done.
+  const render::Image planned =
+      RunScript("planned", "click Plan\nframes 3\nwait\nseek 2.0\nframes 2\n");
   ExpectGolden(planned, "unwrap_planned");
   // Scripted clicks go through ImGui like the mouse: clicking "chains" changes the frame.
   const render::Image no_chains =
-      RunScript("no_chains", "click Plan\nframes 3\nseek 50\nclick chains\nframes 3\n");
+      RunScript("no_chains", "click Plan\nframes 3\nwait\nseek 2.0\nclick chains\nframes 3\n");
   EXPECT_FALSE(render::CompareImages(planned, no_chains).passed);
 }
 
@@ -59,6 +62,81 @@ TEST_F(ViewerSnapshotTest, GraspPanelReplaysTheOdeTestStepByStep) {
   // Transfer the power grasp to the SDH, run the stability test, show 1.2 s into it (+x gravity).
   ExpectGolden(RunScript("grasp", "grasp power_bottle winding\ngrasp_step 60\nframes 2\n"),
                "grasp_power_bottle");
+}
+
+TEST_F(ViewerSnapshotTest, SteppingAicoThreeRealSweeps) {
+  // Three real sweeps, then the solver is held: the arm after sweep 3, its last slice, the
+  // progress row with Cancel, three costs in the plot.
+  ExpectGolden(RunScript("step3", "step\nstep 2\nframes 2\n"), "unwrap_step3");
+}
+
+TEST_F(ViewerSnapshotTest, BiRrtTreesDrawnAsTheyGrow) {
+  // BiRRT on the ring scenario, held after 5 iterations: both trees' grasp points and edges.
+  ViewerOptions o;
+  std::filesystem::create_directories(Tmp(""));
+  std::ofstream(Tmp("birrt.txt")) << "planner birrt\nrrt_step 5\nframes 2\n";
+  o.scenario = "reach_through_ring";
+  o.script = Tmp("birrt.txt");
+  o.screenshot = Tmp("birrt.png");
+  o.width = 1024;
+  o.height = 640;
+  ASSERT_EQ(RunViewer(o), 0);
+  ExpectGolden(render::ReadPng(o.screenshot), "ring_birrt_step5");
+}
+
+nlohmann::json ReadJson(const std::string& path) {
+  std::ifstream in(path);
+  return nlohmann::json::parse(in);
+}
+
+TEST_F(ViewerSnapshotTest, PlanAsyncKeepsDrawingWhilePlanning) {
+  const std::string during = Tmp("async_during.json"), after = Tmp("async_after.json");
+  RunScript("async", "plan async\nframes 3\nstatus " + during + "\nwait\nstatus " + after + "\n");
+  const nlohmann::json d = ReadJson(during), a = ReadJson(after);
+  // Frames were drawn while the worker planned (the plan takes far longer than three frames).
+  EXPECT_TRUE(d["planning"].get<bool>());
+  EXPECT_GT(d["frames_while_planning"].get<long>(), 0);
+  EXPECT_FALSE(d["frame_ms"].empty());
+  EXPECT_FALSE(a["planning"].get<bool>());
+  EXPECT_GT(a["sweep"].get<int>(), 0);
+  EXPECT_GE(a["frames_while_planning"].get<long>(), d["frames_while_planning"].get<long>());
+  for (const char* key : {"planner", "cost", "rrt_nodes", "sim_time_s"}) {
+    EXPECT_TRUE(a.contains(key)) << key;
+  }
+  // Reported, not asserted (timing depends on the machine's load).
+  std::vector<double> ms = a["frame_ms"].get<std::vector<double>>();
+  std::sort(ms.begin(), ms.end());
+  std::printf("frame times while/after planning: %zu frames, median %.1f ms, max %.1f ms\n",
+              ms.size(), ms[ms.size() / 2], ms.back());
+}
+
+TEST_F(ViewerSnapshotTest, CancelledPlanLeavesNoThreadOrPartialResult) {
+  const std::string status = Tmp("cancel.json");
+  std::filesystem::remove(status);
+  RunScript("cancel", "plan async\nframes 2\ncancel\nwait\nstatus " + status + "\n");
+  const nlohmann::json s = ReadJson(status);
+  EXPECT_FALSE(s["planning"].get<bool>());
+  EXPECT_EQ(s["job"].get<std::string>(), "");  // no job left, its thread joined
+  EXPECT_FALSE(std::filesystem::exists(status + ".tmp"));
+}
+
+TEST_F(ViewerSnapshotTest, ScriptErrorsNameFileAndLineAndTheValidChoices) {
+  const auto error = [&](const std::string& name, const std::string& text) {
+    try {
+      RunScript(name, text);
+    } catch (const std::invalid_argument& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  const std::string click = error("bad_click", "frames 2\nclick Nope\n");
+  EXPECT_NE(click.find(Tmp("bad_click.txt") + ":2: no widget 'Nope' on screen (valid: "),
+            std::string::npos)
+      << click;
+  const std::string move = error("bad_move", "move table 0 0 1\n");
+  EXPECT_NE(move.find(Tmp("bad_move.txt") + ":1: move: no object 'table' (valid: pole, cylinder)"),
+            std::string::npos)
+      << move;
 }
 
 }  // namespace
