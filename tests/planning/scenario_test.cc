@@ -247,6 +247,7 @@ TEST(UnwrapScenario, AicoUnwrapsFrom720Degrees) { CheckUnwrap(720.0); }
 // Regression: these tunnelled through the pole before the wider collision margin.
 TEST(UnwrapScenario, AicoUnwrapsFrom90Degrees) { CheckUnwrap(90.0); }
 TEST(UnwrapScenario, AicoUnwrapsFrom270Degrees) { CheckUnwrap(270.0); }
+TEST(UnwrapScenario, AicoUnwrapsFrom900Degrees) { CheckUnwrap(900.0); }
 
 TEST(ReachThroughRing, AicoEndsInsideTheBoxWithTheWrithePeakAtTheLinkThroughTheRing) {
   const auto s = LoadScenario(kAssets + "scenarios/reach_through_ring.json");
@@ -283,6 +284,15 @@ TEST(ReachThroughRing, AicoEndsInsideTheBoxWithTheWrithePeakAtTheLinkThroughTheR
   Eigen::Index row = 0;
   W.rowwise().sum().cwiseAbs().maxCoeff(&row);
   EXPECT_EQ(row, crossing) << "W =\n" << W;
+  // The report's writhe_peak: the largest |entry| of that matrix, in the crossing row.
+  EXPECT_EQ(r.report.writhe_peak_row, crossing) << "W =\n" << W;
+  ASSERT_GE(r.report.writhe_peak_col, 0);
+  ASSERT_LT(r.report.writhe_peak_col, W.cols());
+  EXPECT_EQ(r.report.writhe_peak_value, W(r.report.writhe_peak_row, r.report.writhe_peak_col));
+  EXPECT_EQ(std::abs(r.report.writhe_peak_value), W.cwiseAbs().maxCoeff());
+  // The set-up of the thesis: writhe target, box, collision, limits (and the velocity
+  // regulariser) only, no reach task.
+  for (const Task& task : s->problem.tasks) EXPECT_NE(task.feature->name(), "position");
 }
 
 TEST(RrtBaselines, PathsAreCollisionFreeAndSeedsReproduce) {

@@ -53,6 +53,22 @@ TEST(JudgePlan, APathThatTunnelsThroughThePoleBetweenSlicesIsRejected) {
   EXPECT_GT(v.max_winding_jump_turns, 0.5);  // a whole turn lost in one resampled step
 }
 
+// With the collision checker on, the resampled states inside the pole collide, but the verdict
+// names the cause: the winding jump (tunnelled), not the collision.
+TEST(JudgePlan, TunnellingIsNamedBeforeTheCollisionOnTheWayThrough) {
+  const auto s = Unwrap(360.0);
+  const auto unwrapped = Unwrap(0.0);
+  Trajectory path;
+  path.q.resize(s->problem.q0.size(), 2);
+  path.q.col(0) = s->problem.q0;
+  path.q.col(1) = unwrapped->problem.q0;
+  const PlanVerdict v = JudgePlan(*s, path);
+  EXPECT_FALSE(v.collision_free);
+  EXPECT_EQ(v.reason, FailureReason::kTunnelled) << FailureReasonName(v.reason);
+  EXPECT_GT(v.step, 0);
+  EXPECT_GT(v.max_winding_jump_turns, 0.5);
+}
+
 // A 7-dof arm whose link-7 origin must reach `target`; the path is the single state q = 0.
 std::unique_ptr<Scenario> ReachScenario(const std::string& name, double miss_m) {
   const std::string robot = R"({"robot": ")" + kAssets + R"(robots/lwr4_sdh.urdf",
@@ -98,6 +114,88 @@ TEST(JudgePlan, WindingCriterionNeedsAReportPairAndPositiveBounds) {
     } catch (const std::invalid_argument& e) {
       EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos) << e.what();
       EXPECT_NE(std::string(e.what()).find("success.winding"), std::string::npos) << e.what();
+    }
+  }
+}
+
+// The goal q̂_T (the RRT baselines' goal, the end of AICO's final-pose targets) meets the same end
+// conditions as a successful plan: within the limits, collision-free, |writhe| < 0.05, winding
+// near 0, grasp point within 0.05 m of the cylinder.
+TEST(FinalPoseGoal, MeetsTheEndConditionsOfTheSuccessCriterion) {
+  for (const double wrap : {90.0, 360.0, 720.0, 1080.0}) {
+    const auto s = Unwrap(wrap);
+    SCOPED_TRACE("start wrap " + std::to_string(wrap));
+    const EndState e = CheckEndState(*s, s->goal_q, true);
+    EXPECT_TRUE(e.within_limits);
+    EXPECT_TRUE(e.collision_free);
+    EXPECT_LT(std::abs(e.writhe_total), 0.05);
+    EXPECT_LT(std::abs(e.winding_turns), 0.1);
+    EXPECT_GE(e.reach_error_m, 0.0);
+    EXPECT_LE(e.reach_error_m, 0.05);
+    EXPECT_TRUE(e.ok());
+    EXPECT_EQ(e.violation, 0.0);
+    std::printf("GOAL wrap %g reach %g writhe %g winding %g\n", wrap, e.reach_error_m,
+                e.writhe_total, e.winding_turns);
+    // The JudgePlan verdict of the one-state path at the goal agrees.
+    Trajectory at_goal;
+    at_goal.q = s->goal_q;
+    EXPECT_EQ(JudgePlan(*s, at_goal).reason, FailureReason::kNone);
+  }
+}
+
+TEST(Probe, UnwindingPath) {
+  for (const double wrap : {90.0, 360.0, 720.0, 900.0, 1080.0}) {
+    ScenarioOverrides o;
+    o.start_wrap_deg = wrap;
+    const auto s = LoadScenario("/tmp/av_ref10/scenarios/unwrap.json", o);
+    if (s->unwinding.cols() == 0) GTEST_SKIP();
+    Trajectory path;
+    path.q = s->unwinding;
+    const PlanVerdict v = JudgePlan(*s, path);
+    double step = 0;
+    for (int t = 0; t + 1 < path.q.cols(); ++t)
+      step = std::max(step, (path.q.col(t + 1) - path.q.col(t)).norm());
+    std::printf("PROBE wrap %g reason %s step %d jump %g final writhe %g len-step %g\n", wrap,
+                FailureReasonName(v.reason), v.step, v.max_winding_jump_turns,
+                v.final_writhe_total, step);
+  }
+}
+
+TEST(Probe, GoalSearch) {
+  for (const double wrap : {90.0, 360.0, 1080.0}) {
+    const auto s = Unwrap(wrap);
+    struct V { const char* name; double spread; int starts; double reach_x, lim_x, prior; bool wr; };
+    for (const V& v : {V{"base", 0.3, 8, 1, 1, 1, true}, V{"wide", 1.0, 16, 1, 1, 1, true},
+                       V{"reach10lim10", 0.3, 8, 10, 10, 1, true},
+                       V{"reach100lim100", 0.3, 8, 100, 100, 1, true},
+                       V{"weakprior", 0.3, 8, 1, 1, 1000, true},
+                       V{"reachonly", 1.0, 16, 1, 1, 1, false}}) {
+      MotionProblem fp = AttemptProblem(*s, 0);
+      fp.dynamic = false;
+      std::vector<Task> keep;
+      for (Task& t : fp.tasks) {
+        const std::string f = t.feature->name();
+        if (t.order != 0) continue;
+        if (!v.wr && (f == "writhe" || f == "collision")) continue;
+        if (f == "position") t.precision *= v.reach_x;
+        if (f == "joint_limits") t.precision *= v.lim_x;
+        keep.push_back(std::move(t));
+      }
+      fp.tasks = std::move(keep);
+      TaskWorkspace ws(fp);
+      FinalPoseOptions fo;
+      fo.prior_scale = v.prior;
+      FinalPoseSearch search;
+      search.spread = v.spread;
+      search.random_starts = v.starts;
+      const auto r = SearchFinalPose(fp, fo, search, &ws, {s->goal_q, s->problem.q0},
+                                     [&](const Eigen::VectorXd& q) {
+                                       return CheckEndState(*s, q, true).violation;
+                                     });
+      const EndState e = CheckEndState(*s, r.best.q, true);
+      std::printf("SEARCH wrap %g %s viol %g reach %g writhe %g lim %d coll %d\n", wrap, v.name,
+                  r.violation, e.reach_error_m, e.writhe_total, e.within_limits, e.collision_free);
+      std::fflush(stdout);
     }
   }
 }
