@@ -94,7 +94,7 @@ struct EndState {
   bool within_limits = true;   // (state_checks only)
   bool collision_free = true;  // (state_checks only)
   double writhe_total = 0.0;   // ReportWritheTotal(q)
-  double winding_turns = 0.0;  // ReportWinding(q)
+  double winding_turns = 0.0;  // ReportWinding(q) (with the winding criterion only, else 0)
   // The writhe matrix entry of largest |W_ij| (row = robot chain segment, col = object segment;
   // −1 and 0 when there is no report pair).
   int writhe_peak_row = -1, writhe_peak_col = -1;

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 
 #include "planning/kinematics.h"
@@ -143,60 +144,50 @@ TEST(FinalPoseGoal, MeetsTheEndConditionsOfTheSuccessCriterion) {
   }
 }
 
-TEST(Probe, UnwindingPath) {
-  for (const double wrap : {90.0, 360.0, 720.0, 900.0, 1080.0}) {
-    ScenarioOverrides o;
-    o.start_wrap_deg = wrap;
-    const auto s = LoadScenario("/tmp/av_ref10/scenarios/unwrap.json", o);
-    if (s->unwinding.cols() == 0) GTEST_SKIP();
-    Trajectory path;
-    path.q = s->unwinding;
-    const PlanVerdict v = JudgePlan(*s, path);
-    double step = 0;
-    for (int t = 0; t + 1 < path.q.cols(); ++t)
-      step = std::max(step, (path.q.col(t + 1) - path.q.col(t)).norm());
-    std::printf("PROBE wrap %g reason %s step %d jump %g final writhe %g len-step %g\n", wrap,
-                FailureReasonName(v.reason), v.step, v.max_winding_jump_turns,
-                v.final_writhe_total, step);
+// The "unwinding" target kind: the shipped unwrap scenario plus a joint-space reference task along
+// the unwinding path (the coil continued from q0 to writhe 0, resampled over t = 0..T). That path
+// starts at q0, is collision-free and does not tunnel through the pole (JudgePlan on it), and its
+// targets are its states.
+TEST(UnwindingTarget, FollowsACollisionFreePathWithoutTunnelling) {
+  std::ifstream in(kAssets + "scenarios/unwrap.json");
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  for (const std::string dir : {"robots", "objects"}) {
+    const std::string from = "\"../" + dir + "/", to = "\"" + kAssets + dir + "/";
+    for (size_t at = text.find(from); at != std::string::npos; at = text.find(from, at))
+      text.replace(at, from.size(), to);
   }
-}
-
-TEST(Probe, GoalSearch) {
-  for (const double wrap : {90.0, 360.0, 1080.0}) {
-    const auto s = Unwrap(wrap);
-    struct V { const char* name; double spread; int starts; double reach_x, lim_x, prior; bool wr; };
-    for (const V& v : {V{"base", 0.3, 8, 1, 1, 1, true}, V{"wide", 1.0, 16, 1, 1, 1, true},
-                       V{"reach10lim10", 0.3, 8, 10, 10, 1, true},
-                       V{"reach100lim100", 0.3, 8, 100, 100, 1, true},
-                       V{"weakprior", 0.3, 8, 1, 1, 1000, true},
-                       V{"reachonly", 1.0, 16, 1, 1, 1, false}}) {
-      MotionProblem fp = AttemptProblem(*s, 0);
-      fp.dynamic = false;
-      std::vector<Task> keep;
-      for (Task& t : fp.tasks) {
-        const std::string f = t.feature->name();
-        if (t.order != 0) continue;
-        if (!v.wr && (f == "writhe" || f == "collision")) continue;
-        if (f == "position") t.precision *= v.reach_x;
-        if (f == "joint_limits") t.precision *= v.lim_x;
-        keep.push_back(std::move(t));
-      }
-      fp.tasks = std::move(keep);
-      TaskWorkspace ws(fp);
-      FinalPoseOptions fo;
-      fo.prior_scale = v.prior;
-      FinalPoseSearch search;
-      search.spread = v.spread;
-      search.random_starts = v.starts;
-      const auto r = SearchFinalPose(fp, fo, search, &ws, {s->goal_q, s->problem.q0},
-                                     [&](const Eigen::VectorXd& q) {
-                                       return CheckEndState(*s, q, true).violation;
-                                     });
-      const EndState e = CheckEndState(*s, r.best.q, true);
-      std::printf("SEARCH wrap %g %s viol %g reach %g writhe %g lim %d coll %d\n", wrap, v.name,
-                  r.violation, e.reach_error_m, e.writhe_total, e.within_limits, e.collision_free);
-      std::fflush(stdout);
-    }
+  const std::string qdot = R"({"name": "qdot")";
+  text.replace(text.find(qdot), 0,
+               R"({"name": "unwind", "feature": {"type": "joint_position"},
+                   "target": {"type": "unwinding"}, "precision": 10, "final_precision": 0},)");
+  ScenarioOverrides o;
+  o.start_wrap_deg = 720.0;
+  const auto s = LoadScenario(WriteTemp("unwinding.json", text), o);
+  const int T = s->problem.num_steps;
+  ASSERT_EQ(s->unwinding.cols(), T + 1);
+  EXPECT_TRUE(s->unwinding.col(0).isApprox(s->problem.q0));
+  EXPECT_LT(std::abs(ReportWritheTotal(*s, s->unwinding.col(T))), 0.05);
+  const Task* unwind = nullptr;
+  for (const Task& t : s->problem.tasks) {
+    if (t.name == "unwind") unwind = &t;
+  }
+  ASSERT_NE(unwind, nullptr);
+  EXPECT_EQ(unwind->target, s->unwinding);
+  Trajectory path;
+  path.q = s->unwinding;
+  const PlanVerdict v = JudgePlan(*s, path);
+  EXPECT_TRUE(v.collision_free);
+  EXPECT_LT(v.max_winding_jump_turns, 0.1);
+  EXPECT_NE(v.reason, FailureReason::kTunnelled);
+  EXPECT_NE(v.reason, FailureReason::kCollision);
+  // Without a coil start there is no unwinding path.
+  try {
+    LoadScenario(WriteTemp("unwinding_q.json", R"({"robot": ")" + kAssets +
+                                                   R"(robots/lwr4_sdh.urdf", "start": {"q": "zero"},
+        "tasks": [{"feature": {"type": "joint_position"}, "target": {"type": "unwinding"}}]})"));
+    ADD_FAILURE() << "expected an error";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("need a coil start"), std::string::npos) << e.what();
   }
 }
 
