@@ -35,7 +35,7 @@ namespace fs = std::filesystem;
 
 struct DemoArgs {
   std::string out_dir = "demo-out";
-  bool full = false;                          // the whole Figure 4.5 sweep (0..900 deg, 5 seeds)
+  bool full = false;                          // the whole Figure 4.5 sweep (0..1080 deg every 15, 3 seeds)
   bool no_grasp = false;                      // skip the grasp-transfer stage
   double timeout = 0.0;                       // --timeout: seconds, 0 = none
   std::vector<render::FigureFormat> formats;  // --formats: figures also as SVG/PDF
@@ -276,11 +276,12 @@ class Demo {
     planning::UnwrapBenchmarkOptions options;
     options.scenario_path = ResolveScenarioPath("unwrap");
     options.search_roots = {AssetRoot()};
-    const double max_angle = args_.full ? 900.0 : 720.0, step = args_.full ? 90.0 : 180.0;
-    for (double a = 0.0; a <= max_angle + 1e-9; a += step) options.angles_deg.push_back(a);
+    // Reduced: 0..900 deg every 90 deg, 1 seed; full: 0..1080 deg every 15 deg, 3 seeds.
+    const double max_angle = args_.full ? 1080.0 : 900.0, step = args_.full ? 15.0 : 90.0;
+    for (int k = 0; k * step <= max_angle + 1e-9; ++k) options.angles_deg.push_back(k * step);
     options.planners = {planning::Planner::kAico, planning::Planner::kRrt,
                         planning::Planner::kBiRrt};
-    options.seeds = args_.full ? 5 : 1;
+    options.seeds = args_.full ? 3 : 1;
     options.progress = [this](int done, int total, const planning::UnwrapRun& run) {
       std::fprintf(stderr, "\r  %d/%d runs (%s @ %.0f deg seed %d)   ", done, total,
                    planning::PlannerName(run.planner), run.angle_deg, run.seed);
@@ -301,7 +302,7 @@ class Demo {
              "over the solved runs, as in the figure. "
           << (args_.full ? "Full sweep."
                          : "Reduced sweep; <code>topoplan demo --full</code> runs "
-                           "0&ndash;900&deg; with 5 seeds.")
+                           "0&ndash;1080&deg; every 15&deg; with 3 seeds.")
           << "</p>\n<p><img src=\"bench/unwrap.png\" width=\"960\"></p>\n"
           << UnwrapHtmlTable(result) << "<p><a href=\"bench/unwrap.csv\">unwrap.csv</a></p>\n";
     return kExitOk;
@@ -408,7 +409,8 @@ void AddDemoCommand(CLI::App* root, CommandList* commands) {
   CLI::App* demo = root->add_subcommand(
       "demo", "Run the main job: every scenario, figure and table, with DIR/index.html");
   demo->add_option("-o,--out", args->out_dir, "output folder")->capture_default_str();
-  demo->add_flag("--full", args->full, "the whole Fig. 4.5 sweep (0..900 deg, 5 seeds)");
+  demo->add_flag("--full", args->full,
+                 "the whole Fig. 4.5 sweep (0..1080 deg every 15 deg, 3 seeds)");
   demo->add_flag("--no-grasp", args->no_grasp, "skip the grasp-transfer stage");
   AddTimeoutFlag(demo, &args->timeout);
   AddFormatsFlag(demo, &args->formats);

@@ -64,6 +64,10 @@ nlohmann::json PlanReportJson(const planning::Scenario& s, const planning::PlanR
   j["reach_error_m"] = r.reach_error_m;
   j["max_winding_jump_turns"] = r.max_winding_jump_turns;
   j["final_winding_turns"] = r.final_winding_turns;
+  if (r.writhe_peak_row >= 0) {
+    j["writhe_peak"] = {
+        {"row", r.writhe_peak_row}, {"col", r.writhe_peak_col}, {"value", r.writhe_peak_value}};
+  }
   return j;
 }
 

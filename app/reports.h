@@ -24,7 +24,8 @@ namespace app {
 // narrow_phase_calls, iterations, attempts, cost, path_length [rad], time_s, start_wrap_deg,
 // start/final_writhe_total, min_clearance_m, path_collision_free, cost_history, failure_reason
 // (planning::FailureReasonName), failure_step, reach_error_m, max_winding_jump_turns,
-// final_winding_turns.
+// final_winding_turns, and writhe_peak {row, col, value} (largest |entry| of the final writhe
+// matrix of the report pair; only with a report pair).
 nlohmann::json PlanReportJson(const planning::Scenario& scenario,
                               const planning::PlanReport& report, unsigned seed);
 

@@ -2,8 +2,11 @@
 
 #include <Eigen/Cholesky>
 #include <cmath>
+#include <random>
 #include <stdexcept>
 #include <string>
+
+#include "planning/random.h"
 
 namespace planning {
 namespace {
@@ -127,6 +130,50 @@ FinalPoseResult EstimateFinalPose(const MotionProblem& p, const FinalPoseOptions
   result.task_cost = best_task;
   result.evaluations = ws->evaluations - evals0;
   return result;
+}
+
+}  // namespace planning
+
+namespace planning {
+
+FinalPoseSearchResult SearchFinalPose(const MotionProblem& p, const FinalPoseOptions& options,
+                                      const FinalPoseSearch& search, TaskWorkspace* ws,
+                                      const std::vector<Eigen::VectorXd>& inits,
+                                      const EndViolationFn& violation) {
+  if (inits.empty()) throw std::invalid_argument("SearchFinalPose: no initial configuration");
+  FinalPoseOptions refine = options;
+  refine.prior_scale *= search.refine_scale;
+  FinalPoseSearchResult out;
+  bool have = false;
+  auto consider = [&](const FinalPoseResult& r) {
+    ++out.candidates;
+    const double v = violation(r.q);
+    const bool better =
+        !have || v < out.violation || (v == out.violation && v == 0.0 && r.cost < out.best.cost);
+    if (better) {
+      out.best = r;
+      out.violation = v;
+      have = true;
+    }
+    return v;
+  };
+  auto run = [&](const Eigen::VectorXd& init) {
+    const FinalPoseResult first = EstimateFinalPose(p, options, ws, &init);
+    if (consider(first) > 0.0 && search.refine_scale > 1.0) {
+      consider(EstimateFinalPose(p, refine, ws, &first.q));
+    }
+  };
+  run(inits[0]);
+  if (out.violation == 0.0) return out;
+  for (size_t k = 1; k < inits.size(); ++k) run(inits[k]);
+  std::mt19937 rng(search.seed);
+  for (int k = 0; k < search.random_starts; ++k) {
+    Eigen::VectorXd init = inits[0];
+    for (Eigen::Index j = 0; j < init.size(); ++j)
+      init[j] += search.spread * (2.0 * UniformUnit(&rng) - 1.0);
+    run(init);
+  }
+  return out;
 }
 
 }  // namespace planning

@@ -12,6 +12,8 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <functional>
+#include <vector>
 
 #include "planning/task.h"
 
@@ -39,5 +41,30 @@ struct FinalPoseResult {
 // Throws std::invalid_argument for an invalid problem (ValidateProblem) or init of wrong size.
 FinalPoseResult EstimateFinalPose(const MotionProblem& problem, const FinalPoseOptions& options,
                                   TaskWorkspace* ws, const Eigen::VectorXd* init_q = nullptr);
+
+// Multi-start search for an end state that meets given end conditions (the goal of a scenario):
+// EstimateFinalPose from inits[0], inits[1], ..., then from inits[0] + δ, δ_j uniform in [−spread,
+// spread] (random_starts draws, UniformUnit of std::mt19937(seed)), each followed by a second pass
+// from its result with the prior weakened by `refine_scale` (prior_scale × refine_scale; <= 1: no
+// second pass). `violation(q)` >= 0 scores the end conditions at q (0 = all met). inits[0]'s
+// estimate is returned as soon as it meets them; otherwise the met candidate of least cost, or,
+// when none meets them, the candidate of least violation. Deterministic.
+struct FinalPoseSearch {
+  int random_starts = 8;
+  double spread = 0.3;  // rad, per joint
+  unsigned seed = 1;
+  double refine_scale = 10.0;
+};
+using EndViolationFn = std::function<double(const Eigen::VectorXd& q)>;
+struct FinalPoseSearchResult {
+  FinalPoseResult best;
+  double violation = 0.0;  // violation(best.q)
+  int candidates = 0;      // estimates run (first passes and refinements)
+};
+// Throws std::invalid_argument for an empty `inits`, or as EstimateFinalPose.
+FinalPoseSearchResult SearchFinalPose(const MotionProblem& problem, const FinalPoseOptions& options,
+                                      const FinalPoseSearch& search, TaskWorkspace* ws,
+                                      const std::vector<Eigen::VectorXd>& inits,
+                                      const EndViolationFn& violation);
 
 }  // namespace planning

@@ -109,6 +109,7 @@ PlanVerdict JudgePlan(const Scenario& s, const Trajectory& path) {
     v.step = k;
   };
   double w_prev = 0.0;
+  int tunnel_step = -1;  // first resampled state after a winding jump
   for (int k = 0; k < dense.num_points(); ++k) {
     const auto q = dense.q.col(k);
     if (((q.array() < lo.array()) || (q.array() > hi.array())).any()) {
@@ -132,30 +133,27 @@ PlanVerdict JudgePlan(const Scenario& s, const Trajectory& path) {
     if (k > 0) {
       const double jump = std::abs(w - w_prev);
       v.max_winding_jump_turns = std::max(v.max_winding_jump_turns, jump);
-      if (c.winding_max_jump > 0.0 && jump >= c.winding_max_jump)
-        fail(FailureReason::kTunnelled, k);
+      if (c.winding_max_jump > 0.0 && jump >= c.winding_max_jump && tunnel_step < 0)
+        tunnel_step = k;
     }
     w_prev = w;
   }
+  // A winding jump means the arm passed through the pole (or off its end): name that, not the
+  // collision of the states on the way through.
+  if (tunnel_step >= 0 &&
+      (v.reason == FailureReason::kNone || v.reason == FailureReason::kCollision)) {
+    v.reason = FailureReason::kTunnelled;
+    v.step = tunnel_step;
+  }
   v.final_winding_turns = w_prev;
-  const Eigen::VectorXd q_end = path.q.col(path.num_points() - 1);
-  v.final_writhe_total = ReportWritheTotal(s, q_end);
-  if ((c.winding_final_below > 0.0 && !(std::abs(v.final_winding_turns) < c.winding_final_below)) ||
-      (c.writhe_total_below >= 0.0 && !(std::abs(v.final_writhe_total) < c.writhe_total_below))) {
-    fail(FailureReason::kWritheNotReached, -1);
-  }
-  const int T = s.problem.num_steps;
-  if (c.position_task >= 0) {
-    const Task& task = s.problem.tasks[c.position_task];
-    v.reach_error_m = (FeatureValue(s.robot, *task.feature, q_end) - task.target.col(T)).norm();
-    if (!(v.reach_error_m <= c.position_tolerance)) fail(FailureReason::kReachError, -1);
-  }
-  if (c.box_task >= 0) {
-    const Task& task = s.problem.tasks[c.box_task];
-    if (!((FeatureValue(s.robot, *task.feature, q_end) - task.target.col(T)).norm() <= 1e-9)) {
-      fail(FailureReason::kReachError, -1);
-    }
-  }
+  const EndState end = CheckEndState(s, path.q.col(path.num_points() - 1), false);
+  v.final_writhe_total = end.writhe_total;
+  v.writhe_peak_row = end.writhe_peak_row;
+  v.writhe_peak_col = end.writhe_peak_col;
+  v.writhe_peak_value = end.writhe_peak_value;
+  if (!end.writhe_reached) fail(FailureReason::kWritheNotReached, -1);
+  v.reach_error_m = end.reach_error_m;
+  if (!end.reached) fail(FailureReason::kReachError, -1);
   return v;
 }
 
@@ -267,6 +265,9 @@ PlanResult RunPlanner(const Scenario& s, Planner planner, unsigned seed,
     rep.reach_error_m = verdict->reach_error_m;
     rep.max_winding_jump_turns = verdict->max_winding_jump_turns;
     rep.final_winding_turns = verdict->final_winding_turns;
+    rep.writhe_peak_row = verdict->writhe_peak_row;
+    rep.writhe_peak_col = verdict->writhe_peak_col;
+    rep.writhe_peak_value = verdict->writhe_peak_value;
     rep.success = found && rep.path_collision_free && verdict->reason == FailureReason::kNone;
   }
   // A failed run whose solver status is a failure in itself is named by that status.

@@ -68,6 +68,10 @@ struct PlanReport {
                                         // (−1: no position criterion or no path)
   double max_winding_jump_turns = 0.0;  // largest winding change between resampled states
   double final_winding_turns = 0.0;     // winding about the report line at the end
+  // Largest |entry| of the final writhe matrix of the report pair: row (robot chain segment),
+  // col (object chain segment), value; −1, −1, 0 without a report pair or path.
+  int writhe_peak_row = -1, writhe_peak_col = -1;
+  double writhe_peak_value = 0.0;
 };
 
 // The verdict of JudgePlan.
@@ -77,6 +81,8 @@ struct PlanVerdict {
   double max_winding_jump_turns = 0.0;
   double final_winding_turns = 0.0;
   double final_writhe_total = 0.0;
+  int writhe_peak_row = -1, writhe_peak_col = -1;  // see PlanReport
+  double writhe_peak_value = 0.0;
   double reach_error_m = -1.0;   // −1 when the scenario has no position criterion
   double min_clearance_m = 0.2;  // minimum signed distance over the pairs within 0.2 m
   bool collision_free = true;    // every resampled state within limits and collision-free
@@ -103,9 +109,11 @@ PlanResult RunPlanner(const Scenario& scenario, Planner planner, unsigned seed,
 // (uncounted queries on a collision state of its own). The path is resampled with
 // Densify(path, check_resolution); walking its states k = 0, 1, ...: outside the joint limits ->
 // kJointLimits, InCollision -> kCollision, |w_k − w_{k−1}| >= winding_max_jump -> kTunnelled (w =
-// ReportWinding, turns; only with the winding criterion), the first of these stops the walk. At
-// the end: |w| >= winding_final_below or |total writhe| >= writhe_total_below ->
-// kWritheNotReached; position error > position_tolerance or box value != 0 -> kReachError.
+// ReportWinding, turns; only with the winding criterion); the first of these is the reason, except
+// that a winding jump replaces a collision (the states passing through the pole collide;
+// failure_step is then the jump's). At the end (CheckEndState of the last state): |w| >=
+// winding_final_below or |total writhe| >= writhe_total_below -> kWritheNotReached; position error
+// > position_tolerance or box value != 0 -> kReachError.
 PlanVerdict JudgePlan(const Scenario& scenario, const Trajectory& path);
 
 }  // namespace planning

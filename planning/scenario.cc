@@ -1,10 +1,13 @@
 #include "planning/scenario.h"
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "planning/grasp_object.h"
 #include "planning/kinematics.h"
@@ -95,13 +98,25 @@ Task BuildTask(const Scenario& s, const TaskSpec& spec, const Eigen::VectorXd& q
       SetInterpolatedTarget(&task, FeatureValue(s.robot, *task.feature, q0),
                             FeatureValue(s.robot, *task.feature, *q_final), mid, fin, T);
       break;
+    case TargetKind::kUnwinding:
+      if (s.unwinding.cols() != T + 1) {
+        throw std::invalid_argument(target.where + ": \"unwinding\" targets need a coil start");
+      }
+      SetConstantTarget(&task, Eigen::VectorXd::Zero(dim), mid, T);
+      task.precision[T] = fin;
+      for (int t = 0; t <= T; ++t) {
+        task.target.col(t) = FeatureValue(s.robot, *task.feature, s.unwinding.col(t));
+      }
+      break;
   }
   return task;
 }
 
 // Writhe continuation (see scenario.h): from q toward total writhe `target` in steps.
+// Every accepted configuration (from included) is appended to `path` if not null.
 Eigen::VectorXd WritheContinuation(const Scenario& s, const Eigen::VectorXd& from, double target,
-                                   double step, double margin) {
+                                   double step, double margin,
+                                   std::vector<Eigen::VectorXd>* path = nullptr) {
   MotionProblem p;
   p.robot = &s.robot;
   p.q0 = from;
@@ -128,6 +143,7 @@ Eigen::VectorXd WritheContinuation(const Scenario& s, const Eigen::VectorXd& fro
   FinalPoseOptions fo;
   fo.alpha = 0.5;
   Eigen::VectorXd q = from;
+  if (path != nullptr) path->push_back(q);
   double current = ReportWritheTotal(s, q);
   for (int k = 0; k < 1000 && std::abs(current - target) > 0.005; ++k) {
     const double next =
@@ -139,13 +155,43 @@ Eigen::VectorXd WritheContinuation(const Scenario& s, const Eigen::VectorXd& fro
     if (std::abs(moved - current) < 1e-4) break;  // stuck
     q = r.q;
     current = moved;
+    if (path != nullptr) path->push_back(q);
   }
   return q;
 }
 
+// `path` (at least one configuration) resampled at num_points equally spaced joint-space arc
+// lengths (linear between its configurations): n × num_points.
+Eigen::MatrixXd ResampleByArcLength(const std::vector<Eigen::VectorXd>& path, int num_points) {
+  std::vector<double> length(path.size(), 0.0);
+  for (size_t k = 1; k < path.size(); ++k)
+    length[k] = length[k - 1] + (path[k] - path[k - 1]).norm();
+  Eigen::MatrixXd out(path[0].size(), num_points);
+  size_t k = 0;
+  for (int t = 0; t < num_points; ++t) {
+    const double at = num_points > 1 ? length.back() * t / (num_points - 1) : 0.0;
+    while (k + 2 < path.size() && length[k + 1] < at) ++k;
+    if (path.size() == 1 || length[k + 1] <= length[k]) {
+      out.col(t) = path[std::min(k + 1, path.size() - 1)];
+      continue;
+    }
+    const double a = std::clamp((at - length[k]) / (length[k + 1] - length[k]), 0.0, 1.0);
+    out.col(t) = (1.0 - a) * path[k] + a * path[k + 1];
+  }
+  return out;
+}
+
+bool UsesUnwinding(const ScenarioSpec& spec) {
+  for (const TaskSpec& t : spec.tasks) {
+    if (t.target.kind == TargetKind::kUnwinding) return true;
+  }
+  return false;
+}
+
 struct StartPose {
   Eigen::VectorXd q0;
-  Eigen::VectorXd unwrapped;  // coil start only: the coil continued to writhe 0
+  Eigen::VectorXd unwrapped;               // coil start only: the coil continued to writhe 0
+  std::vector<Eigen::VectorXd> unwinding;  // coil start, "unwinding" targets: q0 continued to 0
 };
 
 // The start configuration: given, zero, or the start coil (see scenario.h).
@@ -174,13 +220,17 @@ StartPose ResolveStart(const Scenario& s, const std::optional<double>& wrap_over
       const double sign = ReportWritheTotal(s, zero) < 0 ? -1.0 : 1.0;
       out.q0 = WritheContinuation(s, zero, sign * wrap / 360.0, start.step, start.margin);
       out.unwrapped = WritheContinuation(s, zero, 0.0, start.step, start.margin);
+      if (UsesUnwinding(s.spec))
+        WritheContinuation(s, out.q0, 0.0, start.step, start.margin, &out.unwinding);
       break;
     }
   }
   return out;
 }
 
-// The goal q̂_T: the final-pose estimate over the listed tasks (their targets at T), or q0.
+// The goal q̂_T: the final-pose estimate over the listed tasks (their targets at T), or q0; when
+// it misses the end conditions, the multi-start search (see scenario.h). Needs s.problem (its
+// position and box targets) and s.success.
 Eigen::VectorXd EstimateGoal(const Scenario& s, const StartPose& start) {
   const FinalPoseSpec& fps = s.spec.final_pose;
   if (fps.tasks.empty()) return start.q0;
@@ -210,7 +260,28 @@ Eigen::VectorXd EstimateGoal(const Scenario& s, const StartPose& start) {
     init = fps.init_q;
   }
   TaskWorkspace ws(fp);
-  return EstimateFinalPose(fp, fps.options, &ws, &init).q;
+  std::vector<Eigen::VectorXd> inits = {init};
+  if (init != start.q0) inits.push_back(start.q0);
+  const auto violation = [&s](const Eigen::VectorXd& q) {
+    return CheckEndState(s, q, true).violation;
+  };
+  FinalPoseSearchResult best = SearchFinalPose(fp, fps.options, {}, &ws, inits, violation);
+  // Further rounds, from the best so far with wider perturbations, leave terms that can fight the
+  // reach to the end-condition check: first the collision hinge (its margin keeps the links apart
+  // further than collision-free needs), then also the writhe term.
+  FinalPoseSearch wide;
+  wide.spread = 1.0;
+  wide.random_starts = 16;
+  for (const char* drop : {"collision", "writhe"}) {
+    if (best.violation == 0.0) break;
+    std::erase_if(fp.tasks, [drop](const Task& t) { return t.feature->name() == drop; });
+    TaskWorkspace fewer(fp);
+    std::vector<Eigen::VectorXd> from = {best.best.q};
+    from.insert(from.end(), inits.begin(), inits.end());
+    FinalPoseSearchResult r = SearchFinalPose(fp, fps.options, wide, &fewer, from, violation);
+    if (r.violation < best.violation) best = std::move(r);
+  }
+  return best.best.q;
 }
 
 int TaskIndex(const Scenario& s, const SpecName& n) {
@@ -320,6 +391,55 @@ topology::Axis ReportAxis(const Scenario& s) {
   return axis;
 }
 
+EndState CheckEndState(const Scenario& s, const Eigen::VectorXd& q, bool state_checks) {
+  const SuccessCriteria& c = s.success;
+  EndState e;
+  double& v = e.violation;
+  if (state_checks) {
+    const Eigen::VectorXd lo = LowerLimits(s.robot), hi = UpperLimits(s.robot);
+    e.within_limits = !((q.array() < lo.array()) || (q.array() > hi.array())).any();
+    CollisionData coll(s.robot, s.env, s.collision);
+    KinematicsData kin(s.robot);
+    ForwardKinematics(s.robot, q, &kin);
+    e.collision_free = !InCollision(s.robot, kin, &coll);
+    v += (e.within_limits ? 0.0 : 1.0) + (e.collision_free ? 0.0 : 1.0);
+  }
+  // Adds the relative excess of |x| over `bound` to the violation; false when the bound is missed.
+  auto within = [&v](double x, double bound, bool strict) {
+    if (strict ? std::abs(x) < bound : std::abs(x) <= bound) return true;
+    v += bound > 0.0 ? std::abs(x) / bound : 1.0 + std::abs(x);
+    return false;
+  };
+  Eigen::MatrixXd W;
+  e.writhe_total = ReportWritheTotal(s, q, &W);
+  if (W.size() > 0) {
+    Eigen::Index row = 0, col = 0;
+    W.cwiseAbs().maxCoeff(&row, &col);
+    e.writhe_peak_row = static_cast<int>(row);
+    e.writhe_peak_col = static_cast<int>(col);
+    e.writhe_peak_value = W(row, col);
+  }
+  if (c.winding_max_jump > 0.0 || c.winding_final_below > 0.0)
+    e.winding_turns = ReportWinding(s, q);
+  if (c.writhe_total_below >= 0.0)
+    e.writhe_reached = within(e.writhe_total, c.writhe_total_below, true);
+  if (c.winding_final_below > 0.0)
+    e.writhe_reached = within(e.winding_turns, c.winding_final_below, true) && e.writhe_reached;
+  const int T = s.problem.num_steps;
+  if (c.position_task >= 0) {
+    const Task& task = s.problem.tasks[c.position_task];
+    e.reach_error_m = (FeatureValue(s.robot, *task.feature, q) - task.target.col(T)).norm();
+    e.reached = within(e.reach_error_m, c.position_tolerance, false);
+  }
+  if (c.box_task >= 0) {
+    const Task& task = s.problem.tasks[c.box_task];
+    const double box = (FeatureValue(s.robot, *task.feature, q) - task.target.col(T)).norm();
+    e.reached = within(box, 1e-9, false) && e.reached;
+  }
+  if (!std::isfinite(v)) v = std::numeric_limits<double>::max();
+  return e;
+}
+
 MotionProblem AttemptProblem(const Scenario& s, int k) {
   if (k < 0 || k >= static_cast<int>(s.aico_attempts.size())) {
     throw std::invalid_argument("AttemptProblem: no AICO attempt " + std::to_string(k));
@@ -388,7 +508,8 @@ std::unique_ptr<Scenario> SetUpScenario(ScenarioSpec spec,
   const StartPose start = ResolveStart(*s, start_wrap_deg);
   s->problem.q0 = start.q0;
   s->start_wrap_deg = 360.0 * std::abs(ReportWritheTotal(*s, start.q0));
-  s->goal_q = EstimateGoal(*s, start);
+  if (!start.unwinding.empty())
+    s->unwinding = ResampleByArcLength(start.unwinding, sp.problem.num_steps + 1);
 
   s->aico = sp.aico;
   s->rrt = sp.rrt;
@@ -401,7 +522,6 @@ std::unique_ptr<Scenario> SetUpScenario(ScenarioSpec spec,
       attempt.precision_scale[TaskIndex(*s, task)] *= factor;
     s->aico_attempts.push_back(attempt);
   }
-  s->problem = AttemptProblem(*s, 0);
 
   const SuccessSpec& su = sp.success;
   s->success.writhe_total_below = su.writhe_total_below;
@@ -413,6 +533,12 @@ std::unique_ptr<Scenario> SetUpScenario(ScenarioSpec spec,
   }
   s->success.winding_max_jump = su.winding_max_jump;
   s->success.winding_final_below = su.winding_final_below;
+
+  // The goal's end conditions read the position/box targets of a problem built with goal q0.
+  s->goal_q = start.q0;
+  s->problem = AttemptProblem(*s, 0);
+  s->goal_q = EstimateGoal(*s, start);
+  s->problem = AttemptProblem(*s, 0);
   return s;
 }
 

@@ -7,6 +7,11 @@
 // move the total writhe of writhe_report by `step` at a time under the collision and joint-limit
 // tasks, until 360°·|writhe| = wrap_deg. Continuing to writhe 0 gives the "unwrapped" pose used to
 // initialise the final-pose estimate (the goal). Deterministic.
+//
+// Goal: the final-pose estimate q̂_T (final_pose.h) from the configured init; when it misses an end
+// condition of the success criteria (CheckEndState with state checks: limits, collision, writhe,
+// winding, reach, box), SearchFinalPose tries the start and seeded perturbations of the init and
+// keeps the estimate that meets them at least cost (or, if none does, the least violation).
 #pragma once
 
 #include <Eigen/Core>
@@ -73,12 +78,36 @@ struct Scenario {
   RrtOptions rrt;
   double check_resolution = 0.02;  // edge resolution for validating any output path
   Eigen::VectorXd goal_q;          // q̂_T (final-pose estimate): the RRT goal
-  double start_wrap_deg = 0.0;     // 360°·|writhe| of the report pair at q0
+  // The unwinding path (coil start and an "unwinding" target only, else empty): the start coil
+  // continued from q0 to writhe 0, resampled at equal joint-space arc length, n × (T+1).
+  Eigen::MatrixXd unwinding;
+  double start_wrap_deg = 0.0;  // 360°·|writhe| of the report pair at q0
   // Writhe report pair: robot chain × object chain (for report fields and heatmaps).
   int report_chain = -1;
   Eigen::Matrix3Xd report_object_chain;
   SuccessCriteria success;
 };
+
+// The end conditions of the success criteria at one configuration q (what JudgePlan checks at a
+// path's last state) and, with `state_checks`, the state itself (joint limits, InCollision).
+struct EndState {
+  bool within_limits = true;   // (state_checks only)
+  bool collision_free = true;  // (state_checks only)
+  double writhe_total = 0.0;   // ReportWritheTotal(q)
+  double winding_turns = 0.0;  // ReportWinding(q) (with the winding criterion only, else 0)
+  // The writhe matrix entry of largest |W_ij| (row = robot chain segment, col = object segment;
+  // −1 and 0 when there is no report pair).
+  int writhe_peak_row = -1, writhe_peak_col = -1;
+  double writhe_peak_value = 0.0;
+  bool writhe_reached = true;  // |writhe| < writhe_total_below, |winding| < winding_final_below
+  double reach_error_m = -1.0;  // |φ(q) − y*_T| of the position task (−1: no position criterion)
+  bool reached = true;          // reach_error_m <= position_tolerance and the box value is 0
+  bool ok() const { return within_limits && collision_free && writhe_reached && reached; }
+  // 0 when ok(); otherwise Σ of the relative excesses (|writhe|/bound, |winding|/bound,
+  // reach/tolerance, 1 + box value) over the unmet conditions, + 1 per state check failed.
+  double violation = 0.0;
+};
+EndState CheckEndState(const Scenario& scenario, const Eigen::VectorXd& q, bool state_checks);
 
 // Sets up a parsed scenario (loads the robot and objects, runs the start-coil continuation and
 // the final-pose estimate). Name errors (unknown links, chains, objects, tasks) name the JSON path.

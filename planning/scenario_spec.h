@@ -50,8 +50,11 @@
 //     order         integer  0 (position term, default) or 1 (velocity term)
 //     target        object   default {"type": "zero"}; type: "zero" | "value" (default when
 //                            "target" is given) | "interpolate" (linear from y(q0) to value) |
-//                            "final_pose" (linear from y(q0) to y(goal)); value: number (every
-//                            component) or [dim] (for "value" and "interpolate")
+//                            "final_pose" (linear from y(q0) to y(goal)) | "unwinding" (y along
+//                            the unwinding path: the coil continued from q0 to writhe 0, resampled
+//                            at equal joint-space arc length over t = 0..T; needs a coil start);
+//                            value: number (every component) or [dim] (for "value" and
+//                            "interpolate")
 //     precision     number   ρ for t < T, >= 0, default 0
 //     final_precision number ρ at t = T, >= 0, default = precision
 //   final_pose      object   the goal q̂_T (thesis §4.2.2; also the RRT goal), default: the start.
@@ -204,12 +207,13 @@ struct FeatureSpec {
   WritheOutput output = WritheOutput::kMatrix;
 };
 
-enum class TargetKind { kZero, kValue, kInterpolate, kFinalPose };
+enum class TargetKind { kZero, kValue, kInterpolate, kFinalPose, kUnwinding };
 inline constexpr EnumName<TargetKind> kTargetKindNames[] = {
     {TargetKind::kZero, "zero"},
     {TargetKind::kValue, "value"},
     {TargetKind::kInterpolate, "interpolate"},
     {TargetKind::kFinalPose, "final_pose"},
+    {TargetKind::kUnwinding, "unwinding"},
 };
 constexpr std::span<const EnumName<TargetKind>> EnumNames(TargetKind) { return kTargetKindNames; }
 

@@ -283,6 +283,16 @@ TEST(ReachThroughRing, AicoEndsInsideTheBoxWithTheWrithePeakAtTheLinkThroughTheR
   Eigen::Index row = 0;
   W.rowwise().sum().cwiseAbs().maxCoeff(&row);
   EXPECT_EQ(row, crossing) << "W =\n" << W;
+  // The report's writhe_peak: the largest |entry| of that matrix (its row is not always the
+  // crossing one: the row sums peak there, single entries may not).
+  Eigen::Index peak_row = 0, peak_col = 0;
+  W.cwiseAbs().maxCoeff(&peak_row, &peak_col);
+  EXPECT_EQ(r.report.writhe_peak_row, peak_row);
+  EXPECT_EQ(r.report.writhe_peak_col, peak_col);
+  ASSERT_GE(r.report.writhe_peak_col, 0);
+  ASSERT_LT(r.report.writhe_peak_col, W.cols());
+  EXPECT_EQ(r.report.writhe_peak_value, W(r.report.writhe_peak_row, r.report.writhe_peak_col));
+  EXPECT_EQ(std::abs(r.report.writhe_peak_value), W.cwiseAbs().maxCoeff());
 }
 
 TEST(RrtBaselines, PathsAreCollisionFreeAndSeedsReproduce) {

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 
 #include "planning/kinematics.h"
@@ -51,6 +52,22 @@ TEST(JudgePlan, APathThatTunnelsThroughThePoleBetweenSlicesIsRejected) {
   EXPECT_EQ(v.reason, FailureReason::kTunnelled) << FailureReasonName(v.reason);
   EXPECT_GT(v.step, 0);
   EXPECT_GT(v.max_winding_jump_turns, 0.5);  // a whole turn lost in one resampled step
+}
+
+// With the collision checker on, the resampled states inside the pole collide, but the verdict
+// names the cause: the winding jump (tunnelled), not the collision.
+TEST(JudgePlan, TunnellingIsNamedBeforeTheCollisionOnTheWayThrough) {
+  const auto s = Unwrap(360.0);
+  const auto unwrapped = Unwrap(0.0);
+  Trajectory path;
+  path.q.resize(s->problem.q0.size(), 2);
+  path.q.col(0) = s->problem.q0;
+  path.q.col(1) = unwrapped->problem.q0;
+  const PlanVerdict v = JudgePlan(*s, path);
+  EXPECT_FALSE(v.collision_free);
+  EXPECT_EQ(v.reason, FailureReason::kTunnelled) << FailureReasonName(v.reason);
+  EXPECT_GT(v.step, 0);
+  EXPECT_GT(v.max_winding_jump_turns, 0.5);
 }
 
 // A 7-dof arm whose link-7 origin must reach `target`; the path is the single state q = 0.
@@ -99,6 +116,78 @@ TEST(JudgePlan, WindingCriterionNeedsAReportPairAndPositiveBounds) {
       EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos) << e.what();
       EXPECT_NE(std::string(e.what()).find("success.winding"), std::string::npos) << e.what();
     }
+  }
+}
+
+// The goal q̂_T (the RRT baselines' goal, the end of AICO's final-pose targets) meets the same end
+// conditions as a successful plan: within the limits, collision-free, |writhe| < 0.05, winding
+// near 0, grasp point within 0.05 m of the cylinder.
+TEST(FinalPoseGoal, MeetsTheEndConditionsOfTheSuccessCriterion) {
+  for (const double wrap : {90.0, 360.0, 720.0, 1080.0}) {
+    const auto s = Unwrap(wrap);
+    SCOPED_TRACE("start wrap " + std::to_string(wrap));
+    const EndState e = CheckEndState(*s, s->goal_q, true);
+    EXPECT_TRUE(e.within_limits);
+    EXPECT_TRUE(e.collision_free);
+    EXPECT_LT(std::abs(e.writhe_total), 0.05);
+    EXPECT_LT(std::abs(e.winding_turns), 0.1);
+    EXPECT_GE(e.reach_error_m, 0.0);
+    EXPECT_LE(e.reach_error_m, 0.05);
+    EXPECT_TRUE(e.ok());
+    EXPECT_EQ(e.violation, 0.0);
+    std::printf("GOAL wrap %g reach %g writhe %g winding %g\n", wrap, e.reach_error_m,
+                e.writhe_total, e.winding_turns);
+    // The JudgePlan verdict of the one-state path at the goal agrees.
+    Trajectory at_goal;
+    at_goal.q = s->goal_q;
+    EXPECT_EQ(JudgePlan(*s, at_goal).reason, FailureReason::kNone);
+  }
+}
+
+// The "unwinding" target kind: the shipped unwrap scenario plus a joint-space reference task along
+// the unwinding path (the coil continued from q0 to writhe 0, resampled over t = 0..T). That path
+// starts at q0, is collision-free and does not tunnel through the pole (JudgePlan on it), and its
+// targets are its states.
+TEST(UnwindingTarget, FollowsACollisionFreePathWithoutTunnelling) {
+  std::ifstream in(kAssets + "scenarios/unwrap.json");
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  for (const std::string dir : {"robots", "objects"}) {
+    const std::string from = "\"../" + dir + "/", to = "\"" + kAssets + dir + "/";
+    for (size_t at = text.find(from); at != std::string::npos; at = text.find(from, at))
+      text.replace(at, from.size(), to);
+  }
+  const std::string qdot = R"({"name": "qdot")";
+  text.replace(text.find(qdot), 0,
+               R"({"name": "unwind", "feature": {"type": "joint_position"},
+                   "target": {"type": "unwinding"}, "precision": 10, "final_precision": 0},)");
+  ScenarioOverrides o;
+  o.start_wrap_deg = 720.0;
+  const auto s = LoadScenario(WriteTemp("unwinding.json", text), o);
+  const int T = s->problem.num_steps;
+  ASSERT_EQ(s->unwinding.cols(), T + 1);
+  EXPECT_TRUE(s->unwinding.col(0).isApprox(s->problem.q0));
+  EXPECT_LT(std::abs(ReportWritheTotal(*s, s->unwinding.col(T))), 0.05);
+  const Task* unwind = nullptr;
+  for (const Task& t : s->problem.tasks) {
+    if (t.name == "unwind") unwind = &t;
+  }
+  ASSERT_NE(unwind, nullptr);
+  EXPECT_EQ(unwind->target, s->unwinding);
+  Trajectory path;
+  path.q = s->unwinding;
+  const PlanVerdict v = JudgePlan(*s, path);
+  EXPECT_TRUE(v.collision_free);
+  EXPECT_LT(v.max_winding_jump_turns, 0.1);
+  EXPECT_NE(v.reason, FailureReason::kTunnelled);
+  EXPECT_NE(v.reason, FailureReason::kCollision);
+  // Without a coil start there is no unwinding path.
+  try {
+    LoadScenario(WriteTemp("unwinding_q.json", R"({"robot": ")" + kAssets +
+                                                   R"(robots/lwr4_sdh.urdf", "start": {"q": "zero"},
+        "tasks": [{"feature": {"type": "joint_position"}, "target": {"type": "unwinding"}}]})"));
+    ADD_FAILURE() << "expected an error";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("need a coil start"), std::string::npos) << e.what();
   }
 }
 
