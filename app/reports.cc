@@ -605,18 +605,40 @@ std::string GraspSummaryMarkdown(const phys::GraspTrialsResult& result) {
 
 GraspSummaryData GraspSummaryDataOf(const phys::GraspTrialsResult& result) {
   GraspSummaryData d;
-  d.title = "SDH grasp transfer: gravity directions held (\u03bc = " +
-            render::FormatNumber(result.stability.sim.mu, 2) + ")";
-  d.y_label = "Gravity directions held (of 6)";
-  d.y_max = 6.0;
+  const std::string mu = render::FormatNumber(result.stability.sim.mu, 2);
+  const bool perturbed = result.perturb > 0;
+  if (perturbed) {
+    d.title = "SDH grasp transfer: stable under " + std::to_string(result.perturb) +
+              " perturbed poses (\u03bc = " + mu + ", Wilson 95 %)";
+    d.y_label = "Stable fraction of perturbed repetitions";
+    d.y_max = 1.0;
+  } else {
+    d.title = "SDH grasp transfer: gravity directions held (\u03bc = " + mu + ")";
+    d.y_label = "Gravity directions held (of 6)";
+    d.y_max = 6.0;
+  }
   for (const planning::HumanGrasp& g : result.grasps) d.grasps.push_back(g.name);
   for (size_t mi = 0; mi < result.methods.size(); ++mi) {
     const phys::GraspMethodSummary& s = result.summary[mi];
     d.methods.push_back(std::string(planning::ToString(s.method)) + " (" +
                         std::to_string(s.stable) + "/" + std::to_string(s.grasps) + " stable)");
     d.value.emplace_back();
+    if (perturbed) {
+      d.lo.emplace_back();
+      d.hi.emplace_back();
+    }
     for (size_t gi = 0; gi < result.grasps.size(); ++gi) {
-      d.value.back().push_back(result.trials[gi][mi].stability.directions_passed);
+      const phys::GraspTrial& trial = result.trials[gi][mi];
+      if (!perturbed) {
+        d.value.back().push_back(trial.stability.directions_passed);
+        continue;
+      }
+      const int n = static_cast<int>(trial.perturbed.size());
+      const Eigen::Vector2d ci =
+          n > 0 ? planning::WilsonInterval(trial.perturbed_stable, n) : Eigen::Vector2d(0, 1);
+      d.value.back().push_back(n > 0 ? static_cast<double>(trial.perturbed_stable) / n : 0.0);
+      d.lo.back().push_back(ci[0]);
+      d.hi.back().push_back(ci[1]);
     }
   }
   return d;

@@ -142,8 +142,10 @@ struct GraspSummaryData {
   std::vector<std::vector<double>> value, lo, hi;
 };
 
-// Today's single runs: gravity directions held out of 6 per grasp and method (no whiskers);
-// method names carry their stable count ("winding (3/8 stable)").
+// The summary figure's data: without perturbations, gravity directions held out of 6 per grasp
+// and method (no whiskers); with --perturb N, the stable fraction of the N perturbed repetitions
+// with its Wilson 95 % interval as whiskers. Method names carry their stable count ("winding
+// (3/8 stable)").
 GraspSummaryData GraspSummaryDataOf(const planning::physics::GraspTrialsResult& result);
 
 // summary.png: grouped bars, grasp names on the x axis, legend of methods at the right.

@@ -14,6 +14,7 @@
 
 #include <Eigen/Geometry>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <map>
@@ -30,6 +31,8 @@
 #include "app/scene_builder.h"
 #include "planning/collision.h"
 #include "planning/grasp_object.h"
+#include "planning/grasp_quality.h"
+#include "planning/grasp_transfer.h"
 #include "planning/kinematics.h"
 #include "planning/physics/grasp_trials.h"
 #include "planning/planner.h"
@@ -736,9 +739,11 @@ PYBIND11_MODULE(_core, m) {
       "(angle, planner, seed); None when there is nothing to draw.");
   m.def(
       "grasp_transfer",
-      [](const fs::path& grasp_path, const std::string& method, double mu) {
+      [](const fs::path& grasp_path, const std::string& method, double mu, int perturb,
+         std::uint32_t seed) {
         const std::string grasp = grasp_path.string();
         if (!(mu >= 0.0) || !std::isfinite(mu)) ThrowValue("mu: must be finite and >= 0");
+        if (perturb < 0 || perturb > 1000) ThrowValue("perturb: must be in 0..1000");
         const planning::TransferMethod tm =
             Named("method", [&] { return planning::ParseTransferMethod(method); });
         const std::vector<std::string> files = Named(
@@ -749,17 +754,54 @@ PYBIND11_MODULE(_core, m) {
           py::gil_scoped_release release;
           const app::GraspInputs in = app::LoadGraspInputs(files);
           const planning::physics::OdeRuntime ode;
-          const auto result = planning::physics::RunGraspTrials(ode, in.human, in.lwr_sdh,
-                                                                in.objects, in.grasps, {tm}, mu);
+          planning::physics::GraspTrialsOptions options;
+          options.mu = mu;
+          options.perturb = perturb;
+          options.seed = seed;
+          const auto result = planning::physics::RunGraspTrials(
+              ode, in.human, in.lwr_sdh, in.objects, in.grasps, {tm}, options);
           report = app::GraspReportJson(result);
         }
         return JsonToPython(report["grasps"][0]);
       },
-      py::arg("grasp"), py::arg("method") = "winding", py::arg("mu") = 1.0,
+      py::arg("grasp"), py::arg("method") = "winding", py::arg("mu") = 1.0, py::arg("perturb") = 0,
+      py::arg("seed") = 0,
       "Transfers one human grasp (a name in assets/grasps or a file) to the SDH with method\n"
-      "(winding, joint, fingertip), tests it in ODE with friction mu and returns its entry of\n"
-      "`topoplan grasp transfer`'s report.json (windings, winding_error, clearance, q, "
-      "stability).");
+      "(winding, winding_only, contact_only, fingertip, joint, human), tests it in ODE with\n"
+      "friction mu and returns its entry of `topoplan grasp transfer`'s report.json. perturb = N\n"
+      "> 0 repeats the test N times with the object moved (<= 5 mm) and turned (<= 5 deg), seeded\n"
+      "by seed as `grasp transfer --perturb N --seed S` (methods[...]['perturbed']).");
+  m.def(
+      "available_grasps",
+      [] {
+        std::vector<std::string> names;
+        for (const std::string& f : app::SelectGraspFiles("all")) {
+          names.push_back(fs::path(f).stem().string());
+        }
+        return names;
+      },
+      "Names of the shipped human grasps (assets/grasps/*.json except objects.json), sorted.");
+  m.def(
+      "transfer_methods",
+      [] {
+        std::vector<std::string> names;
+        for (planning::TransferMethod t : planning::AllTransferMethods()) {
+          names.emplace_back(planning::ToString(t));
+        }
+        return names;
+      },
+      "The six grasp transfer methods in report order (`grasp transfer --method all`).");
+  m.def(
+      "wilson_interval",
+      [](int successes, int trials) {
+        if (trials < 1 || successes < 0 || successes > trials) {
+          ThrowValue("successes, trials: need 0 <= successes <= trials, trials >= 1");
+        }
+        const Eigen::Vector2d ci = planning::WilsonInterval(successes, trials);
+        return std::pair<double, double>{ci[0], ci[1]};
+      },
+      py::arg("successes"), py::arg("trials"),
+      "Wilson score 95 % interval (lo, hi) of a success rate successes / trials (Wilson 1927).");
   m.def(
       "available_planners",
       [] {

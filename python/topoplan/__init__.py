@@ -15,7 +15,7 @@ Example::
     trajectory, report = scenario.plan("aico")
     print(report["success"], report["collision_checks"])
 
-Sweeps on a Dask cluster: ``python3 -m topoplan.sweep unwrap --help``.
+Sweeps on a Dask cluster: ``python3 -m topoplan.sweep unwrap --help`` (and ``grasp --help``).
 """
 
 import os as _os
@@ -35,13 +35,16 @@ from ._core import (  # noqa: E402
     Robot,
     Scenario,
     asset_root,
+    available_grasps,
     available_planners,
     grasp_transfer,
     heatmap,
     load_scenario,
     read_png,
     render,
+    transfer_methods,
     unwrap_figure,
+    wilson_interval,
     winding,
     write_png,
     writhe_jacobian,
@@ -54,13 +57,16 @@ __all__ = [
     "Robot",
     "Scenario",
     "asset_root",
+    "available_grasps",
     "available_planners",
     "grasp_transfer",
     "heatmap",
     "load_scenario",
     "read_png",
     "render",
+    "transfer_methods",
     "unwrap_figure",
+    "wilson_interval",
     "winding",
     "write_png",
     "writhe_jacobian",

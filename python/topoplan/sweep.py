@@ -1,7 +1,10 @@
-"""Parameter sweeps on a Dask cluster: ``python3 -m topoplan.sweep unwrap ...``.
+"""Parameter sweeps on a Dask cluster: ``python3 -m topoplan.sweep unwrap|grasp ...``.
 
-One Dask task per (angle, seed, planner) run of the unwrap benchmark (thesis Fig. 4.5, the
-experiment of ``topoplan bench unwrap``). Without ``--scheduler`` a LocalCluster with one
+``unwrap``: one Dask task per (angle, seed, planner) run of the unwrap benchmark (thesis Fig. 4.5,
+the experiment of ``topoplan bench unwrap``). ``grasp``: one task per (grasp, method, seed) of
+the grasp transfer experiment (``topoplan grasp transfer --perturb N --seed S``), written to
+DIR/grasp.csv, with DIR/grasp_summary.csv (per grasp and method: stable repetitions over all
+seeds and their Wilson 95 % interval) at the end. Without ``--scheduler`` a LocalCluster with one
 single-threaded worker process per core runs them; with ``--scheduler tcp://HOST:PORT`` the
 cluster's workers do (they need ``topoplan`` importable, e.g. the same PYTHONPATH).
 
@@ -108,8 +111,11 @@ def row_line(row):
     )
 
 
-def read_rows(path):
-    """Complete rows of an existing unwrap.csv (a torn last line is dropped and cut off)."""
+def read_rows(path, header=CSV_HEADER, parse=None, key=None):
+    """Complete rows of an existing result CSV (a torn last line is dropped and cut off), keyed
+    by key(row); parse(parts) -> row raises ValueError/IndexError for a malformed line."""
+    parse = parse or parse_unwrap_row
+    key = key or unwrap_key
     rows = {}
     if not os.path.exists(path):
         return rows
@@ -119,35 +125,35 @@ def read_rows(path):
         if end != len(data):  # a crash mid-line: keep only complete lines
             f.truncate(end)
     lines = data[:end].decode().splitlines()
-    if lines and lines[0] != CSV_HEADER:
-        raise UsageError(f"{path}: not an unwrap.csv (header '{lines[0]}')")
+    if lines and lines[0] != header:
+        raise UsageError(f"{path}: not a {os.path.basename(path)} of this sweep (header '{lines[0]}')")
     for n, line in enumerate(lines[1:], start=2):
-        parts = line.split(",")
         try:
-            angle, planner, seed = float(parts[0]), parts[1], int(parts[2])
-            row = {
-                "angle_deg": angle,
-                "planner": planner,
-                "seed": seed,
-                "success": int(parts[3]),
-                "failure_reason": parts[4],
-                "collision_checks": int(parts[5]),
-                "narrow_phase_calls": int(parts[6]),
-                "time_s": float(parts[7]),
-                "path_length": float(parts[8]),
-                "reach_error_m": float(parts[9]),
-                "pole_offset_m": float(parts[10]),
-            }
+            row = parse(line.split(","))
         except (ValueError, IndexError):
             raise UsageError(f"{path}:{n}: malformed row '{line}'") from None
-        rows[(fmt_number(angle), planner, seed)] = row
+        rows[key(row)] = row
     return rows
 
 
-def append_row(f, row):
-    f.write(row_line(row) + "\n")
-    f.flush()
-    os.fsync(f.fileno())
+def parse_unwrap_row(parts):
+    return {
+        "angle_deg": float(parts[0]),
+        "planner": parts[1],
+        "seed": int(parts[2]),
+        "success": int(parts[3]),
+        "failure_reason": parts[4],
+        "collision_checks": int(parts[5]),
+        "narrow_phase_calls": int(parts[6]),
+        "time_s": float(parts[7]),
+        "path_length": float(parts[8]),
+        "reach_error_m": float(parts[9]),
+        "pole_offset_m": float(parts[10]),
+    }
+
+
+def unwrap_key(row):
+    return (fmt_number(row["angle_deg"]), row["planner"], row["seed"])
 
 
 def connect(scheduler, workers, timeout):
@@ -166,85 +172,251 @@ def connect(scheduler, workers, timeout):
     return Client(cluster), cluster
 
 
-def sweep_unwrap(args):
-    import topoplan
-
-    angles = parse_range(args.angles)
-    planners = parse_planners(args.planners, topoplan.available_planners())
+def check_common(args):
     if args.seeds < 1:
         raise UsageError("--seeds: must be >= 1")
     if args.workers is not None and args.workers < 1:
         raise UsageError("--workers: must be >= 1")
     if os.path.exists(args.output) and not os.path.isdir(args.output):
         raise UsageError(f"-o: {args.output} exists and is not a folder")
-    csv_path = os.path.join(args.output, "unwrap.csv")
-    done = read_rows(csv_path)
-    runs = [(a, p, s) for a in angles for p in planners for s in range(args.seeds)]
-    todo = [r for r in runs if (fmt_number(r[0]), r[1], r[2]) not in done]
-    total = len(runs)
 
-    client, cluster = None, None
-    if todo:
-        client, cluster = connect(
-            args.scheduler, args.workers or os.cpu_count() or 1, args.timeout
-        )
+
+def run_tasks(args, csv_path, header, runs, done, key, line, submit, label):
+    """Submits one task per run not yet in `done` (submit(client, run) -> future), appends each
+    finished row to csv_path (line(row), fsync'ed) and records it in done[key(row)]. Returns the
+    number of runs that raised."""
+    todo = [r for r in runs if r not in done]
+    if not todo:
+        return 0
+    client, cluster = connect(args.scheduler, args.workers or os.cpu_count() or 1, args.timeout)
     os.makedirs(args.output, exist_ok=True)
     failed = 0
     try:
-        if todo:
-            from distributed import as_completed
+        from distributed import as_completed
 
-            # By reference (topoplan.sweep.run_unwrap), also when this file runs as __main__.
-            from topoplan.sweep import run_unwrap as task
-
-            new_file = not os.path.exists(csv_path)
-            with open(csv_path, "a") as f:
-                if new_file:
-                    f.write(CSV_HEADER + "\n")
-                    f.flush()
-                    os.fsync(f.fileno())
-                futures = [
-                    client.submit(task, a, p, s, args.budget, pure=False, retries=1)
-                    for (a, p, s) in todo
-                ]
-                count = total - len(todo)
-                start = time.monotonic()
-                for future in as_completed(futures):
-                    count += 1
-                    try:
-                        row = future.result()
-                    except Exception as e:  # noqa: BLE001 - a run's error is reported, not fatal
-                        failed += 1
-                        print(f"\nsweep: a run failed: {e}", file=sys.stderr)
-                        continue
-                    append_row(f, row)
-                    done[(fmt_number(row["angle_deg"]), row["planner"], row["seed"])] = row
-                    if not args.quiet:
-                        print(
-                            f"\r[{count}/{total}] {row['planner']} @ {fmt_number(row['angle_deg'])}"
-                            f" deg seed {row['seed']} ({time.monotonic() - start:.1f} s)   ",
-                            end="",
-                            file=sys.stderr,
-                            flush=True,
-                        )
+        new_file = not os.path.exists(csv_path)
+        with open(csv_path, "a") as f:
+            if new_file:
+                f.write(header + "\n")
+                f.flush()
+                os.fsync(f.fileno())
+            futures = [submit(client, r) for r in todo]
+            count = len(runs) - len(todo)
+            start = time.monotonic()
+            for future in as_completed(futures):
+                count += 1
+                try:
+                    row = future.result()
+                except Exception as e:  # noqa: BLE001 - a run's error is reported, not fatal
+                    failed += 1
+                    print(f"\nsweep: a run failed: {e}", file=sys.stderr)
+                    continue
+                f.write(line(row) + "\n")
+                f.flush()
+                os.fsync(f.fileno())
+                done[key(row)] = row
                 if not args.quiet:
-                    print(file=sys.stderr)
+                    print(
+                        f"\r[{count}/{len(runs)}] {label(row)} ({time.monotonic() - start:.1f} s)   ",
+                        end="",
+                        file=sys.stderr,
+                        flush=True,
+                    )
+            if not args.quiet:
+                print(file=sys.stderr)
     finally:
-        if client is not None:
-            client.close()
+        client.close()
         if cluster is not None:
             cluster.close()
     if failed:
         print(f"sweep: {failed} runs failed; rerun to retry them", file=sys.stderr)
+    return failed
+
+
+def write_atomically(path, write):
+    """write(tmp_path), then rename onto path: the file appears whole or not at all."""
+    tmp = os.path.join(os.path.dirname(path), "." + os.path.basename(path) + ".tmp")
+    write(tmp)
+    os.replace(tmp, path)
+
+
+def sweep_unwrap(args):
+    import topoplan
+
+    angles = parse_range(args.angles)
+    planners = parse_planners(args.planners, topoplan.available_planners())
+    check_common(args)
+    csv_path = os.path.join(args.output, "unwrap.csv")
+    done = read_rows(csv_path)
+    runs = [(fmt_number(a), p, s) for a in angles for p in planners for s in range(args.seeds)]
+
+    def submit(client, run):
+        # By reference (topoplan.sweep.run_unwrap), also when this file runs as __main__.
+        from topoplan.sweep import run_unwrap as task
+
+        return client.submit(task, float(run[0]), run[1], run[2], args.budget, pure=False, retries=1)
+
+    def label(row):
+        return f"{row['planner']} @ {fmt_number(row['angle_deg'])} deg seed {row['seed']}"
+
+    if run_tasks(args, csv_path, CSV_HEADER, runs, done, unwrap_key, row_line, submit, label):
         return 1
-    rows = [done[(fmt_number(a), p, s)] for (a, p, s) in runs]
+    rows = [done[r] for r in runs]
     figure = topoplan.unwrap_figure(rows, angles, planners, args.seeds)
+    png = os.path.join(args.output, "unwrap.png")
     if figure is not None:
-        tmp = os.path.join(args.output, ".unwrap.png.tmp")
-        topoplan.write_png(tmp, figure)
-        os.replace(tmp, os.path.join(args.output, "unwrap.png"))
-    print(f"wrote {csv_path} and {os.path.join(args.output, 'unwrap.png')} ({total} runs)")
+        write_atomically(png, lambda tmp: topoplan.write_png(tmp, figure))
+    print(f"wrote {csv_path} and {png} ({len(runs)} runs)")
     return 0
+
+
+GRASP_HEADER = (
+    "grasp,method,seed,mu,stable,directions_passed,epsilon_quality,perturbed_trials,"
+    "perturbed_stable"
+)
+GRASP_SUMMARY_HEADER = "grasp,method,trials,stable,rate,ci95_lo,ci95_hi"
+
+
+def parse_names(text, available, flag):
+    """'all' or comma-separated names, each one of `available` (order kept)."""
+    if text == "all":
+        return list(available)
+    names = text.split(",")
+    for n in names:
+        if n not in available:
+            raise UsageError(f"{flag}: unknown name '{n}' ({', '.join(available)})")
+    if len(set(names)) != len(names):
+        raise UsageError(f"{flag}: a name is repeated in '{text}'")
+    return names
+
+
+def run_grasp(grasp, method, seed, mu, perturb):
+    """One (grasp, method, seed) run of the grasp transfer experiment (on a worker): a dict with
+    the grasp.csv columns (the method's entry of `grasp transfer --perturb N --seed S`)."""
+    import topoplan
+
+    entry = topoplan.grasp_transfer(grasp, method, mu=mu, perturb=perturb, seed=seed)
+    m = entry["methods"][method]
+    perturbed = m.get("perturbed", {"trials": 0, "stable": 0})
+    return {
+        "grasp": grasp,
+        "method": method,
+        "seed": seed,
+        "mu": mu,
+        "stable": 1 if m["stable"] else 0,
+        "directions_passed": int(m["directions_passed"]),
+        "epsilon_quality": float(m.get("epsilon_quality", 0.0)),
+        "perturbed_trials": int(perturbed["trials"]),
+        "perturbed_stable": int(perturbed["stable"]),
+    }
+
+
+def grasp_line(row):
+    return ",".join(
+        [
+            row["grasp"],
+            row["method"],
+            str(row["seed"]),
+            fmt_number(row["mu"]),
+            str(row["stable"]),
+            str(row["directions_passed"]),
+            fmt_number(row["epsilon_quality"]),
+            str(row["perturbed_trials"]),
+            str(row["perturbed_stable"]),
+        ]
+    )
+
+
+def parse_grasp_row(parts):
+    if len(parts) != 9:
+        raise ValueError("column count")
+    return {
+        "grasp": parts[0],
+        "method": parts[1],
+        "seed": int(parts[2]),
+        "mu": float(parts[3]),
+        "stable": int(parts[4]),
+        "directions_passed": int(parts[5]),
+        "epsilon_quality": float(parts[6]),
+        "perturbed_trials": int(parts[7]),
+        "perturbed_stable": int(parts[8]),
+    }
+
+
+def grasp_key(row):
+    return (row["grasp"], row["method"], row["seed"], fmt_number(row["mu"]))
+
+
+def grasp_summary(rows, perturb):
+    """Per (grasp, method): trials and stable runs over all seeds (the perturbed repetitions when
+    perturb > 0, else the nominal runs) and the Wilson 95 % interval of the rate."""
+    import topoplan
+
+    table = {}
+    for r in rows:
+        t = table.setdefault((r["grasp"], r["method"]), [0, 0])
+        if perturb > 0:
+            t[0] += r["perturbed_trials"]
+            t[1] += r["perturbed_stable"]
+        else:
+            t[0] += 1
+            t[1] += r["stable"]
+    out = []
+    for (grasp, method), (trials, stable) in table.items():
+        lo, hi = topoplan.wilson_interval(stable, trials)
+        out.append((grasp, method, trials, stable, stable / max(1, trials), lo, hi))
+    return out
+
+
+def sweep_grasp(args):
+    import topoplan
+
+    grasps = parse_names(args.grasps, topoplan.available_grasps(), "--grasps")
+    methods = parse_names(args.methods, topoplan.transfer_methods(), "--methods")
+    if not (args.mu >= 0.0) or args.mu != args.mu or args.mu == float("inf"):
+        raise UsageError("--mu: must be finite and >= 0")
+    if not (0 <= args.perturb <= 1000):
+        raise UsageError("--perturb: must be in 0..1000")
+    check_common(args)
+    csv_path = os.path.join(args.output, "grasp.csv")
+    done = read_rows(csv_path, GRASP_HEADER, parse_grasp_row, grasp_key)
+    mu = fmt_number(args.mu)
+    runs = [(g, m, s, mu) for g in grasps for m in methods for s in range(args.seeds)]
+
+    def submit(client, run):
+        from topoplan.sweep import run_grasp as task
+
+        return client.submit(
+            task, run[0], run[1], run[2], args.mu, args.perturb, pure=False, retries=1
+        )
+
+    def label(row):
+        return f"{row['grasp']} / {row['method']} seed {row['seed']}"
+
+    if run_tasks(args, csv_path, GRASP_HEADER, runs, done, grasp_key, grasp_line, submit, label):
+        return 1
+    summary = grasp_summary([done[r] for r in runs], args.perturb)
+    summary_path = os.path.join(args.output, "grasp_summary.csv")
+
+    def write_summary(tmp):
+        with open(tmp, "w") as f:
+            f.write(GRASP_SUMMARY_HEADER + "\n")
+            for g, m, trials, stable, rate, lo, hi in summary:
+                f.write(
+                    f"{g},{m},{trials},{stable},{fmt_number(rate)},{fmt_number(lo)},{fmt_number(hi)}\n"
+                )
+
+    write_atomically(summary_path, write_summary)
+    print(f"wrote {csv_path} and {summary_path} ({len(runs)} runs)")
+    return 0
+
+
+def add_cluster_flags(p):
+    p.add_argument("--scheduler", help="tcp://HOST:PORT of a dask scheduler (default: local)")
+    p.add_argument("--workers", type=int, help="local worker processes (default: one per core)")
+    p.add_argument("--timeout", type=float, default=10.0, help="scheduler connect timeout [s]")
+    p.add_argument("--quiet", action="store_true", help="no progress line")
+    p.add_argument("-o", "--output", required=True, help="output folder")
 
 
 def build_parser():
@@ -260,11 +432,17 @@ def build_parser():
     u.add_argument("--seeds", type=int, default=3, help="seeds 0..N-1 per angle and planner")
     u.add_argument("--planners", default="aico,rrt,birrt", help="comma-separated planners")
     u.add_argument("--budget", type=int, default=-1, help="RRT collision-check budget")
-    u.add_argument("--scheduler", help="tcp://HOST:PORT of a dask scheduler (default: local)")
-    u.add_argument("--workers", type=int, help="local worker processes (default: one per core)")
-    u.add_argument("--timeout", type=float, default=10.0, help="scheduler connect timeout [s]")
-    u.add_argument("--quiet", action="store_true", help="no progress line")
-    u.add_argument("-o", "--output", required=True, help="output folder")
+    add_cluster_flags(u)
+    g = sub.add_parser(
+        "grasp",
+        help="grasp transfer: one run per (grasp, method, seed) of `grasp transfer --perturb N`",
+    )
+    g.add_argument("--grasps", default="all", help="'all' or comma-separated grasp names")
+    g.add_argument("--methods", default="all", help="'all' or comma-separated transfer methods")
+    g.add_argument("--seeds", type=int, default=1, help="perturbation seeds 0..N-1 per run")
+    g.add_argument("--perturb", type=int, default=0, help="perturbed repetitions per seed")
+    g.add_argument("--mu", type=float, default=1.0, help="Coulomb friction of the protocol")
+    add_cluster_flags(g)
     return parser
 
 
@@ -275,7 +453,7 @@ def main(argv=None):
     except SystemExit as e:  # argparse exits 2 for bad flags already
         return e.code
     try:
-        return sweep_unwrap(args)
+        return sweep_unwrap(args) if args.command == "unwrap" else sweep_grasp(args)
     except UsageError as e:
         print(f"error: {e}", file=sys.stderr)
         return 2
