@@ -440,6 +440,9 @@ planning::UnwrapBenchmarkResult UnwrapResultFromRows(const py::list& rows,
     run.report.planner = planning::PlannerName(run.planner);
     run.report.success = py::cast<int>(row["success"]) != 0;
     run.report.collision_checks = py::cast<long>(row["collision_checks"]);
+    if (row.contains("narrow_phase_calls")) {
+      run.report.narrow_phase_calls = py::cast<long>(row["narrow_phase_calls"]);
+    }
     if (row.contains("time_s")) run.report.time_s = py::cast<double>(row["time_s"]);
     by_key[{run.angle_deg, static_cast<int>(run.planner), run.seed}] = run;
   }
@@ -734,8 +737,9 @@ PYBIND11_MODULE(_core, m) {
         return ImageArray(figure->Raster());
       },
       py::arg("rows"), py::arg("angles"), py::arg("planners"), py::arg("seeds"),
-      "The figure of `topoplan bench unwrap` (mean collision checks of successful runs vs angle)\n"
-      "from run rows (dicts with angle_deg, planner, seed, success, collision_checks), one per\n"
+      "The figure of `topoplan bench unwrap` (three panels over the angle: collision checks,\n"
+      "narrow-phase calls, wall time; median and interquartile band) from run rows (dicts with\n"
+      "angle_deg, planner, seed, success, collision_checks, narrow_phase_calls, time_s), one per\n"
       "(angle, planner, seed); None when there is nothing to draw.");
   m.def(
       "grasp_transfer",
