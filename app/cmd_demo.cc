@@ -256,8 +256,10 @@ class Demo {
     html_ << "<h2>3. Reaching through a ring with a writhe target (Fig. 4.4)</h2>\n"
              "<p>KUKA LWR 4 with the Schunk SDH; tasks: the writhe matrix of the hand chain "
              "against the ring chain (target from the final-pose estimate) and an end-effector "
-             "box. Final pose and its writhe matrix: the peak is at the link through the ring."
-             "</p>\n"
+             "box (plus reach, collision and joint limits). Final pose and its writhe matrix "
+             "(rows: elbow-to-wrist, wrist-to-grasp-point, grasp-point-to-tip; the outlined cell "
+             "is the largest |entry|): the writhe sits in the first two rows, the links that "
+             "pass through the ring.</p>\n"
           << PlanReportHtml(report);
     if (!frames.frames.frames.empty() && !frames.heatmaps.frames.empty()) {
       const std::string f =
@@ -298,8 +300,9 @@ class Demo {
     html_ << "<h2>4. Collision checks vs angle to unwrap (Fig. 4.5)</h2>\n"
              "<p>AICO with the writhe task against uni-directional RRT (10% goal bias) and "
              "bi-directional RRT, both given the final-pose estimate as their goal; a run that "
-             "exhausts its budget of collision checks counts as failed (marked). Mean checks are "
-             "over the solved runs, as in the figure. "
+             "exhausts its budget of collision checks counts as failed (marked). The figure shows "
+             "the median (and the interquartile band with several seeds) over the solved runs, "
+             "the table the mean. Wall times are those of this run of the demo. "
           << (args_.full ? "Full sweep."
                          : "Reduced sweep; <code>topoplan demo --full</code> runs "
                            "0&ndash;1080&deg; every 15&deg; with 3 seeds.")
@@ -361,8 +364,9 @@ class Demo {
   int Viewer() {
     const fs::path script = out_ / "viewer_script.txt";
     WriteFileAtomic(script.string(),
-                    "# The viewer after Plan, at the last time slice of the AICO trajectory.\n"
-                    "click Plan\nframes 3\nseek 50\nframes 2\n");
+                    "# The viewer after Plan (on its worker thread; wait until it is done), at the\n"
+                    "# end of the AICO trajectory (seek takes seconds: the plan lasts 2 s).\n"
+                    "click Plan\nwait\nseek 2\nframes 2\n");
     const int rc = Sub({"view", "unwrap", "--script", script.string(), "--screenshot",
                         (out_ / "viewer.png").string()});
     html_ << "<h2>6. Interactive viewer</h2>\n"
