@@ -35,9 +35,9 @@ namespace fs = std::filesystem;
 
 struct DemoArgs {
   std::string out_dir = "demo-out";
-  bool full = false;                          // the whole Figure 4.5 sweep (0..1080 deg every 15, 3 seeds)
-  bool no_grasp = false;                      // skip the grasp-transfer stage
-  double timeout = 0.0;                       // --timeout: seconds, 0 = none
+  bool full = false;      // the whole Figure 4.5 sweep (0..1080 deg every 15, 3 seeds)
+  bool no_grasp = false;  // skip the grasp-transfer stage
+  double timeout = 0.0;   // --timeout: seconds, 0 = none
   std::vector<render::FigureFormat> formats;  // --formats: figures also as SVG/PDF
 };
 
@@ -176,11 +176,12 @@ class Demo {
                              "--mark-peak"}));
       char line[1024];
       std::snprintf(line, sizeof line,
-                    "<tr><td>%s</td><td>%s &times; %s</td><td>%ldx%ld</td><td>%+.6f</td>"
+                    "<tr><td>%s</td><td>%s &times; %s</td><td>%ldx%ld</td><td>%s</td>"
                     "<td>%s</td><td><a href=\"%s\"><img src=\"%s\" width=\"240\"></a>"
                     "<br><a href=\"writhe/%s.json\">json</a></td></tr>\n",
                     p.name, p.a, p.b, static_cast<long>(w.rows()), static_cast<long>(w.cols()),
-                    w.sum(), HtmlEscape(p.expected).c_str(), png.c_str(), png.c_str(), p.name);
+                    render::FormatNumber(w.sum(), 6, /*plus=*/true).c_str(),
+                    HtmlEscape(p.expected).c_str(), png.c_str(), png.c_str(), p.name);
       rows << line;
     }
     html_ << "<h2>1. Writhe matrices of example chains</h2>\n"
@@ -363,10 +364,11 @@ class Demo {
 
   int Viewer() {
     const fs::path script = out_ / "viewer_script.txt";
-    WriteFileAtomic(script.string(),
-                    "# The viewer after Plan (on its worker thread; wait until it is done), at the\n"
-                    "# end of the AICO trajectory (seek takes seconds: the plan lasts 2 s).\n"
-                    "click Plan\nwait\nseek 2\nframes 2\n");
+    WriteFileAtomic(
+        script.string(),
+        "# The viewer after Plan (on its worker thread; wait until it is done), at the\n"
+        "# end of the AICO trajectory (seek takes seconds: the plan lasts 2 s).\n"
+        "click Plan\nwait\nseek 2\nframes 2\n");
     const int rc = Sub({"view", "unwrap", "--script", script.string(), "--screenshot",
                         (out_ / "viewer.png").string()});
     html_ << "<h2>6. Interactive viewer</h2>\n"
