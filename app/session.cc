@@ -206,28 +206,11 @@ void Session::StartRrt(Settings* settings, long budget) {
   job.run = [out, scenario, planner, seed](Worker& worker) {
     RunRecordingEnd(out.get(), [&] {
       const planning::Scenario& s = *scenario;
-      // The RRT set-up of RunPlanner: the joint-limit box (continuous joints: one turn around
-      // the start), q0 to the final-pose estimate, limits + InCollision as the validity test.
+      // The RRT set-up of RunPlanner (planning/planner.h).
       planning::CollisionData coll(s.robot, s.env, s.collision);
       planning::KinematicsData kin(s.robot), fk(s.robot);
-      planning::RrtProblem rp;
-      rp.lower = planning::LowerLimits(s.robot);
-      rp.upper = planning::UpperLimits(s.robot);
-      for (Eigen::Index k = 0; k < rp.lower.size(); ++k) {
-        if (!std::isfinite(rp.lower[k])) rp.lower[k] = s.problem.q0[k] - M_PI;
-        if (!std::isfinite(rp.upper[k])) rp.upper[k] = s.problem.q0[k] + M_PI;
-      }
-      rp.start = s.problem.q0;
-      rp.goal = s.goal_q;
-      const Eigen::VectorXd lo = planning::LowerLimits(s.robot);
-      const Eigen::VectorXd hi = planning::UpperLimits(s.robot);
-      const planning::ValidityFn valid = [&](const Eigen::VectorXd& q) {
-        for (Eigen::Index k = 0; k < q.size(); ++k) {
-          if (q[k] < lo[k] || q[k] > hi[k]) return false;
-        }
-        planning::ForwardKinematics(s.robot, q, &kin);
-        return !planning::InCollision(s.robot, kin, &coll);
-      };
+      const planning::RrtProblem rp = planning::ScenarioRrtProblem(s);
+      const planning::ValidityFn valid = planning::ValidityChecker(s, &coll, &kin);
       planning::RrtSolver solver(rp, s.rrt, valid, std::mt19937(seed),
                                  planner == planning::Planner::kBiRrt);
       const int link = GraspPointLink(s.robot);

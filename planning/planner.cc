@@ -31,8 +31,8 @@ constexpr std::int64_t kRrtPollIterations = 16;
 
 bool NeedsOmpl(Planner p) { return p == Planner::kOmplRrt || p == Planner::kOmplRrtConnect; }
 
-// The validity checker of every planner and of every output-path check: inside the joint limits
-// and not InCollision (one counted query on `coll` per call).
+}  // namespace
+
 ValidityFn ValidityChecker(const Scenario& s, CollisionData* coll, KinematicsData* kin) {
   const Eigen::VectorXd lo = LowerLimits(s.robot), hi = UpperLimits(s.robot);
   return [&s, coll, kin, lo, hi](const Eigen::VectorXd& q) {
@@ -44,7 +44,18 @@ ValidityFn ValidityChecker(const Scenario& s, CollisionData* coll, KinematicsDat
   };
 }
 
-}  // namespace
+RrtProblem ScenarioRrtProblem(const Scenario& s) {
+  RrtProblem rp;
+  rp.lower = LowerLimits(s.robot);
+  rp.upper = UpperLimits(s.robot);
+  for (Eigen::Index k = 0; k < rp.lower.size(); ++k) {  // continuous joints: one turn
+    if (!std::isfinite(rp.lower[k])) rp.lower[k] = s.problem.q0[k] - M_PI;
+    if (!std::isfinite(rp.upper[k])) rp.upper[k] = s.problem.q0[k] + M_PI;
+  }
+  rp.start = s.problem.q0;
+  rp.goal = s.goal_q;
+  return rp;
+}
 
 std::vector<Planner> AvailablePlanners() {
   std::vector<Planner> out;
@@ -162,7 +173,6 @@ PlanResult RunPlanner(const Scenario& s, Planner planner, unsigned seed,
   PlanResult out;
   PlanReport& rep = out.report;
   rep.planner = PlannerName(planner);
-  const int n = num_dofs(s.robot);
   CollisionData coll(s.robot, s.env, s.collision);
   KinematicsData kin(s.robot);
   const ValidityFn valid = ValidityChecker(s, &coll, &kin);
@@ -198,15 +208,7 @@ PlanResult RunPlanner(const Scenario& s, Planner planner, unsigned seed,
     }
     found = found || out.trajectory.num_points() > 0;
   } else {
-    RrtProblem rp;
-    rp.lower = LowerLimits(s.robot);
-    rp.upper = UpperLimits(s.robot);
-    for (int k = 0; k < n; ++k) {  // continuous joints: one turn around the start
-      if (!std::isfinite(rp.lower[k])) rp.lower[k] = s.problem.q0[k] - M_PI;
-      if (!std::isfinite(rp.upper[k])) rp.upper[k] = s.problem.q0[k] + M_PI;
-    }
-    rp.start = s.problem.q0;
-    rp.goal = s.goal_q;
+    const RrtProblem rp = ScenarioRrtProblem(s);
     RrtResult r;
     switch (planner) {
       case Planner::kRrt:

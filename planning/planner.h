@@ -7,6 +7,9 @@
 #include <vector>
 
 #include "planning/aico.h"
+#include "planning/collision.h"
+#include "planning/kinematics.h"
+#include "planning/rrt.h"
 #include "planning/scenario.h"
 #include "planning/trajectory.h"
 
@@ -92,6 +95,15 @@ struct PlanResult {
   PlanReport report;
   Trajectory trajectory;  // AICO: T+1 slices; RRT: tree waypoints (empty on failure)
 };
+
+// The validity test of every planner and of every output-path check: q inside the joint limits
+// and not InCollision (one counted query on `coll` per call). `s`, `coll` and `kin` must outlive
+// the returned function.
+ValidityFn ValidityChecker(const Scenario& s, CollisionData* coll, KinematicsData* kin);
+
+// The sampling planners' problem: the joint-limit box (a continuous joint: one turn, ±π, around
+// its start value), q_0 → the final-pose estimate goal_q.
+RrtProblem ScenarioRrtProblem(const Scenario& s);
 
 // Runs one planner on the scenario. AICO: SolveAico on each attempt's problem (its collision
 // feature's queries are counted) plus the validation of the result at check_resolution, the next
