@@ -6,6 +6,8 @@
 #include <random>
 #include <stdexcept>
 
+#include "planning/random.h"
+
 namespace planning {
 
 std::vector<UnwrapCell> SummarizeUnwrapRuns(const std::vector<UnwrapRun>& runs,
@@ -55,10 +57,39 @@ Eigen::Vector3d UnwrapPoleOffset(int seed, double max_m, const Eigen::Vector3d& 
   const Eigen::Vector3d e1 = d.cross(helper).normalized();
   const Eigen::Vector3d e2 = d.cross(e1);
   std::mt19937 rng(static_cast<unsigned>(seed));
-  std::uniform_real_distribution<double> unit(0.0, 1.0);
-  const double r = max_m * std::sqrt(unit(rng));  // uniform over the disc
-  const double phi = 2.0 * M_PI * unit(rng);
+  const double r = max_m * std::sqrt(UniformUnit(&rng));  // uniform over the disc
+  const double phi = 2.0 * M_PI * UniformUnit(&rng);
   return r * (std::cos(phi) * e1 + std::sin(phi) * e2);
+}
+
+UnwrapPerturbation MakeUnwrapPerturbation(const ScenarioSpec& spec, double angle_deg, int seeds,
+                                          double perturb_m) {
+  if (seeds < 1) throw std::invalid_argument("unwrap benchmark: seeds must be >= 1");
+  if (!(perturb_m >= 0.0) || !std::isfinite(perturb_m)) {
+    throw std::invalid_argument("unwrap benchmark: perturb must be a finite number >= 0");
+  }
+  UnwrapPerturbation p;
+  p.offsets.assign(seeds, Eigen::Vector3d::Zero());
+  if (perturb_m == 0.0) return p;
+  if (!spec.writhe_report) {
+    throw std::invalid_argument("unwrap benchmark: perturb needs the scenario's writhe_report");
+  }
+  for (size_t i = 0; i < spec.objects.size(); ++i) {
+    if (spec.objects[i].name == spec.writhe_report->object.name) p.object = static_cast<int>(i);
+  }
+  if (p.object >= 0) p.object_name = spec.objects[p.object].name;
+  const auto base = SetUpScenario(spec, angle_deg);
+  const Eigen::Vector3d axis = ReportAxis(*base).direction;
+  for (int seed = 0; seed < seeds; ++seed)
+    p.offsets[seed] = UnwrapPoleOffset(seed, perturb_m, axis);
+  return p;
+}
+
+ScenarioSpec PerturbedUnwrapSpec(ScenarioSpec spec, const UnwrapPerturbation& perturbation,
+                                 int seed) {
+  if (perturbation.object >= 0)
+    spec.objects.at(perturbation.object).xyz += perturbation.offsets.at(seed);
+  return spec;
 }
 
 UnwrapBenchmarkResult RunUnwrapBenchmark(const UnwrapBenchmarkOptions& options) {
@@ -76,29 +107,15 @@ UnwrapBenchmarkResult RunUnwrapBenchmark(const UnwrapBenchmarkOptions& options) 
       static_cast<int>(options.angles_deg.size() * options.planners.size()) * options.seeds;
   const ScenarioSpec spec = ParseScenarioSpec(options.scenario_path, options.search_roots);
   // Seed offsets of the pole (perpendicular to its line), and which object it is.
-  std::vector<Eigen::Vector3d> offsets(options.seeds, Eigen::Vector3d::Zero());
-  int pole = -1;
-  if (options.perturb_m > 0.0) {
-    if (!spec.writhe_report) {
-      throw std::invalid_argument("unwrap benchmark: perturb needs the scenario's writhe_report");
-    }
-    for (size_t i = 0; i < spec.objects.size(); ++i) {
-      if (spec.objects[i].name == spec.writhe_report->object.name) pole = static_cast<int>(i);
-    }
-    const auto base = SetUpScenario(spec, options.angles_deg.front());
-    const Eigen::Vector3d axis = ReportAxis(*base).direction;
-    for (int seed = 0; seed < options.seeds; ++seed) {
-      offsets[seed] = UnwrapPoleOffset(seed, options.perturb_m, axis);
-    }
-  }
+  const UnwrapPerturbation perturbation =
+      MakeUnwrapPerturbation(spec, options.angles_deg.front(), options.seeds, options.perturb_m);
+  const std::vector<Eigen::Vector3d>& offsets = perturbation.offsets;
   for (double angle : options.angles_deg) {
     std::unique_ptr<Scenario> shared;  // unperturbed: one set-up per angle
     for (int seed = 0; seed < options.seeds; ++seed) {
       std::unique_ptr<Scenario> own;
-      if (pole >= 0) {
-        ScenarioSpec moved = spec;
-        moved.objects[pole].xyz += offsets[seed];
-        own = SetUpScenario(std::move(moved), angle);
+      if (perturbation.object >= 0) {
+        own = SetUpScenario(PerturbedUnwrapSpec(spec, perturbation, seed), angle);
       } else if (!shared) {
         shared = SetUpScenario(spec, angle);
       }

@@ -61,8 +61,28 @@ struct UnwrapBenchmarkResult {
 };
 
 // The pole offset of seed `seed`: uniform in the disc of radius `max_m` perpendicular to
-// `axis_direction` (non-zero), drawn from std::mt19937(seed) (reproducible). max_m = 0: zero.
+// `axis_direction` (non-zero), drawn from std::mt19937(seed) with the portable mapping of
+// planning/random.h (u1, u2 = UniformUnit; r = max_m·√u1, φ = 2π·u2; r(cos φ e1 + sin φ e2), with
+// e1 = normalize(d × x̂) (d × ŷ when |d_x| >= 0.9), e2 = d × e1), so a seed gives the same offset
+// with every standard library. max_m = 0: zero.
 Eigen::Vector3d UnwrapPoleOffset(int seed, double max_m, const Eigen::Vector3d& axis_direction);
+
+// The pole perturbation of a benchmark: the object that moves (the scenario's writhe-report
+// object) and the offset of each seed (UnwrapPoleOffset about the report line of the unperturbed
+// scenario). perturb_m = 0: object -1 and zero offsets.
+struct UnwrapPerturbation {
+  int object = -1;                       // index into ScenarioSpec::objects; -1: nothing moves
+  std::string object_name;               // its name ("" when object is -1)
+  std::vector<Eigen::Vector3d> offsets;  // world-frame offset of seed s [m], size = seeds
+};
+// Sets `spec` up once (at angle_deg; the report line does not depend on the start wrap) to find
+// the pole's line. Throws std::invalid_argument for seeds < 1, perturb_m negative or not finite,
+// and perturb_m > 0 without a writhe_report in the scenario.
+UnwrapPerturbation MakeUnwrapPerturbation(const ScenarioSpec& spec, double angle_deg, int seeds,
+                                          double perturb_m);
+// `spec` with perturbation.object moved by offsets[seed] (unchanged when object is -1).
+ScenarioSpec PerturbedUnwrapSpec(ScenarioSpec spec, const UnwrapPerturbation& perturbation,
+                                 int seed);
 
 // Runs every (angle, planner, seed) with LoadScenario(scenario_path, {start_wrap_deg = angle}) and
 // RunPlanner (with perturb_m > 0: the pole of seed s moved by UnwrapPoleOffset about the report

@@ -13,6 +13,7 @@
 #include <pybind11/stl/filesystem.h>
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -661,25 +662,68 @@ PYBIND11_MODULE(_core, m) {
           "(PlanCancelled is raised). The GIL is released while planning.");
   m.def(
       "load_scenario",
-      [](const fs::path& arg_path, std::optional<double> start_wrap, long rrt_budget) {
+      [](const fs::path& arg_path, std::optional<double> start_wrap, long rrt_budget,
+         const std::map<std::string, py::object>& move_objects) {
         const std::string arg = arg_path.string();
         if (start_wrap && !std::isfinite(*start_wrap)) ThrowValue("start_wrap: must be finite");
         const std::string path = Named(
             "path_or_name", [&] { return app::ResolveScenarioPath(arg); }, PyExc_FileNotFoundError);
         planning::ScenarioOverrides overrides;
         overrides.start_wrap_deg = start_wrap;
+        overrides.search_roots = {app::AssetRoot()};
+        std::map<std::string, Eigen::Vector3d> offsets;
+        for (const auto& [name, xyz] : move_objects) {
+          offsets[name] = ToVector(xyz, "move_objects['" + name + "']", 3);
+        }
+        planning::ScenarioSpec spec = planning::ParseScenarioSpec(path, overrides.search_roots);
+        for (const auto& [name, offset] : offsets) {
+          auto it = std::find_if(spec.objects.begin(), spec.objects.end(),
+                                 [&](const auto& o) { return o.name == name; });
+          if (it == spec.objects.end()) {
+            ThrowValue("move_objects: the scenario has no object '" + name + "'");
+          }
+          it->xyz += offset;
+        }
         PyScenario s;
         {
           py::gil_scoped_release release;
-          s.scenario = app::LoadScenarioArg(path, overrides);
+          s.scenario = planning::SetUpScenario(std::move(spec), start_wrap);
         }
         if (rrt_budget > 0) s.scenario->rrt.max_checks = rrt_budget;
         return s;
       },
       py::arg("path_or_name"), py::arg("start_wrap") = py::none(), py::arg("rrt_budget") = -1,
+      py::arg("move_objects") = std::map<std::string, py::object>{},
       "Loads a scenario file, or a name in the shipped assets/scenarios (e.g. 'unwrap'), and\n"
       "sets it up (start coil, final-pose estimate). start_wrap overrides the coil's angle to\n"
-      "unwrap [deg]; rrt_budget > 0 replaces the RRTs' collision-check budget.");
+      "unwrap [deg]; rrt_budget > 0 replaces the RRTs' collision-check budget; move_objects\n"
+      "{name: (3,) offset [m]} moves objects of the scenario before it is set up.");
+  m.def(
+      "unwrap_perturbation",
+      [](const fs::path& arg_path, int seeds, double perturb) {
+        const std::string path = Named(
+            "path_or_name", [&] { return app::ResolveScenarioPath(arg_path.string()); },
+            PyExc_FileNotFoundError);
+        if (seeds < 1) ThrowValue("seeds: must be >= 1");
+        if (!(perturb >= 0.0) || !std::isfinite(perturb)) ThrowValue("perturb: must be >= 0");
+        planning::UnwrapPerturbation p;
+        {
+          py::gil_scoped_release release;
+          const planning::ScenarioSpec spec = planning::ParseScenarioSpec(path, {app::AssetRoot()});
+          p = planning::MakeUnwrapPerturbation(spec, 0.0, seeds, perturb);
+        }
+        Eigen::MatrixXd offsets(seeds, 3);
+        for (int s = 0; s < seeds; ++s) offsets.row(s) = p.offsets[s].transpose();
+        py::dict d;
+        d["object"] = p.object_name;
+        d["offsets"] = offsets;
+        return d;
+      },
+      py::arg("path_or_name"), py::arg("seeds"), py::arg("perturb"),
+      "The pole perturbation of `topoplan bench unwrap --perturb M --seeds N`: dict with\n"
+      "'object' (the moved object's name, '' when perturb is 0) and 'offsets' (N x 3 world-frame\n"
+      "offsets [m], row s for seed s; at most perturb from the pole's line). Pass\n"
+      "move_objects={object: offsets[s]} to load_scenario for seed s's set-up.");
 
   // images
   m.def(

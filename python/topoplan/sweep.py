@@ -65,18 +65,39 @@ def fmt_number(x):
 
 
 @functools.lru_cache(maxsize=4)
-def _scenario(angle, budget):
+def _perturbation(seeds, perturb):
     import topoplan
 
-    return topoplan.load_scenario("unwrap", start_wrap=angle, rrt_budget=budget)
+    return topoplan.unwrap_perturbation("unwrap", seeds, perturb)
 
 
-def run_unwrap(angle, planner, seed, budget=-1):
+def pole_offset(seed, seeds, perturb):
+    """(object name, (3,) offset) of seed `seed` as ``bench unwrap --perturb`` moves the pole."""
+    p = _perturbation(seeds, perturb)
+    return p["object"], p["offsets"][seed]
+
+
+@functools.lru_cache(maxsize=4)
+def _scenario(angle, budget, seed=0, seeds=1, perturb=0.0):
+    import topoplan
+
+    moves = {}
+    if perturb > 0:
+        name, offset = pole_offset(seed, seeds, perturb)
+        moves = {name: offset}
+    return topoplan.load_scenario("unwrap", start_wrap=angle, rrt_budget=budget, move_objects=moves)
+
+
+def run_unwrap(angle, planner, seed, budget=-1, seeds=1, perturb=0.0):
     """One run of the unwrap benchmark (on a worker): a dict with the unwrap.csv columns.
 
-    The scenario of each angle is set up once per worker process and reused, as
-    ``bench unwrap`` reuses it for every planner and seed of an angle."""
-    scenario = _scenario(angle, budget)
+    The scenario of each angle (and, with perturb > 0, seed: the pole moved by that seed's
+    offset) is set up once per worker process and reused, as ``bench unwrap`` reuses it for
+    every planner of an angle and seed."""
+    if perturb > 0:
+        scenario = _scenario(angle, budget, seed, seeds, perturb)
+    else:
+        scenario = _scenario(angle, budget)
     _, report = scenario.plan(planner, seed)
     return {
         "angle_deg": angle,
@@ -89,8 +110,14 @@ def run_unwrap(angle, planner, seed, budget=-1):
         "time_s": float(report["time_s"]),
         "path_length": float(report["path_length"]),
         "reach_error_m": float(report["reach_error_m"]),
-        "pole_offset_m": 0.0,  # the sweep does not move the pole (bench unwrap --perturb does)
+        "pole_offset_m": pole_offset_norm(seed, seeds, perturb),
     }
+
+
+def pole_offset_norm(seed, seeds, perturb):
+    if perturb <= 0:
+        return 0.0
+    return float(sum(x * x for x in pole_offset(seed, seeds, perturb)[1]) ** 0.5)
 
 
 def row_line(row):
@@ -246,15 +273,30 @@ def sweep_unwrap(args):
     angles = parse_range(args.angles)
     planners = parse_planners(args.planners, topoplan.available_planners())
     check_common(args)
+    if not (0 <= args.perturb <= 1):  # also refuses NaN
+        raise UsageError("--perturb: expected a distance in metres in 0..1")
     csv_path = os.path.join(args.output, "unwrap.csv")
     done = read_rows(csv_path)
     runs = [(fmt_number(a), p, s) for a in angles for p in planners for s in range(args.seeds)]
+    if done and args.perturb > 0:
+        want = {s: fmt_number(pole_offset_norm(s, args.seeds, args.perturb)) for s in range(args.seeds)}
+    else:
+        want = {s: "0" for s in range(args.seeds)}
+    for row in done.values():
+        if row["seed"] in want and fmt_number(row["pole_offset_m"]) != want[row["seed"]]:
+            raise UsageError(
+                f"--perturb: {csv_path} holds runs with another pole perturbation "
+                f"(seed {row['seed']}: offset {fmt_number(row['pole_offset_m'])} m); use another -o"
+            )
 
     def submit(client, run):
         # By reference (topoplan.sweep.run_unwrap), also when this file runs as __main__.
         from topoplan.sweep import run_unwrap as task
 
-        return client.submit(task, float(run[0]), run[1], run[2], args.budget, pure=False, retries=1)
+        return client.submit(
+            task, float(run[0]), run[1], run[2], args.budget, args.seeds, args.perturb,
+            pure=False, retries=1,
+        )
 
     def label(row):
         return f"{row['planner']} @ {fmt_number(row['angle_deg'])} deg seed {row['seed']}"
@@ -432,6 +474,13 @@ def build_parser():
     u.add_argument("--seeds", type=int, default=3, help="seeds 0..N-1 per angle and planner")
     u.add_argument("--planners", default="aico,rrt,birrt", help="comma-separated planners")
     u.add_argument("--budget", type=int, default=-1, help="RRT collision-check budget")
+    u.add_argument(
+        "--perturb",
+        type=float,
+        default=0.0,
+        help="move the pole of each seed by at most M metres perpendicular to its axis "
+        "(as `bench unwrap --perturb`; default 0)",
+    )
     add_cluster_flags(u)
     g = sub.add_parser(
         "grasp",

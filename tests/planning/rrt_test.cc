@@ -8,6 +8,7 @@
 #include <random>
 
 #include "planning/random.h"
+#include "planning/unwrap_benchmark.h"
 
 namespace planning {
 namespace {
@@ -133,6 +134,22 @@ TEST(PortableRandom, FirstValuesArePinned) {
   std::mt19937 pick(42);
   const std::uint32_t expected[] = {3, 7, 9, 1, 7, 7};
   for (std::uint32_t e : expected) EXPECT_EQ(UniformIndex(&pick, 10), e);
+}
+
+// The unwrap benchmark's pole offsets use the same mapping: r = M·√u1, φ = 2π·u2 in the plane
+// (e1, e2) = (ŷ, −x̂) perpendicular to ẑ. Expected values computed independently from numpy's
+// RandomState(seed).random_sample(2) (the same genrand_res53 draws).
+TEST(PortableRandom, UnwrapPoleOffsetsArePinned) {
+  const Eigen::Vector3d z = Eigen::Vector3d::UnitZ();
+  const Eigen::Vector3d expected[] = {{0.021695097565054264, -0.004822332960027625, 0.0},
+                                      {0.01903738196154783, -0.003591363568681098, 0.0},
+                                      {-0.0032126156720750938, 0.01954672638759086, 0.0}};
+  for (int seed = 0; seed < 3; ++seed) {
+    const Eigen::Vector3d offset = UnwrapPoleOffset(seed, 0.03, z);
+    EXPECT_NEAR((offset - expected[seed]).norm(), 0.0, 1e-15) << "seed " << seed;
+    EXPECT_LE(offset.norm(), 0.03);
+  }
+  EXPECT_EQ(UnwrapPoleOffset(5, 0.0, z), Eigen::Vector3d::Zero());
 }
 
 TEST(PortableRandom, IndexStaysInRangeAndCoversIt) {

@@ -82,6 +82,8 @@ def test_sweep_equals_bench_unwrap(cli, tmp_path):
         (["--angles", "a:b"], "--angles"),
         (["--planners", "aico,prm"], "unknown planner 'prm'"),
         (["--seeds", "0"], "--seeds"),
+        (["--perturb", "nan"], "--perturb"),
+        (["--perturb", "-0.01"], "--perturb"),
         (["--scheduler", "tcp://127.0.0.1:9", "--timeout", "2"], "--scheduler: cannot reach"),
     ],
 )
@@ -93,3 +95,24 @@ def test_bad_input_exits_2_and_writes_nothing(tmp_path, args, message):
     assert message in r.stderr
     assert not out.exists()
     assert time.monotonic() - t0 < 60
+
+
+def test_perturbed_sweep_equals_bench_unwrap(cli, tmp_path):
+    """--perturb moves the pole of each seed exactly as `bench unwrap --perturb` does."""
+    args = ["--angles", "90:90:90", "--seeds", "2", "--planners", "aico,birrt", "--budget", "3000",
+            "--perturb", "0.03"]
+    out = tmp_path / "sweep"
+    r = run_sweep(*args, "--workers", "2", "-o", out)
+    assert r.returncode == 0, r.stderr
+    cli("bench", "unwrap", *args, "-o", tmp_path / "bench")
+    got = {key(x): without_time(x) for x in rows(out / "unwrap.csv")}
+    want = {key(x): without_time(x) for x in rows(tmp_path / "bench" / "unwrap.csv")}
+    assert len(got) == 4 and got == want
+    offsets = topoplan.unwrap_perturbation("unwrap", 2, 0.03)["offsets"]
+    assert offsets.shape == (2, 3) and 0 < max(sum(o * o for o in row) ** 0.5 for row in offsets) <= 0.03
+    assert {x["pole_offset_m"] for x in got.values()} != {"0"}
+    # A rerun into the same folder with another perturbation is refused; nothing changes.
+    before = (out / "unwrap.csv").read_text()
+    r = run_sweep(*args[:-1], "0.01", "-o", out)
+    assert r.returncode == 2 and "--perturb" in r.stderr
+    assert (out / "unwrap.csv").read_text() == before
