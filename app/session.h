@@ -20,6 +20,7 @@
 #include "planning/physics/grasp_simulation.h"
 #include "planning/physics/stability.h"
 #include "planning/planner.h"
+#include "planning/replan.h"
 #include "planning/scenario.h"
 
 namespace app {
@@ -185,6 +186,9 @@ class Session {
   std::optional<RobotScene> robot_scene_;
   Eigen::VectorXd joint_q_;  // slider configuration
   std::optional<planning::PlanResult> result_;
+  // The receding-horizon plan behind result_ after a `move` (its velocities and the scenario
+  // slice of its first column); empty for a plan from the start.
+  std::optional<planning::RecedingPlan> horizon_;
   std::vector<SweepRecord> sweeps_;
   std::optional<GraspReplay> grasp_;
   std::vector<RrtTreeView> rrt_trees_;

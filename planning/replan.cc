@@ -303,21 +303,18 @@ RecedingPlan MakeRecedingPlan(const Trajectory& t, const Eigen::MatrixXd& veloci
   return plan;
 }
 
-ReplanStep ReplanMoved(Scenario* s, const std::string& object, const Eigen::Vector3d& position,
-                       const std::vector<int>& attached, int elapsed, const ReplanOptions& options,
-                       ReplanWorkspace* ws, RecedingPlan* plan, AicoResult* result) {
-  const int T = s->problem.num_steps;
+ReplanStep ReplanFrom(const Scenario& s, int elapsed, const ReplanOptions& options,
+                      ReplanWorkspace* ws, RecedingPlan* plan, AicoResult* result) {
+  const int T = s.problem.num_steps;
   if (elapsed < 0 || elapsed > T || plan->q.cols() != T + 1 || plan->qdot.cols() != T + 1) {
-    throw std::invalid_argument("ReplanMoved: elapsed must be in [0, " + std::to_string(T) +
+    throw std::invalid_argument("ReplanFrom: elapsed must be in [0, " + std::to_string(T) +
                                 "] and the plan have " + std::to_string(T + 1) + " columns");
   }
   ReplanStep step;
   step.slice = plan->start_slice + elapsed;
-  step.time_s = step.slice * tau(s->problem);
-  step.object_position = position;
+  step.time_s = step.slice * tau(s.problem);
   const double wall0 = WallMs(), cpu0 = ThreadCpuMs();
-  MoveObjectWithTargets(s, object, position, attached);
-  AicoResult r = Replan(*s, step.slice, plan->q.col(elapsed), plan->qdot.col(elapsed), plan->q,
+  AicoResult r = Replan(s, step.slice, plan->q.col(elapsed), plan->qdot.col(elapsed), plan->q,
                         elapsed, options, ws);
   step.wall_ms = WallMs() - wall0;
   step.cpu_ms = ThreadCpuMs() - cpu0;
@@ -391,8 +388,14 @@ ReplanResult RunReplanning(Scenario* s, const std::string& object, const ObjectP
     out.object_positions.push_back(segment_position.back());
     if (g == T || g % out.period_slices != 0 || g == 0) continue;
     // Re-plan at g (after executing it): the object moves, the window shifts.
-    const ReplanStep step = ReplanMoved(s, object, ObjectPositionAt(path, g * tau_s), attached,
-                                        g - plan.start_slice, options, &ws, &plan);
+    const Eigen::Vector3d position = ObjectPositionAt(path, g * tau_s);
+    const double wall0 = WallMs(), cpu0 = ThreadCpuMs();
+    MoveObjectWithTargets(s, object, position, attached);
+    const double move_wall = WallMs() - wall0, move_cpu = ThreadCpuMs() - cpu0;
+    ReplanStep step = ReplanFrom(*s, g - plan.start_slice, options, &ws, &plan);
+    step.object_position = position;
+    step.wall_ms += move_wall;  // move + window + AICO
+    step.cpu_ms += move_cpu;
     out.replans.push_back(step);
     if (options.on_replan) options.on_replan(step);
     segment_start.push_back(g);

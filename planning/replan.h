@@ -162,16 +162,14 @@ RecedingPlan MakeRecedingPlan(const Trajectory& trajectory, const Eigen::MatrixX
                               int start_slice);
 
 // One step of the loop, what RunReplanning does at every re-plan and the viewer's `move` does
-// once: after executing `elapsed` slices of `plan` (0 <= elapsed <= T; the state is its column
-// `elapsed`), moves `object` and the tasks `attached` to `position` (MoveObjectWithTargets) and
+// once, after the caller moved the object and its attached tasks (MoveObjectWithTargets): after
+// executing `elapsed` slices of `plan` (0 <= elapsed <= T; the state is its column `elapsed`),
 // re-plans at slice g = plan.start_slice + elapsed from that state, warm-started with the plan
 // shifted by `elapsed` (Replan). `plan` becomes the new plan (start_slice g). Returns the step
-// (sweeps, status, cost, wall and CPU time of move + re-plan); `result` receives the AICO result
-// when not null. Throws as MoveObjectWithTargets and Replan.
-ReplanStep ReplanMoved(Scenario* scenario, const std::string& object,
-                       const Eigen::Vector3d& position, const std::vector<int>& attached,
-                       int elapsed, const ReplanOptions& options, ReplanWorkspace* ws,
-                       RecedingPlan* plan, AicoResult* result = nullptr);
+// (slice, time, sweeps, status, cost, wall and CPU time of the re-plan; object_position left 0);
+// `result` receives the AICO result when not null. Reads the scenario only. Throws as Replan.
+ReplanStep ReplanFrom(const Scenario& scenario, int elapsed, const ReplanOptions& options,
+                      ReplanWorkspace* ws, RecedingPlan* plan, AicoResult* result = nullptr);
 
 // Runs the re-planning simulation above with object `object` of `scenario` (a name from
 // ObjectNames) following `path`, its attached tasks (ResolveAttachedTasks) moving with it. The
