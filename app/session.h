@@ -199,7 +199,10 @@ class Session {
   mutable double heatmap_limit_ = 0.0;
   std::shared_ptr<PlanOutput> plan_out_;    // output of the plan job being shown, if any
   std::shared_ptr<GraspOutput> grasp_out_;  // output of the live simulation, if any
-  Worker worker_;  // last: destroyed (cancelled and joined) before the state its job writes to
+  // Last: destroyed (cancelled and joined) before the state its job writes to. Its jobs run at
+  // nice +kWorkerNice so that frames keep coming while it plans on a busy machine.
+  static constexpr int kWorkerNice = 3;
+  Worker worker_{kWorkerNice};
 };
 
 // Writes `status` (and the recent frame times [ms]) as the JSON object {"planner", "planning",

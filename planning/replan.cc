@@ -454,14 +454,17 @@ ReplanResult RunReplanning(Scenario* s, const std::string& object, const ObjectP
   out.success = out.verdict.reason == FailureReason::kNone && (!loop || out.passed_through);
 
   std::vector<double> cpu, wall;
-  double cpu_total = 0.0;
+  double cpu_total = 0.0, wall_total = 0.0;
   for (const ReplanStep& r : out.replans) {
     cpu.push_back(r.cpu_ms);
     wall.push_back(r.wall_ms);
     cpu_total += r.cpu_ms;
+    wall_total += r.wall_ms;
   }
   if (!cpu.empty()) {
     out.rate_hz = cpu_total > 0.0 ? 1000.0 * static_cast<double>(cpu.size()) / cpu_total : 0.0;
+    out.wall_rate_hz =
+        wall_total > 0.0 ? 1000.0 * static_cast<double>(wall.size()) / wall_total : 0.0;
     out.median_cpu_ms = Median(cpu);
     out.max_cpu_ms = *std::max_element(cpu.begin(), cpu.end());
     out.median_wall_ms = Median(wall);

@@ -108,6 +108,8 @@ struct ReplanResult {
   bool success = false;  // verdict.reason == kNone, and passed_through when it is checked
   // Re-plans per second of CPU time: replans.size() / Σ cpu_ms · 1000 (0 without re-plans).
   double rate_hz = 0.0;
+  // Re-plans per second of wall-clock time: replans.size() / Σ wall_ms · 1000 (0 without).
+  double wall_rate_hz = 0.0;
   double median_cpu_ms = 0.0, max_cpu_ms = 0.0;  // over the re-plans
   double median_wall_ms = 0.0, max_wall_ms = 0.0;
 };

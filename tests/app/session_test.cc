@@ -1,7 +1,11 @@
 #include "app/session.h"
 
 #include <gtest/gtest.h>
+#include <sys/resource.h>
+#include <sys/syscall.h>
+#include <unistd.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -207,6 +211,19 @@ TEST(SessionMoveTest, RingMovedTwelveCentimetresWhileExecuting) {
   EXPECT_NE(session.status().find("from slice 12"), std::string::npos) << session.status();
   session.Wait(&settings);
   ASSERT_TRUE(session.result().has_value()) << session.status();
+}
+
+// The worker's jobs run at a lower priority than the thread that draws (per-thread nice).
+TEST(WorkerTest, JobsRunNicerThanTheCaller) {
+  const int mine = getpriority(PRIO_PROCESS, static_cast<id_t>(syscall(SYS_gettid)));
+  int theirs = -100;
+  Worker worker(3);
+  worker.Submit({"nice", [&](Worker&) {
+                   theirs = getpriority(PRIO_PROCESS, static_cast<id_t>(syscall(SYS_gettid)));
+                 }});
+  worker.Wait();
+  EXPECT_EQ(theirs, std::min(19, mine + 3));
+  EXPECT_EQ(getpriority(PRIO_PROCESS, static_cast<id_t>(syscall(SYS_gettid))), mine);
 }
 
 TEST_F(SessionTest, PlaybackAdvancesAndStopsAtTheEnd) {

@@ -167,10 +167,10 @@ ObjectPath StepPath(const Eigen::Vector3d& home, const Eigen::Vector3d& delta, d
 std::string Describe(const ReplanResult& r) {
   char text[256];
   std::snprintf(text, sizeof text,
-                "reason %s, passed_through %d, %zu re-plans, %.1f /s CPU (median %.1f ms CPU, "
-                "%.1f ms wall)",
+                "reason %s, passed_through %d, %zu re-plans, %.1f /s CPU, %.1f /s wall (median "
+                "%.1f ms CPU, %.1f ms wall)",
                 FailureReasonName(r.verdict.reason), r.passed_through ? 1 : 0, r.replans.size(),
-                r.rate_hz, r.median_cpu_ms, r.median_wall_ms);
+                r.rate_hz, r.wall_rate_hz, r.median_cpu_ms, r.median_wall_ms);
   return text;
 }
 
