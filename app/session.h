@@ -46,7 +46,10 @@ struct SessionCommand {
     kSimStep,    // value = N: advance the live ODE test by N physics steps (starts one if none is
                  // parked), then hold it
     kMove,       // text = object, position = new world position [m] of its frame: moves the object
-                 // and re-plans on the worker, warm-started from the shown trajectory
+                 // and the tasks attached to it (planning/replan.h) and, while an AICO plan is
+                 // shown, re-plans on the worker with planning::ReplanFrom from the shown slice
+                 // (receding horizon: that plan shifted as the start; playback goes on); without
+                 // one it plans from the start in the moved scene
   };
   SessionCommand() = default;
   explicit SessionCommand(Kind k, std::string t = "", int i = 0, double v = 0.0)

@@ -354,17 +354,22 @@ ReplanResult RunReplanning(Scenario* s, const std::string& object, const ObjectP
     Eigen::Vector3d home;
     std::vector<TaskSpec> tasks;
     std::vector<Eigen::MatrixXd> targets;
+    std::vector<Eigen::Isometry3d> env;  // bit-exact poses (moves add and subtract δ)
     ~Restore() {
       try {
         s->spec.tasks = tasks;
         for (size_t i = 0; i < targets.size(); ++i) s->problem.tasks[i].target = targets[i];
-        MoveObject(s, name, home);  // rebuilds the features from the restored spec
+        MoveObject(s, name, home);
+        for (size_t i = 0; i < env.size(); ++i) s->env.objects[i].world_from_object = env[i];
+        RebuildTaskFeatures(*s, &s->problem);  // from the restored spec and poses
       } catch (...) {
       }
     }
   } restore{
-      s, object, s->objects.objects[out.object].world_from_object.translation(), s->spec.tasks, {}};
+      s,  object, s->objects.objects[out.object].world_from_object.translation(), s->spec.tasks,
+      {}, {}};
   for (const Task& t : base.tasks) restore.targets.push_back(t.target);
+  for (const PlacedObject& o : s->env.objects) restore.env.push_back(o.world_from_object);
 
   // g = 0: the full solve with the object at path(0).
   std::vector<Eigen::Vector3d> segment_position{ObjectPositionAt(path, 0.0)};
