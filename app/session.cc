@@ -1,9 +1,11 @@
 #include "app/session.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <mutex>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -12,9 +14,11 @@
 
 #include "app/assets.h"
 #include "app/grasp_inputs.h"
+#include "planning/grasp_object.h"
 #include "planning/grasp_transfer.h"
-#include "planning/physics/grasp_trials.h"
+#include "planning/physics/hand_builder.h"
 #include "planning/physics/ode_runtime.h"
+#include "planning/replan.h"
 #include "topology/input_limits.h"
 
 namespace app {
@@ -47,6 +51,7 @@ std::vector<std::string> Session::joint_names() const { return planning::DofName
 void Session::Load(const std::string& arg, const Settings& settings) {
   const std::string path = ResolveScenarioPath(arg);
   result_.reset();
+  horizon_.reset();
   sweeps_.clear();
   rrt_trees_.clear();
   ++plan_version_;
@@ -75,8 +80,9 @@ struct Session::PlanOutput {
   std::mutex mutex;
   std::vector<SweepRecord> sweeps;
   std::optional<planning::PlanResult> result;
-  std::shared_ptr<planning::Scenario> scenario;  // re-plan after a move: the moved scenario
-  std::vector<RrtTreeView> trees;                // RRT plans: the trees so far
+  std::optional<planning::RecedingPlan> horizon;  // re-plan after a move: the new plan
+  int frame_at_start = -1;                        // re-plan: the frame shown when it started
+  std::vector<RrtTreeView> trees;                 // RRT plans: the trees so far
   long rrt_checks = 0;
   bool finished = false;
   bool stepped = false;  // started by kStep: keep showing the last slice
@@ -117,6 +123,75 @@ void RunRecordingEnd(Output* out, Fn&& job) {
 
 }  // namespace
 
+namespace {
+
+// Adds one AICO solve to `out` as RunPlanner reports it (planning/planner.h): trajectory, status,
+// sweeps, cost, its collision queries plus those of validating the path at check_resolution, and
+// the verdict of JudgePlan. Returns whether the path is valid and meets the success criteria.
+bool AddAicoSolve(const planning::Scenario& s, const planning::AicoResult& r,
+                  planning::PlanResult* out) {
+  planning::PlanReport& rep = out->report;
+  out->trajectory = r.trajectory;
+  rep.status = r.status;
+  rep.iterations += r.iterations;
+  rep.cost = r.cost;
+  rep.cost_history = r.cost_history;
+  rep.collision_checks += r.collision_queries;
+  planning::CollisionData coll(s.robot, s.env, s.collision);
+  planning::KinematicsData kin(s.robot);
+  rep.path_collision_free = r.status != planning::SolveStatus::kInvalidInput &&
+                            planning::PathIsValid(r.trajectory, s.check_resolution,
+                                                  planning::ValidityChecker(s, &coll, &kin));
+  rep.collision_checks += coll.queries;
+  rep.narrow_phase_calls += coll.narrow_phase_calls;
+  const planning::PlanVerdict v = planning::JudgePlan(s, r.trajectory);
+  rep.start_writhe_total = planning::ReportWritheTotal(s, r.trajectory.q.col(0));
+  rep.final_writhe_total = v.final_writhe_total;
+  rep.path_length = planning::PathLength(r.trajectory);
+  rep.min_clearance_m = v.min_clearance_m;
+  rep.failure_reason = v.reason;
+  rep.failure_step = v.step;
+  rep.reach_error_m = v.reach_error_m;
+  rep.max_winding_jump_turns = v.max_winding_jump_turns;
+  rep.final_winding_turns = v.final_winding_turns;
+  rep.writhe_peak_row = v.writhe_peak_row;
+  rep.writhe_peak_col = v.writhe_peak_col;
+  rep.writhe_peak_value = v.writhe_peak_value;
+  rep.success = rep.path_collision_free && v.reason == planning::FailureReason::kNone;
+  if (!rep.success && rep.failure_reason == planning::FailureReason::kNone) {
+    rep.failure_reason = r.status == planning::SolveStatus::kDiverged
+                             ? planning::FailureReason::kDiverged
+                             : planning::FailureReason::kBudgetExhausted;
+  }
+  return rep.success;
+}
+
+// RunPlanner's AICO attempts (planning/planner.h), each an AicoSolver driven one Step() at a time
+// on the worker: `on_sweep(solver, step)` after every sweep (records it, then waits at the
+// worker's checkpoint while the step budget is used up). The trajectory equals RunPlanner's bit
+// for bit (AicoSolver stepping equals SolveAico).
+planning::PlanResult RunSteppedAico(
+    const planning::Scenario& s,
+    const std::function<void(const planning::AicoSolver&, const planning::AicoStep&)>& on_sweep) {
+  planning::PlanResult out;
+  out.report.planner = planning::PlannerName(planning::Planner::kAico);
+  out.report.attempts = 0;
+  const auto t0 = std::chrono::steady_clock::now();
+  for (int k = 0; k < static_cast<int>(s.aico_attempts.size()); ++k) {
+    const planning::MotionProblem later =
+        k > 0 ? planning::AttemptProblem(s, k) : planning::MotionProblem{};
+    ++out.report.attempts;
+    planning::AicoSolver solver(k > 0 ? later : s.problem, planning::AttemptOptions(s, k));
+    while (!solver.done()) on_sweep(solver, solver.Step());
+    if (AddAicoSolve(s, solver.result(), &out)) break;
+  }
+  out.report.start_writhe_total = planning::ReportWritheTotal(s, s.problem.q0);
+  out.report.time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return out;
+}
+
+}  // namespace
+
 std::shared_ptr<Session::PlanOutput> Session::NewPlanJob(long budget, const char* stepped_name,
                                                          Worker::Job* job) {
   auto out = std::make_shared<PlanOutput>();
@@ -151,6 +226,7 @@ void Session::StartPlan(Settings* settings, long budget) {
   }
   sweeps_.clear();
   result_.reset();
+  horizon_.reset();
   rrt_trees_.clear();
   rrt_checks_ = 0;
   ++plan_version_;
@@ -166,17 +242,20 @@ void Session::StartPlan(Settings* settings, long budget) {
   const unsigned seed = settings->planner.seed;
   job.run = [out, scenario, planner, seed](Worker& worker) {
     RunRecordingEnd(out.get(), [&] {
-      planning::AicoCallback record;
-      if (planner == planning::Planner::kAico) {
-        record = [&](int sweep, double cost, bool accepted, const planning::Trajectory& t) {
-          {
-            std::lock_guard<std::mutex> lock(out->mutex);
-            out->sweeps.push_back({sweep, cost, accepted, t.q});
-          }
-          worker.Checkpoint();
-        };
-      }
-      planning::PlanResult r = planning::RunPlanner(*scenario, planner, seed, record);
+      // AICO: one real sweep per worker checkpoint (step N runs N, then holds the solver).
+      planning::PlanResult r =
+          planner == planning::Planner::kAico
+              ? RunSteppedAico(
+                    *scenario,
+                    [&](const planning::AicoSolver& solver, const planning::AicoStep& st) {
+                      {
+                        std::lock_guard<std::mutex> lock(out->mutex);
+                        out->sweeps.push_back(
+                            {st.sweep, st.cost, st.accepted, solver.trajectory().q});
+                      }
+                      worker.Checkpoint();
+                    })
+              : planning::RunPlanner(*scenario, planner, seed);
       std::lock_guard<std::mutex> lock(out->mutex);
       out->result = std::move(r);
     });
@@ -273,92 +352,72 @@ void Session::ShowPlanResult(Settings* settings) {
 
 void Session::StartMove(const SessionCommand& c, Settings* settings) {
   if (!scenario_) throw std::invalid_argument("move: the loaded file is not a planning scenario");
-  planning::ScenarioSpec spec = scenario_->spec;
-  std::vector<std::string> names;
-  planning::ObjectSpec* object = nullptr;
-  for (planning::ObjectSpec& o : spec.objects) {
-    names.push_back(o.name);
-    if (o.name == c.text) object = &o;
-  }
-  if (object == nullptr) {
+  const std::vector<std::string> names = planning::ObjectNames(*scenario_);
+  if (std::find(names.begin(), names.end(), c.text) == names.end()) {
     throw std::invalid_argument("move: no object '" + c.text + "' " + ValidChoices(names));
   }
   if (!c.position.allFinite()) throw std::invalid_argument("move: position is not finite");
-  object->xyz = c.position;
-  // Receding horizon: re-plan from the configuration shown now, warm-started with the rest of
-  // the shown trajectory (shifted to start now, its last slice repeated).
-  const Eigen::VectorXd q_now = ShownQ(*settings);
-  std::optional<Eigen::MatrixXd> init;
-  const int n = num_frames(*settings);
-  const int T1 = scenario_->problem.num_steps + 1;
-  if (n == T1 && planning::ParsePlanner(settings->planner.planner) == planning::Planner::kAico) {
-    const Eigen::MatrixXd& q =
-        settings->sweep >= 0 ? sweeps_[settings->sweep].q : result_->trajectory.q;
-    const int from = std::clamp(settings->frame, 0, n - 1);
-    init = Eigen::MatrixXd(q.rows(), T1);
-    for (int t = 0; t < T1; ++t) init->col(t) = q.col(std::min(n - 1, from + t));
-    init->col(0) = q_now;
+  // The plan the arm executes: the shown AICO trajectory (T+1 slices) from scenario slice
+  // horizon_->start_slice (0 for a plan from the start), `elapsed` slices of it done.
+  const int T = scenario_->problem.num_steps;
+  std::optional<planning::RecedingPlan> plan;
+  const int elapsed = std::clamp(settings->frame, 0, T);
+  if (num_frames(*settings) == T + 1 &&
+      planning::ParsePlanner(settings->planner.planner) == planning::Planner::kAico) {
+    const bool shows_result =
+        settings->sweep < 0 || settings->sweep >= static_cast<int>(sweeps_.size());
+    const planning::Trajectory shown{
+        shows_result ? result_->trajectory.q : sweeps_[settings->sweep].q, ShownDt(*settings)};
+    plan = horizon_ && shows_result
+               ? *horizon_
+               : planning::MakeRecedingPlan(shown, {}, horizon_ ? horizon_->start_slice : 0);
   }
-  std::optional<double> wrap;
-  if (settings->planner.start_wrap_deg >= 0) wrap = settings->planner.start_wrap_deg;
-  const planning::AicoOptions aico = scenario_->aico;
-  const unsigned seed = settings->planner.seed;
-  const planning::Planner planner = planning::ParsePlanner(settings->planner.planner);
+  // No job may read the scenario while it moves (a running one stops at its next sweep).
   DropJob();
+  worker_.Wait(/*join_parked=*/true);
+  const std::vector<int> attached = planning::AttachedTasks(*scenario_, c.text);
+  planning::MoveObjectWithTargets(scenario_.get(), c.text, c.position, attached);
+  if (!plan) {  // nothing executing: plan from the start in the moved scene
+    StartPlan(settings, -1);
+    status_ = "moved " + c.text + ": planning ...";
+    return;
+  }
   sweeps_.clear();
   ++plan_version_;
   auto out = std::make_shared<PlanOutput>();
   out->what = "re-plan after moving " + c.text;
-  out->follow = false;
+  out->follow = false;  // the arm keeps executing the shown plan until the new one is there
+  out->frame_at_start = settings->frame;
   plan_out_ = out;
+  planning::ReplanOptions options;
+  options.sweeps = settings->planner.max_iterations;
+  std::shared_ptr<const planning::Scenario> scenario = scenario_;
   Worker::Job job;
   job.name = "move";
-  job.run = [out, spec = std::move(spec), wrap, aico, q_now, init, seed, planner](Worker& worker) {
+  job.run = [out, scenario, options, elapsed, plan = *plan](Worker& worker) mutable {
     RunRecordingEnd(out.get(), [&] {
-      std::shared_ptr<planning::Scenario> moved = planning::SetUpScenario(spec, wrap);
-      moved->aico.max_iterations = aico.max_iterations;
-      moved->aico.tolerance = aico.tolerance;
-      moved->aico.damping = aico.damping;
-      worker.Checkpoint();
-      const auto record = [&](int sweep, double cost, bool accepted,
-                              const planning::Trajectory& t) {
+      options.on_sweep = [&](int sweep, double cost, bool accepted, const planning::Trajectory& t) {
         {
           std::lock_guard<std::mutex> lock(out->mutex);
           out->sweeps.push_back({sweep, cost, accepted, t.q});
         }
         worker.Checkpoint();
       };
+      // The library's receding-horizon step (planning/replan.h), as RunReplanning runs it.
+      planning::ReplanWorkspace ws(*scenario);
+      planning::AicoResult a;
+      planning::ReplanFrom(*scenario, elapsed, options, &ws, &plan, &a);
       planning::PlanResult r;
-      if (init && init->rows() == moved->problem.q0.size()) {
-        moved->problem.q0 = q_now;
-        planning::AicoWorkspace ws(moved->problem);
-        planning::Trajectory warm{*init, planning::tau(moved->problem)};
-        const planning::AicoResult a = planning::SolveAico(
-            moved->problem, planning::AttemptOptions(*moved, 0), &ws, record, &warm);
-        r.trajectory = a.trajectory;
-        planning::PlanReport& rep = r.report;
-        rep.planner = "aico (warm start)";
-        rep.status = a.status;
-        rep.iterations = a.iterations;
-        rep.cost = a.cost;
-        rep.cost_history = a.cost_history;
-        rep.collision_checks = a.collision_queries;
-        rep.start_writhe_total = planning::ReportWritheTotal(*moved, q_now);
-        const planning::PlanVerdict v = planning::JudgePlan(*moved, a.trajectory);
-        rep.failure_reason = v.reason;
-        rep.success = v.reason == planning::FailureReason::kNone;
-        rep.final_writhe_total = v.final_writhe_total;
-        rep.reach_error_m = v.reach_error_m;
-      } else {
-        r = planning::RunPlanner(*moved, planner, seed, record);
-      }
+      r.report.planner = "aico (warm start)";
+      AddAicoSolve(*scenario, a, &r);
       std::lock_guard<std::mutex> lock(out->mutex);
       out->result = std::move(r);
-      out->scenario = std::move(moved);
+      out->horizon = std::move(plan);
     });
   };
   worker_.Submit(std::move(job));
-  status_ = "moved " + c.text + ": re-planning ...";
+  status_ = "moved " + c.text + ": re-planning from slice " +
+            std::to_string(plan->start_slice + elapsed) + " ...";
 }
 
 void Session::StartGrasp(Settings* settings, long budget) {
@@ -379,35 +438,32 @@ void Session::StartGrasp(Settings* settings, long budget) {
   job.budget = budget;
   job.run = [out, in, method](Worker& worker) {
     RunRecordingEnd(out.get(), [&] {
+      // The trial's set-up (what RunGraspTrials prepares): transfer, ODE hand and object.
+      const planning::HumanGrasp& grasp = in->grasps.at(0);
+      const planning::TransferSetup setup = planning::MakeTransferSetup(
+          in->human, in->lwr_sdh, planning::FindGraspObject(in->objects, grasp.object), grasp);
+      const planning::TransferResult transfer = planning::TransferGrasp(setup, method);
+      {
+        std::lock_guard<std::mutex> lock(out->mutex);
+        out->replay.hand = phys::BuildSimHand(setup.sdh, transfer.q, "sdh_palm");
+        out->replay.object = phys::BuildSimObject(setup.object, setup.grasp.world_from_object);
+        out->started = true;
+      }
+      // The stability test as a resumable run: one physics step per worker checkpoint.
+      const phys::OdeRuntime ode;
+      phys::StabilityRun run(ode, out->replay.hand, out->replay.object, phys::StabilityOptions{});
       const int stride = out->replay.stride;
-      phys::GraspTrialHooks hooks;
-      int step = 0;
-      hooks.on_start = [&](const planning::TransferSetup&, const planning::TransferResult&,
-                           const phys::SimHand& hand,
-                           const phys::SimObject& object) -> phys::StepCallback {
-        {
+      for (long step = 0; run.StepPhysics(); ++step) {
+        // Every stride-th step, and the state a stepped run holds at.
+        if (step % stride == 0 || worker.AtBudget()) {
           std::lock_guard<std::mutex> lock(out->mutex);
-          out->replay.hand = hand;
-          out->replay.object = object;
-          out->started = true;
+          out->replay.frames.push_back({run.phase(), run.state()});
         }
-        return [&](int phase, const phys::GraspSimulation& sim) {
-          // Every stride-th step, and the state a stepped run holds at.
-          if (step++ % stride == 0 || worker.AtBudget()) {
-            std::lock_guard<std::mutex> lock(out->mutex);
-            out->replay.frames.push_back({phase, sim.state()});
-          }
-          worker.Checkpoint();
-        };
-      };
-      phys::OdeRuntime ode;
-      phys::GraspTrialsResult trials =
-          phys::RunGraspTrials(ode, in->human, in->lwr_sdh, in->objects, in->grasps, {method},
-                               phys::StabilityOptions{}.sim.mu, hooks);
-      phys::GraspTrial& trial = trials.trials.at(0).at(0);
+        worker.Checkpoint();
+      }
       std::lock_guard<std::mutex> lock(out->mutex);
-      out->replay.result = std::move(trial.stability);
-      out->replay.winding_error = trial.winding_error;
+      out->replay.result = run.result();
+      out->replay.winding_error = (transfer.robot_winding - transfer.target_winding).norm();
       out->replay.finished = true;
     });
   };
@@ -457,17 +513,20 @@ void Session::Poll(Settings* settings) {
     }
     if (out->finished) {
       std::optional<planning::PlanResult> result = std::move(out->result);
-      std::shared_ptr<planning::Scenario> moved = std::move(out->scenario);
+      std::optional<planning::RecedingPlan> horizon = std::move(out->horizon);
       const std::string error = out->error, what = out->what;
+      const int frame_at_start = out->frame_at_start;
       lock.unlock();
-      if (moved) {
-        scenario_ = std::move(moved);
-        joint_q_ = scenario_->problem.q0;
-      }
       if (result) {
+        const int frame = settings->frame;
         result_ = std::move(result);
+        horizon_ = std::move(horizon);
         ++plan_version_;
         ShowPlanResult(settings);
+        if (frame_at_start >= 0) {  // a re-plan: go on from where execution is now
+          settings->frame =
+              std::clamp(frame - frame_at_start, 0, std::max(0, num_frames(*settings) - 1));
+        }
       } else {
         status_ = error.empty() ? what + " cancelled after " + std::to_string(sweeps_.size()) +
                                       " sweeps (no result)"
@@ -683,6 +742,7 @@ void Session::Apply(const SessionCommand& c, Settings* settings) {
       joint_q_(c.index) = c.value;
       DropJob();
       result_.reset();
+      horizon_.reset();
       sweeps_.clear();
       ++plan_version_;
       settings->sweep = -1;
@@ -695,6 +755,7 @@ void Session::Apply(const SessionCommand& c, Settings* settings) {
       if (scenario_) joint_q_ = scenario_->problem.q0;
       if (robot_scene_) joint_q_ = robot_scene_->q;
       result_.reset();
+      horizon_.reset();
       sweeps_.clear();
       rrt_trees_.clear();
       ++plan_version_;

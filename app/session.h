@@ -20,6 +20,7 @@
 #include "planning/physics/grasp_simulation.h"
 #include "planning/physics/stability.h"
 #include "planning/planner.h"
+#include "planning/replan.h"
 #include "planning/scenario.h"
 
 namespace app {
@@ -45,7 +46,10 @@ struct SessionCommand {
     kSimStep,    // value = N: advance the live ODE test by N physics steps (starts one if none is
                  // parked), then hold it
     kMove,       // text = object, position = new world position [m] of its frame: moves the object
-                 // and re-plans on the worker, warm-started from the shown trajectory
+                 // and the tasks attached to it (planning/replan.h) and, while an AICO plan is
+                 // shown, re-plans on the worker with planning::ReplanFrom from the shown slice
+                 // (receding horizon: that plan shifted as the start; playback goes on); without
+                 // one it plans from the start in the moved scene
   };
   SessionCommand() = default;
   explicit SessionCommand(Kind k, std::string t = "", int i = 0, double v = 0.0)
@@ -185,6 +189,9 @@ class Session {
   std::optional<RobotScene> robot_scene_;
   Eigen::VectorXd joint_q_;  // slider configuration
   std::optional<planning::PlanResult> result_;
+  // The receding-horizon plan behind result_ after a `move` (its velocities and the scenario
+  // slice of its first column); empty for a plan from the start.
+  std::optional<planning::RecedingPlan> horizon_;
   std::vector<SweepRecord> sweeps_;
   std::optional<GraspReplay> grasp_;
   std::vector<RrtTreeView> rrt_trees_;
@@ -195,7 +202,10 @@ class Session {
   mutable double heatmap_limit_ = 0.0;
   std::shared_ptr<PlanOutput> plan_out_;    // output of the plan job being shown, if any
   std::shared_ptr<GraspOutput> grasp_out_;  // output of the live simulation, if any
-  Worker worker_;  // last: destroyed (cancelled and joined) before the state its job writes to
+  // Last: destroyed (cancelled and joined) before the state its job writes to. Its jobs run at
+  // nice +kWorkerNice so that frames keep coming while it plans on a busy machine.
+  static constexpr int kWorkerNice = 3;
+  Worker worker_{kWorkerNice};
 };
 
 // Writes `status` (and the recent frame times [ms]) as the JSON object {"planner", "planning",

@@ -1,5 +1,9 @@
 #include "app/worker.h"
 
+#include <sys/resource.h>
+#include <sys/syscall.h>
+#include <unistd.h>
+
 #include <exception>
 #include <utility>
 
@@ -18,6 +22,10 @@ void Worker::StartLocked(Job job) {
   finished_ = parked_ = cancel_ = false;
   error_.clear();
   thread_ = std::thread([this, run = std::move(job.run)] {
+    if (nice_ > 0) {  // this thread only (best effort: raising one's niceness is always allowed)
+      const id_t tid = static_cast<id_t>(syscall(SYS_gettid));
+      setpriority(PRIO_PROCESS, tid, getpriority(PRIO_PROCESS, tid) + nice_);
+    }
     std::string error;
     try {
       run(*this);

@@ -28,7 +28,9 @@ class Worker {
     long budget = -1;
   };
 
-  Worker() = default;
+  // `nice` > 0 lowers the job threads' scheduling priority by that much (Linux: per-thread nice),
+  // so that on a busy machine the thread drawing frames gets the CPU before a long solve.
+  explicit Worker(int nice = 0) : nice_(nice) {}
   Worker(const Worker&) = delete;
   Worker& operator=(const Worker&) = delete;
   // Cancels every job and joins the thread: no thread outlives the Worker.
@@ -71,6 +73,7 @@ class Worker {
  private:
   void StartLocked(Job job);
 
+  int nice_ = 0;
   mutable std::mutex mutex_;
   std::condition_variable cv_;
   std::thread thread_;

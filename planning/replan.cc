@@ -6,6 +6,7 @@
 #include <ctime>
 #include <fstream>
 #include <limits>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -39,6 +40,13 @@ std::string Trim(const std::string& s) {
   const size_t a = s.find_first_not_of(" \t\r");
   if (a == std::string::npos) return "";
   return s.substr(a, s.find_last_not_of(" \t\r") - a + 1);
+}
+
+// "(objects: a, b)" (or another word than "objects").
+std::string ObjectList(const std::vector<std::string>& names, const char* what = "objects") {
+  std::string list;
+  for (const std::string& n : names) list += (list.empty() ? "" : ", ") + n;
+  return std::string("(") + what + ": " + (list.empty() ? "none" : list) + ")";
 }
 
 // The window problem at offset g: targets and precisions of `base` shifted (see replan.h).
@@ -150,8 +158,98 @@ bool ChainThroughLoop(const Eigen::Matrix3Xd& chain, const Eigen::Matrix3Xd& loo
   return false;
 }
 
-ReplanWorkspace::ReplanWorkspace(const Scenario& s)
-    : targets(AttemptProblem(s, 0)), window(AttemptProblem(s, 0)), aico(window) {
+namespace {
+
+// The world-space point of task i (see replan.h), if it has one.
+std::optional<Eigen::Vector3d> TaskPoint(const Scenario& s, size_t i) {
+  const FeatureSpec& f = s.spec.tasks[i].feature;
+  switch (f.type) {
+    case FeatureType::kBox:
+      return f.center;
+    case FeatureType::kWinding:
+      return f.axis_point;
+    case FeatureType::kPosition: {
+      const Task& task = s.problem.tasks[i];
+      if (task.target.rows() != 3 || task.target.cols() == 0) return std::nullopt;
+      return Eigen::Vector3d(task.target.col(task.target.cols() - 1));
+    }
+    default:
+      return std::nullopt;
+  }
+}
+
+}  // namespace
+
+std::vector<int> AttachedTasks(const Scenario& s, const std::string& object) {
+  const std::vector<std::string> names = ObjectNames(s);
+  if (std::find(names.begin(), names.end(), object) == names.end()) {
+    throw std::invalid_argument("unknown object '" + object + "' " + ObjectList(names));
+  }
+  std::vector<int> out;
+  for (size_t i = 0; i < s.spec.tasks.size() && i < s.problem.tasks.size(); ++i) {
+    const std::optional<Eigen::Vector3d> p = TaskPoint(s, i);
+    if (!p) continue;
+    double best = std::numeric_limits<double>::infinity();
+    std::string nearest;
+    for (const std::string& name : names) {
+      const PlacedObject& o = s.objects.objects[FindObject(s.objects, name)];
+      const double d = (o.world_from_object.translation() - *p).norm();
+      if (d < best) {
+        best = d;
+        nearest = name;
+      }
+    }
+    if (nearest == object) out.push_back(static_cast<int>(i));
+  }
+  return out;
+}
+
+std::vector<int> ResolveAttachedTasks(const Scenario& s, const std::string& object,
+                                      const ReplanOptions& options) {
+  if (!options.attached_tasks) return AttachedTasks(s, object);
+  std::vector<std::string> valid;
+  for (const TaskSpec& t : s.spec.tasks) valid.push_back(t.name);
+  std::vector<int> out;
+  for (const std::string& name : *options.attached_tasks) {
+    const auto it = std::find(valid.begin(), valid.end(), name);
+    if (it == valid.end()) {
+      throw std::invalid_argument("attached task '" + name + "' is not a task of the scenario " +
+                                  ObjectList(valid, "tasks"));
+    }
+    out.push_back(static_cast<int>(it - valid.begin()));
+  }
+  return out;
+}
+
+void MoveObjectWithTargets(Scenario* s, const std::string& object, const Eigen::Vector3d& position,
+                           const std::vector<int>& attached) {
+  const std::vector<std::string> names = ObjectNames(*s);
+  if (std::find(names.begin(), names.end(), object) == names.end()) {
+    MoveObject(s, object, position);  // throws, listing the valid names
+  }
+  if (!position.allFinite()) throw std::invalid_argument("MoveObject: non-finite position");
+  const Eigen::Vector3d delta =
+      position - s->objects.objects[FindObject(s->objects, object)].world_from_object.translation();
+  for (int i : attached) {
+    if (i < 0 || i >= static_cast<int>(s->spec.tasks.size()) ||
+        i >= static_cast<int>(s->problem.tasks.size())) {
+      throw std::invalid_argument("MoveObjectWithTargets: task index " + std::to_string(i) +
+                                  " out of range");
+    }
+  }
+  for (int i : attached) {
+    FeatureSpec& f = s->spec.tasks[i].feature;
+    if (f.type == FeatureType::kBox) f.center += delta;
+    if (f.type == FeatureType::kWinding) f.axis_point += delta;
+    Task& task = s->problem.tasks[i];
+    if (f.type == FeatureType::kPosition && task.target.rows() == 3) {
+      task.target.colwise() += delta;
+    }
+  }
+  MoveObject(s, object, position);  // rebuilds the features from the moved spec
+}
+
+ReplanWorkspace::ReplanWorkspace(const Scenario& s) : window(AttemptProblem(s, 0)), aico(window) {
   init.q.resize(window.q0.size(), window.num_steps + 1);
   init.dt = tau(window);
 }
@@ -174,7 +272,7 @@ AicoResult Replan(const Scenario& s, int slice, const Eigen::VectorXd& q,
   for (size_t i = 0; i < w.tasks.size(); ++i) {
     ws->aico.tasks.data[i] = w.tasks[i].feature->CreateData(s.robot);
   }
-  ShiftTargets(ws->targets, slice, &w);
+  ShiftTargets(s.problem, slice, &w);
   w.q0 = q;
   w.qdot0 = qdot;
   for (int j = 0; j <= T; ++j) {
@@ -183,7 +281,50 @@ AicoResult Replan(const Scenario& s, int slice, const Eigen::VectorXd& q,
   AicoOptions o = AttemptOptions(s, 0);
   o.max_iterations = options.sweeps;
   if (options.damping >= 0.0) o.damping = options.damping;
-  return SolveAico(w, o, &ws->aico, {}, &ws->init);
+  return SolveAico(w, o, &ws->aico, options.on_sweep, &ws->init);
+}
+
+RecedingPlan MakeRecedingPlan(const Trajectory& t, const Eigen::MatrixXd& velocities,
+                              int start_slice) {
+  RecedingPlan plan;
+  plan.q = t.q;
+  plan.start_slice = start_slice;
+  if (velocities.size() > 0) {
+    if (velocities.rows() != t.q.rows() || velocities.cols() != t.q.cols()) {
+      throw std::invalid_argument("MakeRecedingPlan: velocities must match the trajectory's size");
+    }
+    plan.qdot = velocities;
+    return plan;
+  }
+  plan.qdot = Eigen::MatrixXd::Zero(t.q.rows(), t.q.cols());
+  for (Eigen::Index j = 0; j + 1 < t.q.cols(); ++j) {
+    plan.qdot.col(j) = (t.q.col(j + 1) - t.q.col(j)) / t.dt;
+  }
+  return plan;
+}
+
+ReplanStep ReplanFrom(const Scenario& s, int elapsed, const ReplanOptions& options,
+                      ReplanWorkspace* ws, RecedingPlan* plan, AicoResult* result) {
+  const int T = s.problem.num_steps;
+  if (elapsed < 0 || elapsed > T || plan->q.cols() != T + 1 || plan->qdot.cols() != T + 1) {
+    throw std::invalid_argument("ReplanFrom: elapsed must be in [0, " + std::to_string(T) +
+                                "] and the plan have " + std::to_string(T + 1) + " columns");
+  }
+  ReplanStep step;
+  step.slice = plan->start_slice + elapsed;
+  step.time_s = step.slice * tau(s.problem);
+  const double wall0 = WallMs(), cpu0 = ThreadCpuMs();
+  AicoResult r = Replan(s, step.slice, plan->q.col(elapsed), plan->qdot.col(elapsed), plan->q,
+                        elapsed, options, ws);
+  step.wall_ms = WallMs() - wall0;
+  step.cpu_ms = ThreadCpuMs() - cpu0;
+  step.sweeps = r.iterations;
+  step.status = r.status;
+  step.cost = r.cost;
+  step.collision_queries = r.collision_queries;
+  *plan = MakeRecedingPlan(r.trajectory, r.velocities, step.slice);
+  if (result != nullptr) *result = std::move(r);
+  return step;
 }
 
 ReplanResult RunReplanning(Scenario* s, const std::string& object, const ObjectPath& path,
@@ -197,9 +338,9 @@ ReplanResult RunReplanning(Scenario* s, const std::string& object, const ObjectP
   if (std::find(names.begin(), names.end(), object) == names.end()) {
     MoveObject(s, object, Eigen::Vector3d::Zero());  // throws, listing the valid names
   }
+  const std::vector<int> attached = ResolveAttachedTasks(*s, object, options);
   ReplanResult out;
   out.object = FindObject(s->objects, object);
-  const Eigen::Vector3d home = s->objects.objects[out.object].world_from_object.translation();
   const MotionProblem& base = s->problem;
   const int T = base.num_steps;
   const double tau_s = tau(base);
@@ -207,22 +348,33 @@ ReplanResult RunReplanning(Scenario* s, const std::string& object, const ObjectP
   out.period_slices = std::max(1, static_cast<int>(std::lround(options.replan_period_s / tau_s)));
   out.period_s = out.period_slices * tau_s;
 
-  struct Restore {  // puts the object back whatever happens
+  struct Restore {  // puts the object, the task points and the targets back whatever happens
     Scenario* s;
     std::string name;
     Eigen::Vector3d home;
+    std::vector<TaskSpec> tasks;
+    std::vector<Eigen::MatrixXd> targets;
+    std::vector<Eigen::Isometry3d> env;  // bit-exact poses (moves add and subtract δ)
     ~Restore() {
       try {
+        s->spec.tasks = tasks;
+        for (size_t i = 0; i < targets.size(); ++i) s->problem.tasks[i].target = targets[i];
         MoveObject(s, name, home);
+        for (size_t i = 0; i < env.size(); ++i) s->env.objects[i].world_from_object = env[i];
+        RebuildTaskFeatures(*s, &s->problem);  // from the restored spec and poses
       } catch (...) {
       }
     }
-  } restore{s, object, home};
+  } restore{
+      s,  object, s->objects.objects[out.object].world_from_object.translation(), s->spec.tasks,
+      {}, {}};
+  for (const Task& t : base.tasks) restore.targets.push_back(t.target);
+  for (const PlacedObject& o : s->env.objects) restore.env.push_back(o.world_from_object);
 
   // g = 0: the full solve with the object at path(0).
   std::vector<Eigen::Vector3d> segment_position{ObjectPositionAt(path, 0.0)};
   std::vector<int> segment_start{0};
-  MoveObject(s, object, segment_position.back());
+  MoveObjectWithTargets(s, object, segment_position.back(), attached);
   out.start_writhe_total = ReportWritheTotal(*s, base.q0);
   ReplanWorkspace ws(*s);
   {
@@ -231,39 +383,26 @@ ReplanResult RunReplanning(Scenario* s, const std::string& object, const ObjectP
     out.initial_wall_ms = WallMs() - wall0;
     out.initial_cpu_ms = ThreadCpuMs() - cpu0;
   }
-  // The current plan: its configurations and velocities, and the executed slice of its slice 0.
-  Eigen::MatrixXd plan_q = out.initial.trajectory.q;
-  Eigen::MatrixXd plan_v =
-      out.initial.velocities.size() > 0 ? out.initial.velocities : Eigen::MatrixXd::Zero(n, T + 1);
-  int plan_start = 0;
+  // The current plan (its column 0 is executed at slice plan.start_slice).
+  RecedingPlan plan = MakeRecedingPlan(out.initial.trajectory, out.initial.velocities, 0);
   out.executed.q.resize(n, T + 1);
   out.executed.dt = tau_s;
 
   for (int g = 0; g <= T; ++g) {
-    out.executed.q.col(g) = plan_q.col(g - plan_start);
+    out.executed.q.col(g) = plan.q.col(g - plan.start_slice);
     out.object_positions.push_back(segment_position.back());
     if (g == T || g % out.period_slices != 0 || g == 0) continue;
     // Re-plan at g (after executing it): the object moves, the window shifts.
-    ReplanStep step;
-    step.slice = g;
-    step.time_s = g * tau_s;
-    step.object_position = ObjectPositionAt(path, step.time_s);
+    const Eigen::Vector3d position = ObjectPositionAt(path, g * tau_s);
     const double wall0 = WallMs(), cpu0 = ThreadCpuMs();
-    MoveObject(s, object, step.object_position);
-    const int shift = g - plan_start;
-    const AicoResult r =
-        Replan(*s, g, plan_q.col(shift), plan_v.col(shift), plan_q, shift, options, &ws);
-    step.wall_ms = WallMs() - wall0;
-    step.cpu_ms = ThreadCpuMs() - cpu0;
-    step.sweeps = r.iterations;
-    step.status = r.status;
-    step.cost = r.cost;
-    step.collision_queries = r.collision_queries;
+    MoveObjectWithTargets(s, object, position, attached);
+    const double move_wall = WallMs() - wall0, move_cpu = ThreadCpuMs() - cpu0;
+    ReplanStep step = ReplanFrom(*s, g - plan.start_slice, options, &ws, &plan);
+    step.object_position = position;
+    step.wall_ms += move_wall;  // move + window + AICO
+    step.cpu_ms += move_cpu;
     out.replans.push_back(step);
     if (options.on_replan) options.on_replan(step);
-    plan_q = r.trajectory.q;
-    if (r.velocities.size() > 0) plan_v = r.velocities;
-    plan_start = g;
     segment_start.push_back(g);
     segment_position.push_back(step.object_position);
   }
@@ -274,7 +413,7 @@ ReplanResult RunReplanning(Scenario* s, const std::string& object, const ObjectP
   double min_clearance = std::numeric_limits<double>::infinity();
   for (size_t i = 0; i + 1 < segment_start.size(); ++i) {
     const int a = segment_start[i], b = segment_start[i + 1];
-    MoveObject(s, object, segment_position[i]);
+    MoveObjectWithTargets(s, object, segment_position[i], attached);
     Trajectory segment;
     segment.dt = tau_s;
     segment.q = out.executed.q.middleCols(a, b - a + 1);
@@ -320,14 +459,17 @@ ReplanResult RunReplanning(Scenario* s, const std::string& object, const ObjectP
   out.success = out.verdict.reason == FailureReason::kNone && (!loop || out.passed_through);
 
   std::vector<double> cpu, wall;
-  double cpu_total = 0.0;
+  double cpu_total = 0.0, wall_total = 0.0;
   for (const ReplanStep& r : out.replans) {
     cpu.push_back(r.cpu_ms);
     wall.push_back(r.wall_ms);
     cpu_total += r.cpu_ms;
+    wall_total += r.wall_ms;
   }
   if (!cpu.empty()) {
     out.rate_hz = cpu_total > 0.0 ? 1000.0 * static_cast<double>(cpu.size()) / cpu_total : 0.0;
+    out.wall_rate_hz =
+        wall_total > 0.0 ? 1000.0 * static_cast<double>(wall.size()) / wall_total : 0.0;
     out.median_cpu_ms = Median(cpu);
     out.max_cpu_ms = *std::max_element(cpu.begin(), cpu.end());
     out.median_wall_ms = Median(wall);

@@ -15,10 +15,22 @@
 // The executed trajectory takes slices g_prev..g of each plan. Between re-plans the object does
 // not move, so each executed segment [g_i, g_{i+1}] is judged (planner.h JudgePlan) with the
 // object where it was; the last segment's verdict also carries the end criteria.
+//
+// Targets attached to the moving object (AttachedTasks): a task aims at a world-space point when
+// it is a "box" task (its centre), a "position" task (its targets y*_t) or a "winding" task (its
+// axis point). Such a task belongs to the object whose frame origin is nearest to that point
+// (box centre, y*_T, axis point; ties: the first object in spec order) and moves with it: when
+// the object moves by δ, the point moves by δ (every slice of a position target). Writhe and
+// winding values are relative (unchanged when the robot chain and the object move together), so
+// a writhe target stays as it is while its feature reads the object chain where the object is
+// now; joint-space, limit and collision tasks have no point. ReplanOptions::attached_tasks names
+// the attached tasks explicitly instead. Everything above (the window's targets, the verdicts,
+// the viewer's `move`) uses the moved targets.
 #pragma once
 
 #include <Eigen/Core>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -66,8 +78,12 @@ struct ReplanOptions {
   double damping = -1.0;
   // false: each re-plan starts from the current state repeated (cold start), for comparison.
   bool warm_start = true;
+  // Names of the tasks whose world-space points move with the object; unset: AttachedTasks.
+  std::optional<std::vector<std::string>> attached_tasks;
   // Called after every re-plan (progress; may throw to stop the run, the scenario is restored).
   std::function<void(const ReplanStep& step)> on_replan;
+  // Called after every AICO sweep of a re-plan (the viewer's progress and Cancel; may throw).
+  AicoCallback on_sweep;
 };
 
 struct ReplanResult {
@@ -92,34 +108,75 @@ struct ReplanResult {
   bool success = false;  // verdict.reason == kNone, and passed_through when it is checked
   // Re-plans per second of CPU time: replans.size() / Σ cpu_ms · 1000 (0 without re-plans).
   double rate_hz = 0.0;
+  // Re-plans per second of wall-clock time: replans.size() / Σ wall_ms · 1000 (0 without).
+  double wall_rate_hz = 0.0;
   double median_cpu_ms = 0.0, max_cpu_ms = 0.0;  // over the re-plans
   double median_wall_ms = 0.0, max_wall_ms = 0.0;
 };
 
-// Buffers of the re-plans of one scenario, made once: the scenario's attempt-0 problem (its
-// targets and precisions at slices 0..T), the window problem, the AICO workspace and the init.
+// Indices into scenario.problem.tasks of the tasks attached to object `object` by the rule
+// above (the scenario as it is now). Throws std::invalid_argument for an unknown object.
+std::vector<int> AttachedTasks(const Scenario& scenario, const std::string& object);
+// The indices of options.attached_tasks (task names), or AttachedTasks when unset. Throws
+// std::invalid_argument for an unknown task name, listing the valid ones.
+std::vector<int> ResolveAttachedTasks(const Scenario& scenario, const std::string& object,
+                                      const ReplanOptions& options);
+
+// MoveObject(scenario, object, position) with the world-space points of tasks `attached`
+// (indices into scenario.problem.tasks) moved by the same δ = position − old position: box
+// centres and winding axis points in scenario.spec (the features are rebuilt from it) and the
+// targets y*_t (all slices) of position tasks in scenario.problem. Throws as MoveObject, and
+// std::invalid_argument for an index out of range.
+void MoveObjectWithTargets(Scenario* scenario, const std::string& object,
+                           const Eigen::Vector3d& position, const std::vector<int>& attached);
+
+// Buffers of the re-plans of one scenario, made once: the window problem, the AICO workspace and
+// the init.
 struct ReplanWorkspace {
   explicit ReplanWorkspace(const Scenario& scenario);
-  MotionProblem targets;  // unshifted (AttemptProblem(scenario, 0) when the workspace was made)
-  MotionProblem window;   // what AICO solves; its features follow MoveObject (see Replan)
+  MotionProblem window;  // what AICO solves; its features follow MoveObject (see Replan)
   AicoWorkspace aico;
   Trajectory init;  // n × (T+1), dt = τ
 };
 
-// One receding-horizon re-plan (steps 2–3 above) for the viewer or a custom loop: rebuilds the
-// window's features and their collision data from the scenario as it is now (call it after
-// MoveObject), shifts the targets by `slice` g >= 0, starts at (q, q̇) (sizes n), and runs AICO
-// for options.sweeps sweeps from `previous` (n × (T+1), the last plan) shifted by `shift` >= 0
-// columns and padded with its last column (options.warm_start), else from q repeated. The
-// scenario's attempt-0 AICO options with max_iterations = sweeps (and options.damping if >= 0).
+// One receding-horizon re-plan (steps 2–3 above) for a custom loop: rebuilds the window's
+// features and their collision data from the scenario as it is now (call it after
+// MoveObjectWithTargets), shifts the targets of scenario.problem (as moved) by `slice` g >= 0,
+// starts at (q, q̇) (sizes n), and runs AICO for options.sweeps sweeps from `previous` (n × (T+1),
+// the last plan) shifted by `shift` >= 0 columns and padded with its last column
+// (options.warm_start), else from q repeated. The scenario's attempt-0 AICO options with
+// max_iterations = sweeps (and options.damping if >= 0); options.on_sweep after each sweep.
 // Throws std::invalid_argument for negative slice/shift or wrong sizes.
 AicoResult Replan(const Scenario& scenario, int slice, const Eigen::VectorXd& q,
                   const Eigen::VectorXd& qdot, const Eigen::MatrixXd& previous, int shift,
                   const ReplanOptions& options, ReplanWorkspace* ws);
 
+// The plan a receding-horizon loop executes: configurations and velocities and the scenario
+// slice g0 of its column 0 (column j is executed at slice g0 + j).
+struct RecedingPlan {
+  Eigen::MatrixXd q;     // n × (T+1)
+  Eigen::MatrixXd qdot;  // n × (T+1)
+  int start_slice = 0;   // g0
+};
+// A plan from a trajectory (n × (T+1)) and its velocities; empty velocities: finite differences
+// q̇_t = (q_{t+1} − q_t)/τ, last 0. Throws std::invalid_argument for mismatched sizes.
+RecedingPlan MakeRecedingPlan(const Trajectory& trajectory, const Eigen::MatrixXd& velocities,
+                              int start_slice);
+
+// One step of the loop, what RunReplanning does at every re-plan and the viewer's `move` does
+// once, after the caller moved the object and its attached tasks (MoveObjectWithTargets): after
+// executing `elapsed` slices of `plan` (0 <= elapsed <= T; the state is its column `elapsed`),
+// re-plans at slice g = plan.start_slice + elapsed from that state, warm-started with the plan
+// shifted by `elapsed` (Replan). `plan` becomes the new plan (start_slice g). Returns the step
+// (slice, time, sweeps, status, cost, wall and CPU time of the re-plan; object_position left 0);
+// `result` receives the AICO result when not null. Reads the scenario only. Throws as Replan.
+ReplanStep ReplanFrom(const Scenario& scenario, int elapsed, const ReplanOptions& options,
+                      ReplanWorkspace* ws, RecedingPlan* plan, AicoResult* result = nullptr);
+
 // Runs the re-planning simulation above with object `object` of `scenario` (a name from
-// ObjectNames) following `path`. The scenario is modified while it runs (MoveObject) and its
-// object is put back where it was on return. Throws std::invalid_argument for an unknown object
+// ObjectNames) following `path`, its attached tasks (ResolveAttachedTasks) moving with it. The
+// scenario is modified while it runs (MoveObjectWithTargets); its object, task points and targets
+// are put back exactly as they were on return. Throws std::invalid_argument for an unknown object
 // name (listing the valid ones), an empty path or invalid options (replan_period_s not > 0 or
 // not finite, sweeps < 1).
 ReplanResult RunReplanning(Scenario* scenario, const std::string& object, const ObjectPath& path,

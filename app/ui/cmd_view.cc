@@ -32,7 +32,8 @@ void AddViewCommand(CLI::App* root, CommandList* commands) {
                  "print the screen rectangles of the named widgets (for scripted clicks)");
   view->footer(
       "Mouse: left drag orbits, right drag pans, wheel zooms, Shift + left drag moves the chosen "
-      "object (re-plans on release). Buttons: Plan (on a worker thread; the window keeps drawing), "
+      "object (the arm re-plans from where it is as the object moves). Buttons: Plan (on a worker "
+      "thread; the window keeps drawing), "
       "Step sweep (runs one more real AICO sweep), Cancel, Play/Pause and the timeline scrubber "
       "(seconds); joint sliders move the robot.");
   commands->push_back({view, [o, size]() {

@@ -297,6 +297,7 @@ struct Viewer {
   render::Overlay overlay;
   std::vector<SessionCommand> commands;
   std::vector<SessionCommand> pending;  // from mouse input, applied with the panels' commands
+  Eigen::Vector3d drag_sent = Eigen::Vector3d::Zero();  // object position of the last drag move
   FrameClock clock;
 
   // Worker output → session; panels → commands → session; returns the scene and camera of this
@@ -335,7 +336,10 @@ struct Viewer {
 };
 
 // Shift + left drag moves settings.move.object (default: the scenario's first object) in the view
-// plane; on release the session moves it there and re-plans (SessionCommand::kMove).
+// plane. While it is dragged the session moves it and re-plans (SessionCommand::kMove, receding
+// horizon from the executed slice) whenever the worker is idle and the object went at least
+// kDragReplanStep farther; on release once more at the final position.
+constexpr double kDragReplanStep = 0.01;  // m
 void DragObject(const ImGuiIO& io, int viewport_height, Viewer* v) {
   MoveSettings& m = v->settings.move;
   const planning::Scenario* s = v->session.scenario();
@@ -347,7 +351,7 @@ void DragObject(const ImGuiIO& io, int viewport_height, Viewer* v) {
   if (io.MouseDown[0] && !m.dragging) {
     m.dragging = true;
     m.object = object->name;
-    m.start = object->xyz;
+    m.start = v->drag_sent = object->xyz;
     m.offset.setZero();
   }
   if (io.MouseDown[0]) {
@@ -365,6 +369,12 @@ void DragObject(const ImGuiIO& io, int viewport_height, Viewer* v) {
                   m.object.c_str(), m.start.x() + m.offset.x(), m.start.y() + m.offset.y(),
                   m.start.z() + m.offset.z());
     v->session.set_status(text);
+    const Eigen::Vector3d at = m.start + m.offset;
+    if (!v->session.busy() && (at - v->drag_sent).norm() >= kDragReplanStep) {
+      SessionCommand c(SessionCommand::Kind::kMove, m.object);
+      c.position = v->drag_sent = at;
+      v->pending.push_back(c);
+    }
   } else if (m.dragging) {
     m.dragging = false;
     SessionCommand c(SessionCommand::Kind::kMove, m.object);

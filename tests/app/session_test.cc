@@ -1,7 +1,11 @@
 #include "app/session.h"
 
 #include <gtest/gtest.h>
+#include <sys/resource.h>
+#include <sys/syscall.h>
+#include <unistd.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -52,11 +56,20 @@ TEST_F(SessionTest, StepRunsRealSweepsThatMatchTheFullPlan) {
     EXPECT_EQ(session_.sweeps()[k].cost, full[k].cost);
     EXPECT_EQ(session_.sweeps()[k].q, full[k].q);
   }
-  // Stepping on to the end gives the plan's result, bit for bit.
+  // Stepping on to the end gives the plan's result, bit for bit, and RunPlanner's (the viewer
+  // drives planning::AicoSolver::Step directly).
   session_.Apply(SessionCommand(SessionCommand::Kind::kStep, "", 0, 1000.0), &settings_);
   session_.Wait(&settings_);
   ASSERT_TRUE(session_.result().has_value());
   EXPECT_EQ(session_.result()->trajectory.q, full_q);
+  const planning::PlanResult direct =
+      planning::RunPlanner(*session_.scenario(), planning::Planner::kAico, 0);
+  EXPECT_EQ(session_.result()->trajectory.q, direct.trajectory.q);
+  EXPECT_EQ(session_.result()->report.iterations, direct.report.iterations);
+  EXPECT_EQ(session_.result()->report.cost, direct.report.cost);
+  EXPECT_EQ(session_.result()->report.collision_checks, direct.report.collision_checks);
+  EXPECT_EQ(session_.result()->report.success, direct.report.success);
+  EXPECT_EQ(session_.result()->report.failure_reason, direct.report.failure_reason);
   EXPECT_FALSE(session_.busy());
   // The final trajectory (sweep −1) ends unwrapped; seek takes seconds (2 s = the last slice).
   settings_.sweep = -1;
@@ -148,6 +161,7 @@ TEST(SessionMoveTest, MovingTheRingRePlansWarmStarted) {
   ASSERT_TRUE(session.result().has_value()) << session.status();
   EXPECT_EQ(session.result()->report.planner, "aico (warm start)");
   EXPECT_EQ(session.scenario()->spec.objects.at(0).xyz, move.position);
+  EXPECT_TRUE(session.result()->report.success) << session.status();
   move.text = "table";
   try {
     session.Apply(move, &settings);
@@ -155,6 +169,61 @@ TEST(SessionMoveTest, MovingTheRingRePlansWarmStarted) {
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("(valid: ring)"), std::string::npos) << e.what();
   }
+}
+
+// The viewer's `move` while the arm executes: the library's receding-horizon step
+// (planning::ReplanFrom) from the executed slice, the previous plan shifted as its start, the
+// box and reach targets moving with the ring. A 12 cm move: the hand still ends through the ring.
+TEST(SessionMoveTest, RingMovedTwelveCentimetresWhileExecuting) {
+  setenv("TOPOPLAN_ASSETS", TOPOPLAN_SOURCE_DIR "/assets", 1);
+  Session session;
+  Settings settings;
+  session.Apply(SessionCommand(SessionCommand::Kind::kLoad, "reach_through_ring"), &settings);
+  const planning::Scenario& s = *session.scenario();
+  const Eigen::Vector3d home = s.objects.objects.at(0).world_from_object.translation();
+  const Eigen::MatrixXd reach0 = s.problem.tasks.at(2).target;
+  session.Apply(SessionCommand(SessionCommand::Kind::kPlan), &settings);
+  ASSERT_TRUE(session.result().has_value());
+  const Eigen::MatrixXd first = session.result()->trajectory.q;
+  session.Apply(SessionCommand(SessionCommand::Kind::kSeek, "", 0, 1.0), &settings);
+  ASSERT_EQ(settings.frame, 8);  // τ = 4 s / 32
+  SessionCommand move(SessionCommand::Kind::kMove, "ring");
+  const Eigen::Vector3d delta(0.0, 0.12, 0.0);
+  move.position = home + delta;
+  session.Apply(move, &settings);
+  EXPECT_NE(session.status().find("from slice 8"), std::string::npos) << session.status();
+  session.Wait(&settings);
+  ASSERT_TRUE(session.result().has_value()) << session.status();
+  const Eigen::MatrixXd& q = session.result()->trajectory.q;
+  EXPECT_EQ(q.col(0), first.col(8));  // it starts where the arm was
+  EXPECT_TRUE(s.problem.tasks.at(2).target.isApprox(reach0.colwise() + delta));
+  EXPECT_TRUE(session.result()->report.success)
+      << planning::FailureReasonName(session.result()->report.failure_reason);
+  planning::KinematicsData kin(s.robot);
+  planning::ForwardKinematics(s.robot, q.col(q.cols() - 1), &kin);
+  Eigen::Matrix3Xd hand;
+  planning::ChainPoints(s.robot, kin, s.report_chain, &hand);
+  EXPECT_TRUE(planning::ChainThroughLoop(hand, s.report_object_chain));
+  // A second move goes on from the new plan's slice (receding horizon).
+  settings.frame = 4;
+  move.position = home + 2 * delta;
+  session.Apply(move, &settings);
+  EXPECT_NE(session.status().find("from slice 12"), std::string::npos) << session.status();
+  session.Wait(&settings);
+  ASSERT_TRUE(session.result().has_value()) << session.status();
+}
+
+// The worker's jobs run at a lower priority than the thread that draws (per-thread nice).
+TEST(WorkerTest, JobsRunNicerThanTheCaller) {
+  const int mine = getpriority(PRIO_PROCESS, static_cast<id_t>(syscall(SYS_gettid)));
+  int theirs = -100;
+  Worker worker(3);
+  worker.Submit({"nice", [&](Worker&) {
+                   theirs = getpriority(PRIO_PROCESS, static_cast<id_t>(syscall(SYS_gettid)));
+                 }});
+  worker.Wait();
+  EXPECT_EQ(theirs, std::min(19, mine + 3));
+  EXPECT_EQ(getpriority(PRIO_PROCESS, static_cast<id_t>(syscall(SYS_gettid))), mine);
 }
 
 TEST_F(SessionTest, PlaybackAdvancesAndStopsAtTheEnd) {
