@@ -257,10 +257,10 @@ class Demo {
     html_ << "<h2>3. Reaching through a ring with a writhe target (Fig. 4.4)</h2>\n"
              "<p>KUKA LWR 4 with the Schunk SDH; tasks: the writhe matrix of the hand chain "
              "against the ring chain (target from the final-pose estimate) and an end-effector "
-             "box (plus reach, collision and joint limits). Final pose and its writhe matrix "
-             "(rows: elbow-to-wrist, wrist-to-grasp-point, grasp-point-to-tip; the outlined cell "
-             "is the largest |entry|): the writhe sits in the first two rows, the links that "
-             "pass through the ring.</p>\n"
+             "box (plus collision and joint limits; no reach task). Final pose and its writhe "
+             "matrix (rows: wrist-to-palm, palm, palm-to-finger-tip; the outlined cell is the "
+             "largest |entry|): the peak is in the finger row, the link that passes through "
+             "the ring.</p>\n"
           << PlanReportHtml(report);
     if (!frames.frames.frames.empty() && !frames.heatmaps.frames.empty()) {
       const std::string f =

@@ -125,7 +125,7 @@ PlanResult RunPlanner(const Scenario& scenario, Planner planner, unsigned seed,
 // that a winding jump replaces a collision (the states passing through the pole collide;
 // failure_step is then the jump's). At the end (CheckEndState of the last state): |w| >=
 // winding_final_below or |total writhe| >= writhe_total_below -> kWritheNotReached; position error
-// > position_tolerance or box value != 0 -> kReachError.
+// > position_tolerance or the box task's point outside its box (margin 0) -> kReachError.
 PlanVerdict JudgePlan(const Scenario& scenario, const Trajectory& path);
 
 }  // namespace planning

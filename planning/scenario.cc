@@ -432,9 +432,12 @@ EndState CheckEndState(const Scenario& s, const Eigen::VectorXd& q, bool state_c
     e.reached = within(e.reach_error_m, c.position_tolerance, false);
   }
   if (c.box_task >= 0) {
-    const Task& task = s.problem.tasks[c.box_task];
-    const double box = (FeatureValue(s.robot, *task.feature, q) - task.target.col(T)).norm();
-    e.reached = within(box, 1e-9, false) && e.reached;
+    // The box itself (centre ± half extent): the task's margin only keeps the plan off its faces
+    // (a quadratic hinge settles just outside its region when other terms pull outward).
+    const FeatureSpec& f = s.spec.tasks[c.box_task].feature;
+    const auto box = MakeBoxFeature(s.robot, FindLink(s.robot, f.link.name), f.offset, f.center,
+                                    f.half_extent, 0.0);
+    e.reached = within(FeatureValue(s.robot, *box, q).norm(), 1e-9, false) && e.reached;
   }
   if (!std::isfinite(v)) v = std::numeric_limits<double>::max();
   return e;

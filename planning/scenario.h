@@ -44,7 +44,7 @@ struct SuccessCriteria {
   double writhe_total_below = -1.0;  // < 0: not checked
   int position_task = -1;            // index into problem.tasks; −1: not checked
   double position_tolerance = 0.05;
-  int box_task = -1;  // index of a "box" task whose y must be 0 at the end
+  int box_task = -1;  // index of a "box" task whose point must end inside its box (no margin)
   // Winding of the report chain about the report object chain's line (first to last point), in
   // turns: largest change between neighbouring resampled path states, and |value| at the end.
   double winding_max_jump = -1.0;     // < 0: not checked
@@ -101,7 +101,7 @@ struct EndState {
   double writhe_peak_value = 0.0;
   bool writhe_reached = true;  // |writhe| < writhe_total_below, |winding| < winding_final_below
   double reach_error_m = -1.0;  // |φ(q) − y*_T| of the position task (−1: no position criterion)
-  bool reached = true;          // reach_error_m <= position_tolerance and the box value is 0
+  bool reached = true;          // reach_error_m <= position_tolerance, box point inside
   bool ok() const { return within_limits && collision_free && writhe_reached && reached; }
   // 0 when ok(); otherwise Σ of the relative excesses (|writhe|/bound, |winding|/bound,
   // reach/tolerance, 1 + box value) over the unmet conditions, + 1 per state check failed.

@@ -67,7 +67,8 @@
 //                            report pair| at the end (default: not checked); position: {task: name
 //                            (required), tolerance: m, default 0.05}: distance of the task's
 //                            feature to its final target; inside_box: name of a "box" task whose
-//                            value must be 0 at the end; winding (needs writhe_report): {max_jump:
+//                            point must end inside its box (centre ± half_extent; the task's
+//                            margin is for planning); winding (needs writhe_report): {max_jump:
 //                            turns > 0, default 0.1; final_below: turns > 0, default 0.1}: the
 //                            winding of the report chain about the line of the object chain (its
 //                            first to last point), along the resampled path, changes by less than
