@@ -214,13 +214,13 @@ TEST(AttachedTasks, BoxAndReachFollowTheRingWritheStays) {
   EXPECT_THROW(MoveObjectWithTargets(s.get(), "ring", home, {99}), std::invalid_argument);
 }
 
-// The ring moved by 12 cm while the arm executes (and a larger, diagonal motion): with the box
+// The ring moved by 20 and 12 cm while the arm executes (and diagonally): with the box
 // and reach targets attached, the hand still passes through the ring and the run succeeds.
 TEST(RunReplanning, LargeMovesSucceedWithAttachedTargets) {
-  const auto s = LoadScenario(kAssets + "scenarios/reach_through_ring.json");
+  const auto s = LoadScenario(kAssets + "scenarios/tinyarm_ring.json");
   const Eigen::Vector3d home = s->objects.objects[0].world_from_object.translation();
   const Eigen::MatrixXd reach0 = s->problem.tasks[2].target;
-  const Eigen::Vector3d moves[] = {Eigen::Vector3d(0.0, 0.12, 0.0),
+  const Eigen::Vector3d moves[] = {Eigen::Vector3d(0.0, 0.2, 0.0), Eigen::Vector3d(0.0, 0.12, 0.0),
                                    Eigen::Vector3d(-0.05, -0.15, 0.08)};
   for (const Eigen::Vector3d& delta : moves) {
     const ReplanResult r = RunReplanning(s.get(), "ring", StepPath(home, delta, 0.5, 1.0));
@@ -233,7 +233,7 @@ TEST(RunReplanning, LargeMovesSucceedWithAttachedTargets) {
     EXPECT_EQ(s->objects.objects[0].world_from_object.translation(), home);
     EXPECT_EQ(s->problem.tasks[2].target, reach0);
   }
-  // Without moving the targets (none attached) the same 12 cm move misses the box.
+  // Without moving the targets (none attached) the same 20 cm move misses the box.
   ReplanOptions fixed;
   fixed.attached_tasks = std::vector<std::string>{};
   const ReplanResult r = RunReplanning(s.get(), "ring", StepPath(home, moves[0], 0.5, 1.0), fixed);
@@ -251,7 +251,7 @@ TEST(RunReplanning, WarmStartBeatsColdStart) {
   ReplanOptions cold = warm;
   cold.warm_start = false;
   const auto run = [](const ReplanOptions& options) {
-    const auto s = LoadScenario(kAssets + "scenarios/reach_through_ring.json");
+    const auto s = LoadScenario(kAssets + "scenarios/tinyarm_ring.json");
     const Eigen::Vector3d home = s->objects.objects[0].world_from_object.translation();
     return RunReplanning(s.get(), "ring", StepPath(home, Eigen::Vector3d(0.0, 0.12, 0.0), 0.5, 1.0),
                          options);
