@@ -4,13 +4,13 @@
 #include <chrono>
 #include <cmath>
 #include <ctime>
-#include <fstream>
 #include <limits>
 #include <sstream>
 #include <stdexcept>
 #include <string>
 
 #include "planning/kinematics.h"
+#include "topology/input_limits.h"
 #include "topology/winding.h"
 
 namespace planning {
@@ -58,8 +58,7 @@ void ShiftTargets(const MotionProblem& base, int g, MotionProblem* window) {
 }  // namespace
 
 ObjectPath ReadObjectPath(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw std::invalid_argument(path + ": cannot open the object path file");
+  std::istringstream in(topology::ReadFileBounded(path, "object path"));
   ObjectPath out;
   std::string line;
   int number = 0;
