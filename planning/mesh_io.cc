@@ -7,6 +7,7 @@
 #include <assimp/scene.h>
 
 #include <assimp/Importer.hpp>
+#include <cctype>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -14,8 +15,12 @@
 #include <filesystem>
 #include <map>
 #include <memory>
+#include <set>
 #include <stdexcept>
 #include <system_error>
+#include <vector>
+
+#include "topology/input_limits.h"
 
 extern "C" {
 #include <libqhull_r/qhull_ra.h>
@@ -54,6 +59,35 @@ std::string Refusal(const std::string& path) {
   return "";
 }
 
+// The values of every attribute `name` in XML text (name="v" or name='v', after whitespace).
+std::vector<std::string> AttributeValues(const std::string& xml, const std::string& name) {
+  std::vector<std::string> out;
+  for (size_t at = xml.find(name + "="); at != std::string::npos;
+       at = xml.find(name + "=", at + 1)) {
+    if (at == 0 || !std::isspace(static_cast<unsigned char>(xml[at - 1]))) continue;
+    const size_t open = at + name.size() + 1;
+    if (open >= xml.size() || (xml[open] != '"' && xml[open] != '\'')) continue;
+    const size_t close = xml.find(xml[open], open + 1);
+    if (close == std::string::npos) break;
+    out.push_back(xml.substr(open + 1, close - open - 1));
+  }
+  return out;
+}
+
+// A COLLADA <input>/<accessor> whose source="#id" names no element makes assimp 5.2 allocate
+// gigabytes (found by fuzzing): such files are refused before assimp reads them.
+void CheckColladaSources(const std::string& path) {
+  const std::string xml = topology::ReadFileBounded(path, "mesh", kMaxMeshFileBytes);
+  const std::vector<std::string> ids = AttributeValues(xml, "id");
+  const std::set<std::string> known(ids.begin(), ids.end());
+  for (const std::string& source : AttributeValues(xml, "source")) {
+    if (source.empty() || source[0] != '#' || known.count(source.substr(1)) == 0) {
+      throw std::invalid_argument(path + ": COLLADA source '" + source +
+                                  "' names no element of the file");
+    }
+  }
+}
+
 // assimp's file access with every file checked by Refusal first: the mesh itself and the files it
 // refers to (an OBJ's material library, ...), which are skipped as missing when refused.
 class BoundedIOSystem : public Assimp::DefaultIOSystem {
@@ -71,6 +105,15 @@ Mesh LoadMesh(const std::string& path) {
   if (const std::string why = Refusal(path); !why.empty()) {
     throw std::invalid_argument(path + ": " + why);
   }
+  // assimp picks the importer by the extension when exactly one claims it (as for these three),
+  // so no other importer sees the file.
+  std::string ext = std::filesystem::path(path).extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (ext != ".stl" && ext != ".obj" && ext != ".dae") {
+    throw std::invalid_argument(path + ": mesh format '" + ext +
+                                "' is not supported (expected .stl, .obj or .dae)");
+  }
+  if (ext == ".dae") CheckColladaSources(path);
   Assimp::Importer importer;
   importer.SetIOHandler(new BoundedIOSystem);  // the importer owns it
   const aiScene* scene = importer.ReadFile(

@@ -71,8 +71,10 @@ run_target() {
   [[ -f tests/fuzz/dict/$t.dict ]] && dict=(-dict="$ROOT/tests/fuzz/dict/$t.dict")
   local start end rc=0
   start=$(date +%s)
-  # Leak checks stay on (libFuzzer's default); -close_fd_mask=3 silences the readers' stdout/err.
-  nice -n "${NICE:-10}" "$BUILD/tests/fuzz/fuzz_$t" "$corpus" "${dict[@]}" \
+  # Leak checks stay on (libFuzzer's default) except for the library leaks listed in
+  # tests/fuzz/lsan.supp; -close_fd_mask=3 silences the readers' stdout/err.
+  LSAN_OPTIONS=suppressions=$ROOT/tests/fuzz/lsan.supp:print_suppressions=0 \
+    nice -n "${NICE:-10}" "$BUILD/tests/fuzz/fuzz_$t" "$corpus" "${dict[@]}" \
     -max_total_time="$SECONDS_PER_TARGET" -timeout="${FUZZ_INPUT_TIMEOUT:-10}" \
     -rss_limit_mb="${FUZZ_RSS_MB:-2048}" -artifact_prefix="$artifacts/" -print_final_stats=1 \
     -close_fd_mask=3 >"$log" 2>&1 || rc=$?

@@ -5,9 +5,10 @@
 #   scripts/run.sh build                 only builds
 #   scripts/run.sh bench                 runs the Google Benchmark programs
 # Environment: BUILD_DIR (default build), JOBS (default nproc), CI=true turns warnings into errors.
-# `test` with SANITIZE=1 also builds ASan + UBSan (TOPOPLAN_SANITIZE, with float-cast-overflow)
-# in ASAN_BUILD_DIR (default build-asan) and runs the test programs of topology, planning and
-# planning/physics there; any sanitizer report fails. (.ci/run leaves it off: see the README.)
+# `test` with SANITIZE=1 also builds ASan + UBSan (TOPOPLAN_SANITIZE, with float-cast-overflow,
+# at -O1) in ASAN_BUILD_DIR (default build-asan) and runs the unit and property test programs of
+# topology, planning and planning/physics there, JOBS at a time; any sanitizer report fails.
+# (.ci/run sets SANITIZE=1.)
 # ccache is used when it is installed (not required).
 set -euo pipefail
 cd "$(dirname "$0")/.."

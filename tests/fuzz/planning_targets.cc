@@ -133,7 +133,7 @@ int Mesh(const uint8_t* data, size_t size) {
   std::string ext = newline == std::string::npos ? "" : text.substr(0, newline);
   bool plain = !ext.empty() && ext.size() <= 8;
   for (char c : ext) plain = plain && std::isalnum(static_cast<unsigned char>(c));
-  if (!plain) ext = "bin";  // no known extension: assimp picks a reader by the content
+  if (!plain) ext = "bin";
   const std::string body = newline == std::string::npos ? text : text.substr(newline + 1);
   try {
     const planning::Mesh mesh = planning::LoadMesh(

@@ -78,6 +78,19 @@ TEST_F(MeshLimits, NonFiniteVerticesAreRefused) {
   EXPECT_EQ(Refusal(bad), bad + ": mesh vertex 1 of mesh 0 is not finite");
 }
 
+TEST_F(MeshLimits, OnlyStlObjAndColladaAreRead) {
+  const std::string ply = Write("tet.ply", "ply\nformat ascii 1.0\nx 4\n");
+  EXPECT_EQ(Refusal(ply),
+            ply + ": mesh format '.ply' is not supported (expected .stl, .obj or .dae)");
+  // A COLLADA source naming no element (assimp 5.2 would allocate gigabytes).
+  const std::string dae =
+      Write("dangling.dae",
+            "<COLLADA><library_geometries><geometry id='g'><mesh><source id='p'/>"
+            "<vertices id='v'><input semantic='POSITION' source='#q'/></vertices></mesh></geometry>"
+            "</library_geometries></COLLADA>");
+  EXPECT_EQ(Refusal(dae), dae + ": COLLADA source '#q' names no element of the file");
+}
+
 TEST_F(MeshLimits, ReferencedPipesAndDevicesAreSkipped) {
   // An OBJ whose material libraries are a named pipe and /dev/zero: both are skipped (opening the
   // pipe would block, /dev/zero has no end), the geometry loads.
