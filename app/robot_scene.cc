@@ -5,7 +5,6 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <memory>
 #include <sstream>
 #include <stdexcept>
@@ -13,8 +12,10 @@
 #include "app/assets.h"
 #include "app/command.h"
 #include "app/io.h"
+#include "planning/json_reader.h"
 #include "planning/robot_io.h"
 #include "planning/scenario.h"
+#include "topology/input_limits.h"
 
 namespace app {
 namespace {
@@ -80,9 +81,15 @@ bool IsRobotSceneFile(const std::string& path) {
   const std::string ext = Ext(path);
   if (ext == ".urdf") return true;
   if (ext != ".json") return false;
-  std::ifstream in(path);
-  if (!in) return false;
-  const nlohmann::json doc = nlohmann::json::parse(in, nullptr, false);
+  // Bounded like every reader; a file that cannot be read is not a robot scene (the scene loader
+  // then names the problem).
+  std::string text;
+  try {
+    text = topology::ReadFileBounded(path, "scene");
+  } catch (const std::invalid_argument&) {
+    return false;
+  }
+  const nlohmann::json doc = nlohmann::json::parse(text, nullptr, false);
   return doc.is_object() && doc.contains("robot");
 }
 
@@ -209,13 +216,7 @@ RobotScene LoadRobotSceneImpl(const std::string& path, const std::vector<std::st
   if (ext != ".json") {
     throw std::invalid_argument(path + ": expected a robot .urdf or a scene .json");
   }
-  std::ifstream in(path);
-  if (!in) throw std::invalid_argument(path + ": cannot open scene file");
-  try {
-    s.document = nlohmann::json::parse(in);
-  } catch (const nlohmann::json::parse_error& e) {
-    throw std::invalid_argument(path + ": JSON error: " + e.what());
-  }
+  s.document = planning::ParseJsonFile(path, "scene");
   const nlohmann::json& doc = s.document;
   const fs::path base = fs::path(path).parent_path();
   if (doc.is_object() && doc.contains("robot") && doc.contains("tasks")) {

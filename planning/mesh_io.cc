@@ -1,16 +1,26 @@
 // The mesh loader (assimp). See mesh_io.h for the axis and unit conventions.
 #include "planning/mesh_io.h"
 
+#include <assimp/DefaultIOSystem.h>
 #include <assimp/commonMetaData.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
 #include <assimp/Importer.hpp>
+#include <cctype>
+#include <cmath>
+#include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <map>
 #include <memory>
+#include <set>
 #include <stdexcept>
+#include <system_error>
+#include <vector>
+
+#include "topology/input_limits.h"
 
 extern "C" {
 #include <libqhull_r/qhull_ra.h>
@@ -30,30 +40,122 @@ bool IsCollada(const aiScene& scene) {
 // assimp's y-up → our z-up: a rotation by +90° about x, (x, y, z) → (x, −z, y). Exact in floats.
 Eigen::Vector3f YUpToZUp(const Eigen::Vector3f& v) { return {v.x(), -v.z(), v.y()}; }
 
+// Why the file at `path` may not be read as (part of) a mesh, or "" when it may: it must be a
+// regular file (a pipe would block, a device such as /dev/zero has no end) of at most
+// kMaxMeshFileBytes (checked on its size, so a huge sparse file costs nothing).
+std::string Refusal(const std::string& path) {
+  std::error_code ec;
+  const std::filesystem::file_status st = std::filesystem::status(path, ec);
+  if (ec || !std::filesystem::exists(st)) return "mesh file not found";
+  if (!std::filesystem::is_regular_file(st)) {
+    return "mesh is not a regular file (a folder, pipe or device)";
+  }
+  const std::uintmax_t bytes = std::filesystem::file_size(path, ec);
+  if (ec) return "cannot read mesh file";
+  if (bytes > kMaxMeshFileBytes) {
+    return "mesh file of " + std::to_string(bytes) + " bytes is larger than " +
+           std::to_string(kMaxMeshFileBytes) + " bytes (limit)";
+  }
+  return "";
+}
+
+// The values of every attribute `name` in XML text (name="v" or name='v', after whitespace).
+std::vector<std::string> AttributeValues(const std::string& xml, const std::string& name) {
+  std::vector<std::string> out;
+  for (size_t at = xml.find(name + "="); at != std::string::npos;
+       at = xml.find(name + "=", at + 1)) {
+    if (at == 0 || !std::isspace(static_cast<unsigned char>(xml[at - 1]))) continue;
+    const size_t open = at + name.size() + 1;
+    if (open >= xml.size() || (xml[open] != '"' && xml[open] != '\'')) continue;
+    const size_t close = xml.find(xml[open], open + 1);
+    if (close == std::string::npos) break;
+    out.push_back(xml.substr(open + 1, close - open - 1));
+  }
+  return out;
+}
+
+// A COLLADA <input>/<accessor> whose source="#id" names no element makes assimp 5.2 allocate
+// gigabytes (found by fuzzing): such files are refused before assimp reads them.
+void CheckColladaSources(const std::string& path) {
+  const std::string xml = topology::ReadFileBounded(path, "mesh", kMaxMeshFileBytes);
+  const std::vector<std::string> ids = AttributeValues(xml, "id");
+  const std::set<std::string> known(ids.begin(), ids.end());
+  for (const std::string& source : AttributeValues(xml, "source")) {
+    if (source.empty() || source[0] != '#' || known.count(source.substr(1)) == 0) {
+      throw std::invalid_argument(path + ": COLLADA source '" + source +
+                                  "' names no element of the file");
+    }
+  }
+}
+
+// assimp's file access with every file checked by Refusal first: the mesh itself and the files it
+// refers to (an OBJ's material library, ...), which are skipped as missing when refused.
+class BoundedIOSystem : public Assimp::DefaultIOSystem {
+ public:
+  bool Exists(const char* file) const override { return Refusal(file).empty(); }
+  Assimp::IOStream* Open(const char* file, const char* mode) override {
+    if (std::strpbrk(mode, "wa+") != nullptr || !Refusal(file).empty()) return nullptr;
+    return DefaultIOSystem::Open(file, mode);
+  }
+};
+
 }  // namespace
 
 Mesh LoadMesh(const std::string& path) {
-  if (!std::filesystem::is_regular_file(path)) {
-    throw std::invalid_argument(path + ": mesh file not found");
+  if (const std::string why = Refusal(path); !why.empty()) {
+    throw std::invalid_argument(path + ": " + why);
   }
+  // assimp picks the importer by the extension when exactly one claims it (as for these three),
+  // so no other importer sees the file.
+  std::string ext = std::filesystem::path(path).extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (ext != ".stl" && ext != ".obj" && ext != ".dae") {
+    throw std::invalid_argument(path + ": mesh format '" + ext +
+                                "' is not supported (expected .stl, .obj or .dae)");
+  }
+  if (ext == ".dae") CheckColladaSources(path);
   Assimp::Importer importer;
+  importer.SetIOHandler(new BoundedIOSystem);  // the importer owns it
   const aiScene* scene = importer.ReadFile(
       path, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_GenSmoothNormals |
                 aiProcess_PreTransformVertices | aiProcess_SortByPType);
   if (!scene || !scene->mRootNode) {
     throw std::invalid_argument(path + ": cannot read mesh: " + importer.GetErrorString());
   }
+  // The sizes of what will be copied, checked before any copy.
+  std::size_t triangles = 0, vertices = 0;
+  for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
+    const aiMesh* am = scene->mMeshes[m];
+    if (!(am->mPrimitiveTypes & aiPrimitiveType_TRIANGLE)) continue;
+    triangles += am->mNumFaces;
+    vertices += am->mNumVertices;
+  }
+  if (triangles > kMaxMeshTriangles || vertices > kMaxMeshVertices) {
+    throw std::invalid_argument(path + ": mesh of " + std::to_string(triangles) +
+                                " triangles and " + std::to_string(vertices) +
+                                " vertices is larger than the limit of " +
+                                std::to_string(kMaxMeshTriangles) + " triangles and " +
+                                std::to_string(kMaxMeshVertices) + " vertices");
+  }
   const bool y_up = IsCollada(*scene);
   Mesh mesh;
   mesh.path = path;
+  mesh.vertices.reserve(vertices);
+  mesh.normals.reserve(vertices);
+  mesh.triangles.reserve(triangles);
   for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
     const aiMesh* am = scene->mMeshes[m];
     if (!(am->mPrimitiveTypes & aiPrimitiveType_TRIANGLE)) continue;
     const int base = static_cast<int>(mesh.vertices.size());
     for (unsigned v = 0; v < am->mNumVertices; ++v) {
       Eigen::Vector3f p(am->mVertices[v].x, am->mVertices[v].y, am->mVertices[v].z);
+      if (!p.allFinite()) {
+        throw std::invalid_argument(path + ": mesh vertex " + std::to_string(v) + " of mesh " +
+                                    std::to_string(m) + " is not finite");
+      }
       aiVector3D an = am->HasNormals() ? am->mNormals[v] : aiVector3D(0, 0, 1);
-      if (!(an.Length() > 1e-12f)) an = aiVector3D(0, 0, 1);
+      const float length = an.Length();
+      if (!(length > 1e-12f) || !std::isfinite(length)) an = aiVector3D(0, 0, 1);
       an.Normalize();
       Eigen::Vector3f n(an.x, an.y, an.z);
       if (y_up) {
@@ -66,6 +168,12 @@ Mesh LoadMesh(const std::string& path) {
     for (unsigned f = 0; f < am->mNumFaces; ++f) {
       const aiFace& face = am->mFaces[f];
       if (face.mNumIndices != 3) continue;
+      for (unsigned k = 0; k < 3; ++k) {
+        if (face.mIndices[k] >= am->mNumVertices) {
+          throw std::invalid_argument(path + ": mesh face " + std::to_string(f) + " of mesh " +
+                                      std::to_string(m) + " has a vertex index out of range");
+        }
+      }
       mesh.triangles.emplace_back(base + static_cast<int>(face.mIndices[0]),
                                   base + static_cast<int>(face.mIndices[1]),
                                   base + static_cast<int>(face.mIndices[2]));

@@ -4,7 +4,6 @@
 #include <chrono>
 #include <cmath>
 #include <ctime>
-#include <fstream>
 #include <limits>
 #include <optional>
 #include <sstream>
@@ -12,6 +11,7 @@
 #include <string>
 
 #include "planning/kinematics.h"
+#include "topology/input_limits.h"
 #include "topology/winding.h"
 
 namespace planning {
@@ -66,8 +66,7 @@ void ShiftTargets(const MotionProblem& base, int g, MotionProblem* window) {
 }  // namespace
 
 ObjectPath ReadObjectPath(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw std::invalid_argument(path + ": cannot open the object path file");
+  std::istringstream in(topology::ReadFileBounded(path, "object path"));
   ObjectPath out;
   std::string line;
   int number = 0;

@@ -4,7 +4,7 @@
 // URDF support (parsed with urdfdom, validated first with our own pass for clear messages):
 //   - joints: revolute, continuous, prismatic, fixed, with <mimic joint= multiplier= offset=>;
 //     floating and planar joints are rejected (model a free base with 6 joints instead);
-//   - geometry: box, sphere, cylinder, mesh (any format assimp reads: STL, DAE, OBJ, PLY, ...;
+//   - geometry: box, sphere, cylinder, mesh (STL, DAE or OBJ through assimp;
 //     read by planning/mesh_io.h, which states the axes and units, once per file and robot).
 //     A <collision> or <visual> whose name starts with "capsule" and holds a <cylinder> is loaded
 //     as a capsule of that radius whose cap centres are `length` apart (URDF has no capsule);

@@ -4,7 +4,8 @@
 # Configures FUZZ_BUILD_DIR (default build-fuzz) with clang and TOPOPLAN_FUZZ=ON (ASan + UBSan +
 # libFuzzer), builds the fuzz_* programs, then runs each target for SECONDS on its corpus
 # (FUZZ_BUILD_DIR/corpus/TARGET, kept between runs, seeded from assets/, snapshots/ and
-# tests/fuzz/{seeds,regressions}/TARGET) with tests/fuzz/dict/TARGET.dict. Every crash, leak,
+# tests/fuzz/{seeds,regressions}/TARGET; the mesh target's seeds are the meshes of assets/ and
+# tests/planning/data with their extension on a first line) with tests/fuzz/dict/TARGET.dict. Every crash, leak,
 # timeout or out-of-memory input is copied to tests/fuzz/regressions/TARGET/, where the ctest
 # fuzz_replay of the normal build replays it. Prints executions per second per target.
 # Environment: FUZZ_BUILD_DIR, JOBS (build, default nproc), FUZZ_PARALLEL (targets run at once,
@@ -19,8 +20,8 @@ shift || true
 BUILD=${FUZZ_BUILD_DIR:-$ROOT/build-fuzz}
 JOBS=${JOBS:-$(nproc)}
 PARALLEL=${FUZZ_PARALLEL:-1}
-ALL_TARGETS=(chain_csv scene_json scenario_json urdf chains_sidecar srdf grasp grasp_objects png
-             script flags)
+ALL_TARGETS=(chain_csv scene_json scenario_json urdf chains_sidecar srdf grasp grasp_objects mesh
+             png script flags)
 TARGETS=("$@")
 [[ ${#TARGETS[@]} -eq 0 ]] && TARGETS=("${ALL_TARGETS[@]}")
 
@@ -45,6 +46,14 @@ seeds() {
     srdf) find assets tests -name '*.srdf' ;;
     grasp) ls assets/grasps/*.json assets/grasps/specs/*.json | grep -v objects.json ;;
     grasp_objects) ls assets/grasps/objects.json ;;
+    mesh)  # the mesh target's input: the extension on the first line, then the file
+      mkdir -p "$BUILD/mesh-seeds"
+      find assets tests/planning/data \( -name '*.stl' -o -name '*.obj' -o -name '*.dae' \) |
+        while read -r f; do
+          local out=$BUILD/mesh-seeds/$(echo "$f" | tr / _)
+          { echo "${f##*.}"; cat "$f"; } >"$out"
+          echo "$out"
+        done ;;
     png) find snapshots -name '*.png' -size -64k ;;
     script|flags) ;;
   esac
@@ -62,8 +71,10 @@ run_target() {
   [[ -f tests/fuzz/dict/$t.dict ]] && dict=(-dict="$ROOT/tests/fuzz/dict/$t.dict")
   local start end rc=0
   start=$(date +%s)
-  # Leak checks stay on (libFuzzer's default); -close_fd_mask=3 silences the readers' stdout/err.
-  nice -n "${NICE:-10}" "$BUILD/tests/fuzz/fuzz_$t" "$corpus" "${dict[@]}" \
+  # Leak checks stay on (libFuzzer's default) except for the library leaks listed in
+  # tests/fuzz/lsan.supp; -close_fd_mask=3 silences the readers' stdout/err.
+  LSAN_OPTIONS=suppressions=$ROOT/tests/fuzz/lsan.supp:print_suppressions=0 \
+    nice -n "${NICE:-10}" "$BUILD/tests/fuzz/fuzz_$t" "$corpus" "${dict[@]}" \
     -max_total_time="$SECONDS_PER_TARGET" -timeout="${FUZZ_INPUT_TIMEOUT:-10}" \
     -rss_limit_mb="${FUZZ_RSS_MB:-2048}" -artifact_prefix="$artifacts/" -print_final_stats=1 \
     -close_fd_mask=3 >"$log" 2>&1 || rc=$?

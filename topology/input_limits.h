@@ -15,9 +15,11 @@ namespace topology {
 inline constexpr std::size_t kMaxInputFileBytes = std::size_t{64} << 20;
 
 // Reads a whole file (regular file, pipe or device) into memory, at most `max_bytes` bytes.
-// Throws std::invalid_argument "<path>: cannot open <what> file" when it cannot be opened and
-// "<path>: <what> file is larger than <max_bytes> bytes (limit)" when there is more; reading stops
-// at max_bytes + 1 bytes.
+// Throws std::invalid_argument "<path>: cannot open <what> file" when it cannot be opened (or is
+// a folder) and "<path>: <what> file is larger than <max_bytes> bytes (limit)" when there is more:
+// a regular file is refused on its size before any read (a huge sparse file costs nothing), a
+// pipe or device once max_bytes + 1 bytes have arrived. A named pipe that no process writes to
+// reads as empty (it is opened without blocking).
 std::string ReadFileBounded(const std::string& path, const std::string& what,
                             std::size_t max_bytes = kMaxInputFileBytes);
 

@@ -41,6 +41,10 @@ int Srdf(const uint8_t* data, size_t size);
 int Grasp(const uint8_t* data, size_t size);
 // Grasp object catalogue (planning::LoadGraspObjects), then signed distances of each object.
 int GraspObjects(const uint8_t* data, size_t size);
+// Mesh files (planning::LoadMesh, then planning::ConvexHull as collision checking uses it): the
+// first line is the file's extension (stl, obj or dae; LoadMesh refuses any other, and a first line
+// that is not a short alphanumeric word gives "bin"), the rest is the file.
+int Mesh(const uint8_t* data, size_t size);
 // PNG bytes (render::DecodePng).
 int Png(const uint8_t* data, size_t size);
 // Viewer scripts (app::ParseScript, the parser of `view --script`; it needs no window).

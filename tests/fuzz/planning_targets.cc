@@ -1,10 +1,12 @@
-// Fuzz targets of the files read by planning/: scenarios, URDF, chain sidecars, SRDF, grasps and
-// the grasp-object catalogue.
+// Fuzz targets of the files read by planning/: scenarios, URDF, chain sidecars, SRDF, grasps, the
+// grasp-object catalogue and mesh files.
+#include <cctype>
 #include <stdexcept>
 #include <string>
 
 #include "planning/grasp.h"
 #include "planning/grasp_object.h"
+#include "planning/mesh_io.h"
 #include "planning/robot_io.h"
 #include "planning/scenario_spec.h"
 #include "planning/srdf.h"
@@ -119,6 +121,24 @@ int GraspObjects(const uint8_t* data, size_t size) {
       planning::SignedDistance(object, Eigen::Vector3d(0.01, 0.02, 0.03), &grad);
       planning::TransformReference(object.reference, Eigen::Isometry3d::Identity());
     }
+  } catch (const std::invalid_argument& e) {
+    Rejected(e);
+  }
+  return 0;
+}
+
+int Mesh(const uint8_t* data, size_t size) {
+  const std::string text = Text(data, size);
+  const size_t newline = text.find('\n');
+  std::string ext = newline == std::string::npos ? "" : text.substr(0, newline);
+  bool plain = !ext.empty() && ext.size() <= 8;
+  for (char c : ext) plain = plain && std::isalnum(static_cast<unsigned char>(c));
+  if (!plain) ext = "bin";
+  const std::string body = newline == std::string::npos ? text : text.substr(newline + 1);
+  try {
+    const planning::Mesh mesh = planning::LoadMesh(
+        WriteInput(reinterpret_cast<const uint8_t*>(body.data()), body.size(), "mesh." + ext));
+    planning::ConvexHull(mesh);
   } catch (const std::invalid_argument& e) {
     Rejected(e);
   }

@@ -25,6 +25,7 @@ const std::vector<Target>& Targets() {
                                                {"srdf", &Srdf},
                                                {"grasp", &Grasp},
                                                {"grasp_objects", &GraspObjects},
+                                               {"mesh", &Mesh},
                                                {"png", &Png},
                                                {"script", &Script},
                                                {"flags", &Flags}};
