@@ -199,6 +199,24 @@ GraspEncoding EncodeGrasp(const Robot& robot, const KinematicsData& kin,
   return enc;
 }
 
+Eigen::VectorXd EncodeGraspStacked(const Robot& robot, const KinematicsData& kin,
+                                   const std::vector<int>& chains,
+                                   const std::vector<ReferenceCurve>& references,
+                                   Eigen::MatrixXd* jacobian) {
+  if (references.empty()) throw std::invalid_argument("EncodeGraspStacked: no reference curve");
+  const int nc = static_cast<int>(chains.size());
+  const int nr = static_cast<int>(references.size());
+  Eigen::VectorXd y(nc * nr);
+  if (jacobian) jacobian->setZero(nc * nr, num_dofs(robot));
+  Eigen::MatrixXd jr;
+  for (int r = 0; r < nr; ++r) {
+    y.segment(r * nc, nc) =
+        EncodeGrasp(robot, kin, chains, references[r], jacobian ? &jr : nullptr).finger;
+    if (jacobian) jacobian->middleRows(r * nc, nc) = jr;
+  }
+  return y;
+}
+
 HandSpheres SampleHandSpheres(const Robot& robot, const std::vector<int>& links, double spacing) {
   HandSpheres out;
   out.center_local.resize(3, 0);

@@ -73,6 +73,15 @@ GraspEncoding EncodeGrasp(const Robot& robot, const KinematicsData& kin,
                           const std::vector<int>& chains, const ReferenceCurve& reference,
                           Eigen::MatrixXd* jacobian = nullptr);
 
+// The encoding about several reference curves, stacked reference-major:
+//   y = (w^(0); w^(1); ...; w^(R−1)),  w^(r) = EncodeGrasp(.., references[r]).finger,
+// size chains·R, in turns. If `jacobian` is not null it is resized to (chains·R) × n and receives
+// ∂y/∂q (row r·chains + c). Throws std::invalid_argument for an empty `references`.
+Eigen::VectorXd EncodeGraspStacked(const Robot& robot, const KinematicsData& kin,
+                                   const std::vector<int>& chains,
+                                   const std::vector<ReferenceCurve>& references,
+                                   Eigen::MatrixXd* jacobian = nullptr);
+
 // Spheres approximating a hand's collision geometry (capsules, cylinders, boxes, spheres), used
 // for penetration and contact distances against GraspObject's signed distance.
 struct HandSpheres {

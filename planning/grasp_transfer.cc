@@ -24,12 +24,13 @@ struct WindingData : FeatureData {
   topology::WritheWorkspace ws;
 };
 
-// y = per-finger winding vector (as EncodeGrasp), J = its Jacobian ∂y/∂q (chains × n).
+// y = per-finger winding vector about each reference curve, stacked reference-major (as
+// EncodeGraspStacked), J = its Jacobian ∂y/∂q ((chains·references) × n).
 class GraspWindingFeature : public Feature {
  public:
-  GraspWindingFeature(std::vector<int> chains, ReferenceCurve reference)
-      : chains_(std::move(chains)), reference_(std::move(reference)) {}
-  int dim() const override { return static_cast<int>(chains_.size()); }
+  GraspWindingFeature(std::vector<int> chains, std::vector<ReferenceCurve> references)
+      : chains_(std::move(chains)), references_(std::move(references)) {}
+  int dim() const override { return static_cast<int>(chains_.size() * references_.size()); }
   std::string name() const override { return "grasp_winding"; }
   std::unique_ptr<FeatureData> CreateData(const Robot&) const override {
     return std::make_unique<WindingData>();
@@ -38,22 +39,29 @@ class GraspWindingFeature : public Feature {
             Eigen::Ref<Eigen::VectorXd> y, Eigen::MatrixXd* J) const override {
     auto* d = static_cast<WindingData*>(data);
     const int n = num_dofs(robot);
+    const int nc = static_cast<int>(chains_.size());
     if (J) J->setZero();
     for (size_t c = 0; c < chains_.size(); ++c) {
       ChainPoints(robot, kin, chains_[c], &d->points);
       const int np = static_cast<int>(d->points.cols());
-      if (reference_.kind == ReferenceCurve::Kind::kAxis) {
-        y[c] = topology::WindingNumber(d->points, reference_.axis, {}, J ? &d->grad : nullptr);
-      } else {
-        topology::WritheMatrixWithJacobian(d->points, reference_.loop, {}, &d->w, &d->wj, &d->ws);
-        y[c] = d->w.sum();
-        if (J) topology::WeightedWritheGradient(d->wj, Eigen::MatrixXd(), &d->grad, &d->grad_b);
-      }
       if (J) {
         if (d->dP.rows() != 3 * np || d->dP.cols() != n) d->dP.resize(3 * np, n);
         ChainJacobian(robot, kin, chains_[c], d->dP);
-        for (int k = 0; k < np; ++k) {
-          J->row(c).noalias() += d->grad.col(k).transpose() * d->dP.middleRows(3 * k, 3);
+      }
+      for (size_t r = 0; r < references_.size(); ++r) {
+        const ReferenceCurve& ref = references_[r];
+        const int row = static_cast<int>(r) * nc + static_cast<int>(c);
+        if (ref.kind == ReferenceCurve::Kind::kAxis) {
+          y[row] = topology::WindingNumber(d->points, ref.axis, {}, J ? &d->grad : nullptr);
+        } else {
+          topology::WritheMatrixWithJacobian(d->points, ref.loop, {}, &d->w, &d->wj, &d->ws);
+          y[row] = d->w.sum();
+          if (J) topology::WeightedWritheGradient(d->wj, Eigen::MatrixXd(), &d->grad, &d->grad_b);
+        }
+        if (J) {
+          for (int k = 0; k < np; ++k) {
+            J->row(row).noalias() += d->grad.col(k).transpose() * d->dP.middleRows(3 * k, 3);
+          }
         }
       }
     }
@@ -61,7 +69,7 @@ class GraspWindingFeature : public Feature {
 
  private:
   std::vector<int> chains_;
-  ReferenceCurve reference_;
+  std::vector<ReferenceCurve> references_;
 };
 
 struct PointJacobianData : FeatureData {
@@ -247,6 +255,26 @@ Eigen::VectorXd JointMapping(const TransferSetup& s, const Eigen::VectorXd& q_pl
 
 }  // namespace
 
+std::vector<ReferenceCurve> WindingReferences(const TransferSetup& s) {
+  std::vector<ReferenceCurve> refs = {s.reference};
+  refs.insert(refs.end(), s.extra_references.begin(), s.extra_references.end());
+  return refs;
+}
+
+Eigen::VectorXd WindingTarget(const TransferSetup& s) {
+  KinematicsData hkin(s.human);
+  ForwardKinematics(s.human, s.human_q, &hkin);
+  const std::vector<ReferenceCurve> refs = WindingReferences(s);
+  const Eigen::VectorXd h = EncodeGraspStacked(s.human, hkin, s.human_chains, refs);
+  const Eigen::MatrixXd m = FingerCorrespondence();
+  const int nh = static_cast<int>(m.cols()), ns = static_cast<int>(m.rows());
+  Eigen::VectorXd y(ns * static_cast<int>(refs.size()));
+  for (int r = 0; r < static_cast<int>(refs.size()); ++r) {
+    y.segment(r * ns, ns) = m * h.segment(r * nh, nh);
+  }
+  return y;
+}
+
 Eigen::MatrixXd FingerCorrespondence() {
   Eigen::MatrixXd m = Eigen::MatrixXd::Zero(3, 5);
   m(0, 0) = 1.0;            // SDH thumb    ← thumb
@@ -352,6 +380,9 @@ TransferSetup MakeTransferSetup(const Robot& human_hand, const Robot& sdh_source
   s.object = object;
   s.grasp = grasp;
   s.reference = TransformReference(object.reference, grasp.world_from_object);
+  for (const ReferenceCurve& extra : object.extra_references) {
+    s.extra_references.push_back(TransformReference(extra, grasp.world_from_object));
+  }
   s.human_q = HumanConfiguration(s.human, grasp);
   KinematicsData kin(s.human);
   ForwardKinematics(s.human, s.human_q, &kin);
@@ -483,13 +514,9 @@ MotionProblem MakeTransferProblem(const TransferSetup& s, TransferMethod method,
     problem.q0.head<3>() -= o.retreat * s.sdh_placement.linear().col(2);
   }
   if (method == TransferMethod::kWinding || method == TransferMethod::kWindingOnly) {
-    KinematicsData hkin(s.human);
-    ForwardKinematics(s.human, s.human_q, &hkin);
-    const Eigen::VectorXd y =
-        FingerCorrespondence() * EncodeGrasp(s.human, hkin, s.human_chains, s.reference).finger;
-    target.push_back(FinalTask("winding",
-                               std::make_unique<GraspWindingFeature>(s.sdh_chains, s.reference), y,
-                               o.winding_precision, T));
+    target.push_back(FinalTask(
+        "winding", std::make_unique<GraspWindingFeature>(s.sdh_chains, WindingReferences(s)),
+        WindingTarget(s), o.winding_precision, T));
     contact = method == TransferMethod::kWinding;
   } else if (method == TransferMethod::kFingertip) {
     // Fingertip mapping: SDH tips to the human tips of the corresponding fingers.
@@ -560,6 +587,10 @@ TransferResult TransferGrasp(const TransferSetup& s, TransferMethod method,
   const GraspEncoding enc = EncodeGrasp(sdh, kin, s.sdh_chains, s.reference);
   res.robot_winding = enc.finger;
   res.robot_phalanx_winding = enc.phalanx;
+  if (!s.extra_references.empty()) {
+    res.target_extra_winding = WindingTarget(s).tail(3 * s.extra_references.size());
+    res.robot_extra_winding = EncodeGraspStacked(sdh, kin, s.sdh_chains, s.extra_references);
+  }
   res.min_clearance = HandClearance(sdh, kin, SampleHandSpheres(sdh, {}, 0.003), s.object,
                                     s.grasp.world_from_object);
   return res;

@@ -78,6 +78,18 @@ TEST(GraspObjectTest, CatalogueLoadsAndBadFilesNameThePath) {
               std::string::npos)
         << e.what();
   }
+  std::ofstream(bad) << R"({"objects": [{"name": "x", "mass": 1, "primitives": [{"type": "sphere",
+                          "size": [1, 0, 0]}], "reference": {"type": "axis", "point": [0, 0, 0],
+                          "direction": [0, 0, 1]}, "extra_references": [{"type": "loop",
+                          "points": [[0, 0, 0]]}]}]})";
+  try {
+    LoadGraspObjects(bad);
+    FAIL();
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("bad_objects.json: objects[0].extra_references[0].points"),
+              std::string::npos)
+        << e.what();
+  }
 }
 
 TEST(HumanGraspTest, AtLeastEightPlausibleGraspsWithFingersOnTheSurface) {
@@ -183,6 +195,76 @@ TEST(GraspTransferTest, WindingJacobianMatchesFiniteDifferences) {
     const Eigen::VectorXd ym = EncodeGrasp(sdh, kin, chains, ref).finger;
     EXPECT_LT(((yp - ym) / (2 * h) - J.col(k)).cwiseAbs().maxCoeff(), 1e-5) << "dof " << k;
   }
+}
+
+// The stacked encoding (an axis and a plate's rim loop) and the winding target term's feature:
+// values are the single-reference encodings, Jacobians match central differences.
+TEST(GraspTransferTest, StackedWindingJacobianMatchesFiniteDifferences) {
+  Robot sdh = MakeFloatingHand(LwrSdh(), "sdh_palm", Eigen::Matrix3d::Identity());
+  const std::vector<int> chains = AddGraspChains(false, &sdh);
+  ReferenceCurve axis;
+  axis.axis.point = Eigen::Vector3d(0.0, 0.0, 0.15);
+  axis.axis.direction = Eigen::Vector3d(0.1, 1.0, 0.05);
+  ReferenceCurve rim;  // a 60 x 80 mm rectangle in front of the palm
+  rim.kind = ReferenceCurve::Kind::kLoop;
+  rim.loop.resize(3, 5);
+  rim.loop << 0.01, 0.01, 0.01, 0.01, 0.01,  //
+      -0.03, 0.03, 0.03, -0.03, -0.03,       //
+      0.12, 0.12, 0.20, 0.20, 0.12;
+  const std::vector<ReferenceCurve> refs = {axis, rim};
+  Eigen::VectorXd q = Eigen::VectorXd::Zero(13);
+  q.segment<3>(3) = Eigen::Vector3d(0.05, -0.04, 0.03);
+  q.tail<7>() << 0.3, 0.4, 0.7, 0.5, 0.6, 0.8, 0.9;
+  KinematicsData kin(sdh);
+  ForwardKinematics(sdh, q, &kin);
+  Eigen::MatrixXd J;
+  const Eigen::VectorXd y = EncodeGraspStacked(sdh, kin, chains, refs, &J);
+  ASSERT_EQ(y.size(), 6);
+  ASSERT_EQ(J.rows(), 6);
+  EXPECT_EQ(y.head(3), EncodeGrasp(sdh, kin, chains, axis).finger);
+  EXPECT_EQ(y.tail(3), EncodeGrasp(sdh, kin, chains, rim).finger);
+  EXPECT_GT(y.tail(3).cwiseAbs().maxCoeff(), 0.01);  // the rim sees the fingers
+  const double h = 1e-6;
+  for (int k = 0; k < 13; ++k) {
+    Eigen::VectorXd qp = q, qm = q;
+    qp[k] += h;
+    qm[k] -= h;
+    ForwardKinematics(sdh, qp, &kin);
+    const Eigen::VectorXd yp = EncodeGraspStacked(sdh, kin, chains, refs);
+    ForwardKinematics(sdh, qm, &kin);
+    const Eigen::VectorXd ym = EncodeGraspStacked(sdh, kin, chains, refs);
+    EXPECT_LT(((yp - ym) / (2 * h) - J.col(k)).cwiseAbs().maxCoeff(), 1e-5) << "dof " << k;
+  }
+  EXPECT_THROW(EncodeGraspStacked(sdh, kin, chains, {}), std::invalid_argument);
+}
+
+// The lateral pinch: the box's rim sees on which face each fingertip lies (thumb and index on
+// opposite faces: opposite signs, about half a turn each), where the edge axis sees almost
+// nothing; the winding term of the transfer problem measures about both curves.
+TEST(GraspTransferTest, PlateRimSeesTheLateralPinch) {
+  const HumanGrasp g = LoadHumanGrasp(kAssets + "grasps/lateral_pinch_box.json");
+  const GraspObject& box = FindGraspObject(Objects(), "flat_box");
+  ASSERT_EQ(box.extra_references.size(), 1u);
+  const TransferSetup setup = MakeTransferSetup(Human(), LwrSdh(), box, g);
+  ASSERT_EQ(setup.extra_references.size(), 1u);
+  ASSERT_EQ(WindingReferences(setup).size(), 2u);
+  const Eigen::VectorXd target = WindingTarget(setup);
+  ASSERT_EQ(target.size(), 6);
+  EXPECT_LT(target.head(3).cwiseAbs().maxCoeff(), 0.2) << target.transpose();
+  EXPECT_GT(std::abs(target[3]), 0.3) << target.transpose();      // thumb on one face
+  EXPECT_LT(target[3] * target[5], -0.03) << target.transpose();  // index side on the other
+  const MotionProblem p = MakeTransferProblem(setup, TransferMethod::kWinding);
+  for (const Task& t : p.tasks) {
+    if (t.name == "winding") {
+      EXPECT_EQ(t.feature->dim(), 6);
+    }
+  }
+  // The transferred SDH thumb ends on the thumb's face of the plate (about the rim).
+  const TransferResult r = TransferGrasp(setup, TransferMethod::kWinding);
+  ASSERT_EQ(r.target_extra_winding.size(), 3);
+  ASSERT_EQ(r.robot_extra_winding.size(), 3);
+  EXPECT_EQ(r.target_extra_winding, target.tail(3));
+  EXPECT_LT(r.robot_extra_winding[0], -0.2) << r.robot_extra_winding.transpose();
 }
 
 TEST(GraspTransferTest, PowerGraspTransfersToTheSdhWithMatchingWindings) {
