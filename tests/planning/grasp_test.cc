@@ -5,6 +5,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <functional>
 
 #include "planning/grasp_object.h"
 #include "planning/grasp_transfer.h"
@@ -68,28 +69,24 @@ TEST(GraspObjectTest, CatalogueLoadsAndBadFilesNameThePath) {
   EXPECT_NO_THROW(FindGraspObject(Objects(), "bottle"));
   EXPECT_THROW(FindGraspObject(Objects(), "teapot"), std::invalid_argument);
   const std::string bad = std::string(TOPOPLAN_BINARY_DIR) + "/bad_objects.json";
-  std::ofstream(bad) << R"({"objects": [{"name": "x", "mass": 1, "primitives": [{"type": "cone",
-                          "size": [1, 1, 1]}], "reference": {"type": "axis"}}]})";
-  try {
-    LoadGraspObjects(bad);
-    FAIL();
-  } catch (const std::invalid_argument& e) {
-    EXPECT_NE(std::string(e.what()).find("bad_objects.json: objects[0].primitives[0].type"),
-              std::string::npos)
-        << e.what();
-  }
-  std::ofstream(bad) << R"({"objects": [{"name": "x", "mass": 1, "primitives": [{"type": "sphere",
-                          "size": [1, 0, 0]}], "reference": {"type": "axis", "point": [0, 0, 0],
-                          "direction": [0, 0, 1]}, "extra_references": [{"type": "loop",
-                          "points": [[0, 0, 0]]}]}]})";
-  try {
-    LoadGraspObjects(bad);
-    FAIL();
-  } catch (const std::invalid_argument& e) {
-    EXPECT_NE(std::string(e.what()).find("bad_objects.json: objects[0].extra_references[0].points"),
-              std::string::npos)
-        << e.what();
-  }
+  auto expect_error = [&](const std::string& text, const std::string& where) {
+    std::ofstream(bad) << text;
+    try {
+      LoadGraspObjects(bad);
+      FAIL() << where;
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("bad_objects.json: " + where), std::string::npos)
+          << e.what();
+    }
+  };
+  expect_error(R"({"objects": [{"name": "x", "mass": 1, "primitives": [{"type": "cone",
+                  "size": [1, 1, 1]}], "reference": {"type": "axis"}}]})",
+               "objects[0].primitives[0].type");
+  expect_error(R"({"objects": [{"name": "x", "mass": 1, "primitives": [{"type": "sphere",
+                  "size": [1, 0, 0]}], "reference": {"type": "axis", "point": [0, 0, 0],
+                  "direction": [0, 0, 1]}, "extra_references": [{"type": "loop",
+                  "points": [[0, 0, 0]]}]}]})",
+               "objects[0].extra_references[0].points");
 }
 
 TEST(HumanGraspTest, AtLeastEightPlausibleGraspsWithFingersOnTheSurface) {
@@ -171,40 +168,57 @@ TEST(GraspTransferTest, FloatingSdhReproducesTheArmMountedHandKinematics) {
   }
 }
 
-TEST(GraspTransferTest, WindingJacobianMatchesFiniteDifferences) {
+// A floating SDH with its grasp chains at a generic configuration, and a check of an encoding's
+// Jacobian ∂y/∂q against central differences over all 13 dofs.
+struct SdhAtGenericPose {
   Robot sdh = MakeFloatingHand(LwrSdh(), "sdh_palm", Eigen::Matrix3d::Identity());
-  const std::vector<int> chains = AddGraspChains(false, &sdh);
+  std::vector<int> chains = AddGraspChains(false, &sdh);
+  Eigen::VectorXd q = Eigen::VectorXd::Zero(13);
+  SdhAtGenericPose() {
+    q.segment<3>(3) = Eigen::Vector3d(0.05, -0.04, 0.03);
+    q.tail<7>() << 0.3, 0.4, 0.7, 0.5, 0.6, 0.8, 0.9;
+  }
+  // encode(kin, J): the encoding at kin, its Jacobian into J when J is not null.
+  void ExpectJacobian(
+      const std::function<Eigen::VectorXd(const KinematicsData&, Eigen::MatrixXd*)>& encode) {
+    KinematicsData kin(sdh);
+    ForwardKinematics(sdh, q, &kin);
+    Eigen::MatrixXd J;
+    encode(kin, &J);
+    const double h = 1e-6;
+    for (int k = 0; k < 13; ++k) {
+      Eigen::VectorXd qp = q, qm = q;
+      qp[k] += h;
+      qm[k] -= h;
+      ForwardKinematics(sdh, qp, &kin);
+      const Eigen::VectorXd yp = encode(kin, nullptr);
+      ForwardKinematics(sdh, qm, &kin);
+      const Eigen::VectorXd ym = encode(kin, nullptr);
+      EXPECT_LT(((yp - ym) / (2 * h) - J.col(k)).cwiseAbs().maxCoeff(), 1e-5) << "dof " << k;
+    }
+  }
+};
+
+ReferenceCurve TiltedAxis() {
   ReferenceCurve ref;
   ref.axis.point = Eigen::Vector3d(0.0, 0.0, 0.15);
   ref.axis.direction = Eigen::Vector3d(0.1, 1.0, 0.05);
-  Eigen::VectorXd q = Eigen::VectorXd::Zero(13);
-  q.segment<3>(3) = Eigen::Vector3d(0.05, -0.04, 0.03);
-  q.tail<7>() << 0.3, 0.4, 0.7, 0.5, 0.6, 0.8, 0.9;
-  KinematicsData kin(sdh);
-  ForwardKinematics(sdh, q, &kin);
-  Eigen::MatrixXd J;
-  EncodeGrasp(sdh, kin, chains, ref, &J);
-  const double h = 1e-6;
-  for (int k = 0; k < 13; ++k) {
-    Eigen::VectorXd qp = q, qm = q;
-    qp[k] += h;
-    qm[k] -= h;
-    ForwardKinematics(sdh, qp, &kin);
-    const Eigen::VectorXd yp = EncodeGrasp(sdh, kin, chains, ref).finger;
-    ForwardKinematics(sdh, qm, &kin);
-    const Eigen::VectorXd ym = EncodeGrasp(sdh, kin, chains, ref).finger;
-    EXPECT_LT(((yp - ym) / (2 * h) - J.col(k)).cwiseAbs().maxCoeff(), 1e-5) << "dof " << k;
-  }
+  return ref;
+}
+
+TEST(GraspTransferTest, WindingJacobianMatchesFiniteDifferences) {
+  SdhAtGenericPose s;
+  const ReferenceCurve ref = TiltedAxis();
+  s.ExpectJacobian([&](const KinematicsData& kin, Eigen::MatrixXd* J) {
+    return EncodeGrasp(s.sdh, kin, s.chains, ref, J).finger;
+  });
 }
 
 // The stacked encoding (an axis and a plate's rim loop) and the winding target term's feature:
 // values are the single-reference encodings, Jacobians match central differences.
 TEST(GraspTransferTest, StackedWindingJacobianMatchesFiniteDifferences) {
-  Robot sdh = MakeFloatingHand(LwrSdh(), "sdh_palm", Eigen::Matrix3d::Identity());
-  const std::vector<int> chains = AddGraspChains(false, &sdh);
-  ReferenceCurve axis;
-  axis.axis.point = Eigen::Vector3d(0.0, 0.0, 0.15);
-  axis.axis.direction = Eigen::Vector3d(0.1, 1.0, 0.05);
+  SdhAtGenericPose s;
+  const ReferenceCurve axis = TiltedAxis();
   ReferenceCurve rim;  // a 60 x 80 mm rectangle in front of the palm
   rim.kind = ReferenceCurve::Kind::kLoop;
   rim.loop.resize(3, 5);
@@ -212,30 +226,19 @@ TEST(GraspTransferTest, StackedWindingJacobianMatchesFiniteDifferences) {
       -0.03, 0.03, 0.03, -0.03, -0.03,       //
       0.12, 0.12, 0.20, 0.20, 0.12;
   const std::vector<ReferenceCurve> refs = {axis, rim};
-  Eigen::VectorXd q = Eigen::VectorXd::Zero(13);
-  q.segment<3>(3) = Eigen::Vector3d(0.05, -0.04, 0.03);
-  q.tail<7>() << 0.3, 0.4, 0.7, 0.5, 0.6, 0.8, 0.9;
-  KinematicsData kin(sdh);
-  ForwardKinematics(sdh, q, &kin);
+  KinematicsData kin(s.sdh);
+  ForwardKinematics(s.sdh, s.q, &kin);
   Eigen::MatrixXd J;
-  const Eigen::VectorXd y = EncodeGraspStacked(sdh, kin, chains, refs, &J);
+  const Eigen::VectorXd y = EncodeGraspStacked(s.sdh, kin, s.chains, refs, &J);
   ASSERT_EQ(y.size(), 6);
   ASSERT_EQ(J.rows(), 6);
-  EXPECT_EQ(y.head(3), EncodeGrasp(sdh, kin, chains, axis).finger);
-  EXPECT_EQ(y.tail(3), EncodeGrasp(sdh, kin, chains, rim).finger);
+  EXPECT_EQ(y.head(3), EncodeGrasp(s.sdh, kin, s.chains, axis).finger);
+  EXPECT_EQ(y.tail(3), EncodeGrasp(s.sdh, kin, s.chains, rim).finger);
   EXPECT_GT(y.tail(3).cwiseAbs().maxCoeff(), 0.01);  // the rim sees the fingers
-  const double h = 1e-6;
-  for (int k = 0; k < 13; ++k) {
-    Eigen::VectorXd qp = q, qm = q;
-    qp[k] += h;
-    qm[k] -= h;
-    ForwardKinematics(sdh, qp, &kin);
-    const Eigen::VectorXd yp = EncodeGraspStacked(sdh, kin, chains, refs);
-    ForwardKinematics(sdh, qm, &kin);
-    const Eigen::VectorXd ym = EncodeGraspStacked(sdh, kin, chains, refs);
-    EXPECT_LT(((yp - ym) / (2 * h) - J.col(k)).cwiseAbs().maxCoeff(), 1e-5) << "dof " << k;
-  }
-  EXPECT_THROW(EncodeGraspStacked(sdh, kin, chains, {}), std::invalid_argument);
+  s.ExpectJacobian([&](const KinematicsData& k, Eigen::MatrixXd* jac) {
+    return EncodeGraspStacked(s.sdh, k, s.chains, refs, jac);
+  });
+  EXPECT_THROW(EncodeGraspStacked(s.sdh, kin, s.chains, {}), std::invalid_argument);
 }
 
 // The lateral pinch: the box's rim sees on which face each fingertip lies (thumb and index on
