@@ -199,22 +199,20 @@ GraspEncoding EncodeGrasp(const Robot& robot, const KinematicsData& kin,
   return enc;
 }
 
-Eigen::VectorXd EncodeGraspStacked(const Robot& robot, const KinematicsData& kin,
-                                   const std::vector<int>& chains,
-                                   const std::vector<ReferenceCurve>& references,
-                                   Eigen::MatrixXd* jacobian) {
-  if (references.empty()) throw std::invalid_argument("EncodeGraspStacked: no reference curve");
-  const int nc = static_cast<int>(chains.size());
-  const int nr = static_cast<int>(references.size());
-  Eigen::VectorXd y(nc * nr);
-  if (jacobian) jacobian->setZero(nc * nr, num_dofs(robot));
-  Eigen::MatrixXd jr;
-  for (int r = 0; r < nr; ++r) {
-    y.segment(r * nc, nc) =
-        EncodeGrasp(robot, kin, chains, references[r], jacobian ? &jr : nullptr).finger;
-    if (jacobian) jacobian->middleRows(r * nc, nc) = jr;
+Eigen::Vector2d OppositionPair(const Eigen::VectorXd& w, const Eigen::MatrixXd* jacobian,
+                               Eigen::MatrixXd* pair_jacobian) {
+  if (w.size() == 0) throw std::invalid_argument("OppositionPair: no finger values");
+  if (jacobian && jacobian->rows() != w.size()) {
+    throw std::invalid_argument("OppositionPair: jacobian rows != number of fingers");
   }
-  return y;
+  int hi = 0, lo = 0;
+  const Eigen::Vector2d o(w.maxCoeff(&hi), w.minCoeff(&lo));
+  if (jacobian && pair_jacobian) {
+    pair_jacobian->resize(2, jacobian->cols());
+    pair_jacobian->row(0) = jacobian->row(hi);
+    pair_jacobian->row(1) = jacobian->row(lo);
+  }
+  return o;
 }
 
 HandSpheres SampleHandSpheres(const Robot& robot, const std::vector<int>& links, double spacing) {

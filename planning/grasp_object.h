@@ -43,9 +43,10 @@ struct GraspObject {
   std::vector<GraspPrimitive> primitives;  // the solid is their union
   double mass = 0.1;                       // [kg]
   ReferenceCurve reference;
-  // Further curves the winding method's target term also measures the fingers about (JSON
-  // "extra_references", optional; docs/methods.md §9.1): e.g. the rim of a thin plate, whose
-  // linking integral with a finger chain tells on which face of the plate the fingertip lies.
+  // Further curves the winding method's target term also measures the fingers about, as an
+  // opposition pair (JSON "extra_references", optional; docs/methods.md §9.1): e.g. the rim of a
+  // thin plate, whose linking integral with a finger chain tells on which face of the plate the
+  // fingertip lies.
   // `reference` alone places the SDH and is reported as the grasp's winding vector.
   std::vector<ReferenceCurve> extra_references;
   std::string description;

@@ -24,13 +24,15 @@ struct WindingData : FeatureData {
   topology::WritheWorkspace ws;
 };
 
-// y = per-finger winding vector about each reference curve, stacked reference-major (as
-// EncodeGraspStacked), J = its Jacobian ∂y/∂q ((chains·references) × n).
+// y = (per-finger winding vector about the main reference (as EncodeGrasp); per extra reference
+// curve the opposition pair (max_f, min_f) of the finger values (OppositionPair)), J = ∂y/∂q
+// ((chains + 2·extra) × n).
 class GraspWindingFeature : public Feature {
  public:
-  GraspWindingFeature(std::vector<int> chains, std::vector<ReferenceCurve> references)
-      : chains_(std::move(chains)), references_(std::move(references)) {}
-  int dim() const override { return static_cast<int>(chains_.size() * references_.size()); }
+  GraspWindingFeature(std::vector<int> chains, ReferenceCurve reference,
+                      std::vector<ReferenceCurve> extra)
+      : chains_(std::move(chains)), reference_(std::move(reference)), extra_(std::move(extra)) {}
+  int dim() const override { return static_cast<int>(chains_.size() + 2 * extra_.size()); }
   std::string name() const override { return "grasp_winding"; }
   std::unique_ptr<FeatureData> CreateData(const Robot&) const override {
     return std::make_unique<WindingData>();
@@ -39,37 +41,40 @@ class GraspWindingFeature : public Feature {
             Eigen::Ref<Eigen::VectorXd> y, Eigen::MatrixXd* J) const override {
     auto* d = static_cast<WindingData*>(data);
     const int n = num_dofs(robot);
-    const int nc = static_cast<int>(chains_.size());
     if (J) J->setZero();
     for (size_t c = 0; c < chains_.size(); ++c) {
       ChainPoints(robot, kin, chains_[c], &d->points);
       const int np = static_cast<int>(d->points.cols());
+      if (reference_.kind == ReferenceCurve::Kind::kAxis) {
+        y[c] = topology::WindingNumber(d->points, reference_.axis, {}, J ? &d->grad : nullptr);
+      } else {
+        topology::WritheMatrixWithJacobian(d->points, reference_.loop, {}, &d->w, &d->wj, &d->ws);
+        y[c] = d->w.sum();
+        if (J) topology::WeightedWritheGradient(d->wj, Eigen::MatrixXd(), &d->grad, &d->grad_b);
+      }
       if (J) {
         if (d->dP.rows() != 3 * np || d->dP.cols() != n) d->dP.resize(3 * np, n);
         ChainJacobian(robot, kin, chains_[c], d->dP);
-      }
-      for (size_t r = 0; r < references_.size(); ++r) {
-        const ReferenceCurve& ref = references_[r];
-        const int row = static_cast<int>(r) * nc + static_cast<int>(c);
-        if (ref.kind == ReferenceCurve::Kind::kAxis) {
-          y[row] = topology::WindingNumber(d->points, ref.axis, {}, J ? &d->grad : nullptr);
-        } else {
-          topology::WritheMatrixWithJacobian(d->points, ref.loop, {}, &d->w, &d->wj, &d->ws);
-          y[row] = d->w.sum();
-          if (J) topology::WeightedWritheGradient(d->wj, Eigen::MatrixXd(), &d->grad, &d->grad_b);
-        }
-        if (J) {
-          for (int k = 0; k < np; ++k) {
-            J->row(row).noalias() += d->grad.col(k).transpose() * d->dP.middleRows(3 * k, 3);
-          }
+        for (int k = 0; k < np; ++k) {
+          J->row(c).noalias() += d->grad.col(k).transpose() * d->dP.middleRows(3 * k, 3);
         }
       }
+    }
+    const int nc = static_cast<int>(chains_.size());
+    for (size_t r = 0; r < extra_.size(); ++r) {
+      const int row = nc + 2 * static_cast<int>(r);
+      Eigen::MatrixXd jf, jp;
+      const Eigen::VectorXd w =
+          EncodeGrasp(robot, kin, chains_, extra_[r], J ? &jf : nullptr).finger;
+      y.segment<2>(row) = OppositionPair(w, J ? &jf : nullptr, &jp);
+      if (J) J->middleRows(row, 2) = jp;
     }
   }
 
  private:
   std::vector<int> chains_;
-  std::vector<ReferenceCurve> references_;
+  ReferenceCurve reference_;
+  std::vector<ReferenceCurve> extra_;
 };
 
 struct PointJacobianData : FeatureData {
@@ -255,22 +260,16 @@ Eigen::VectorXd JointMapping(const TransferSetup& s, const Eigen::VectorXd& q_pl
 
 }  // namespace
 
-std::vector<ReferenceCurve> WindingReferences(const TransferSetup& s) {
-  std::vector<ReferenceCurve> refs = {s.reference};
-  refs.insert(refs.end(), s.extra_references.begin(), s.extra_references.end());
-  return refs;
-}
-
 Eigen::VectorXd WindingTarget(const TransferSetup& s) {
   KinematicsData hkin(s.human);
   ForwardKinematics(s.human, s.human_q, &hkin);
-  const std::vector<ReferenceCurve> refs = WindingReferences(s);
-  const Eigen::VectorXd h = EncodeGraspStacked(s.human, hkin, s.human_chains, refs);
-  const Eigen::MatrixXd m = FingerCorrespondence();
-  const int nh = static_cast<int>(m.cols()), ns = static_cast<int>(m.rows());
-  Eigen::VectorXd y(ns * static_cast<int>(refs.size()));
-  for (int r = 0; r < static_cast<int>(refs.size()); ++r) {
-    y.segment(r * ns, ns) = m * h.segment(r * nh, nh);
+  const int ne = static_cast<int>(s.extra_references.size());
+  Eigen::VectorXd y(3 + 2 * ne);
+  y.head(3) =
+      FingerCorrespondence() * EncodeGrasp(s.human, hkin, s.human_chains, s.reference).finger;
+  for (int r = 0; r < ne; ++r) {
+    y.segment<2>(3 + 2 * r) =
+        OppositionPair(EncodeGrasp(s.human, hkin, s.human_chains, s.extra_references[r]).finger);
   }
   return y;
 }
@@ -515,7 +514,8 @@ MotionProblem MakeTransferProblem(const TransferSetup& s, TransferMethod method,
   }
   if (method == TransferMethod::kWinding || method == TransferMethod::kWindingOnly) {
     target.push_back(FinalTask(
-        "winding", std::make_unique<GraspWindingFeature>(s.sdh_chains, WindingReferences(s)),
+        "winding",
+        std::make_unique<GraspWindingFeature>(s.sdh_chains, s.reference, s.extra_references),
         WindingTarget(s), o.winding_precision, T));
     contact = method == TransferMethod::kWinding;
   } else if (method == TransferMethod::kFingertip) {
@@ -588,8 +588,12 @@ TransferResult TransferGrasp(const TransferSetup& s, TransferMethod method,
   res.robot_winding = enc.finger;
   res.robot_phalanx_winding = enc.phalanx;
   if (!s.extra_references.empty()) {
-    res.target_extra_winding = WindingTarget(s).tail(3 * s.extra_references.size());
-    res.robot_extra_winding = EncodeGraspStacked(sdh, kin, s.sdh_chains, s.extra_references);
+    res.target_extra_winding = WindingTarget(s).tail(2 * s.extra_references.size());
+    res.robot_extra_winding.resize(2 * s.extra_references.size());
+    for (size_t r = 0; r < s.extra_references.size(); ++r) {
+      res.robot_extra_winding.segment<2>(2 * r) =
+          OppositionPair(EncodeGrasp(sdh, kin, s.sdh_chains, s.extra_references[r]).finger);
+    }
   }
   res.min_clearance = HandClearance(sdh, kin, SampleHandSpheres(sdh, {}, 0.003), s.object,
                                     s.grasp.world_from_object);

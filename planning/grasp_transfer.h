@@ -100,8 +100,8 @@ struct TransferResult {
   Eigen::VectorXd target_winding;                      // 3: M · human_winding
   Eigen::VectorXd robot_winding;                       // 3: SDH thumb, finger_1, finger_2 at q
   std::vector<Eigen::VectorXd> robot_phalanx_winding;
-  // The same about the object's extra reference curves (3 per curve, stacked; empty without):
-  // M · human and the SDH at q.
+  // Opposition pairs (max, min over the fingers) about the object's extra reference curves (2 per
+  // curve, stacked; empty without): the human's (the target) and the SDH's at q.
   Eigen::VectorXd target_extra_winding;
   Eigen::VectorXd robot_extra_winding;
   double min_clearance = 0.0;  // hand vs object at q [m] (negative = penetration)
@@ -132,11 +132,9 @@ TransferSetup MakeTransferSetup(const Robot& human_hand, const Robot& sdh_source
 // Correspondence matrix M (3 × 5), see the file comment.
 Eigen::MatrixXd FingerCorrespondence();
 
-// Every reference curve the winding target term measures about: setup.reference, then
-// setup.extra_references (world frame).
-std::vector<ReferenceCurve> WindingReferences(const TransferSetup& setup);
-// Target of the winding term, stacked per reference curve r of WindingReferences (3 per curve):
-//   y*_r = M · w_human^(r)  (M = FingerCorrespondence, w^(r) as EncodeGraspStacked).
+// Target of the winding term (docs/methods.md §9.1): M · w_human about setup.reference (3),
+// then per extra reference curve r the opposition pair OppositionPair(w_human^(r)) = (max, min)
+// over the five human fingers (2 each).
 Eigen::VectorXd WindingTarget(const TransferSetup& setup);
 
 // SDH palm at the placement (6 floating dofs = (placement translation, 0, 0, 0)), the spread
@@ -157,8 +155,8 @@ std::vector<Task> SharedTransferTasks(const TransferSetup& setup, const Transfer
 
 // The AICO problem TransferGrasp solves for an SDH method (kinematic, T = options.num_steps,
 // duration 1 s, palm translation metric 100): SharedTransferTasks with the method's target term
-//   winding: "winding" (final slice, winding_precision, WindingTarget: M·y_human about every
-//     curve of WindingReferences) + contact;
+//   winding: "winding" (final slice, winding_precision, WindingTarget: M·y_human about the
+//     main reference, the opposition pair about each extra curve) + contact;
 //   winding_only: "winding", no contact; contact_only: no target + contact;
 //   fingertip: "tip_sdh_thumb", "tip_sdh_finger_1", "tip_sdh_finger_2" (final slice,
 //     tip_precision, the mean human fingertip of the corresponding fingers) + contact;

@@ -214,60 +214,61 @@ TEST(GraspTransferTest, WindingJacobianMatchesFiniteDifferences) {
   });
 }
 
-// The stacked encoding (an axis and a plate's rim loop) and the winding target term's feature:
-// values are the single-reference encodings, Jacobians match central differences.
-TEST(GraspTransferTest, StackedWindingJacobianMatchesFiniteDifferences) {
+// The opposition pair about a plate's rim loop (the extra-curve part of the winding target term):
+// the max and min finger values, Jacobian rows of those fingers, matching central differences.
+TEST(GraspTransferTest, OppositionPairJacobianMatchesFiniteDifferences) {
   SdhAtGenericPose s;
-  const ReferenceCurve axis = TiltedAxis();
   ReferenceCurve rim;  // a 60 x 80 mm rectangle in front of the palm
   rim.kind = ReferenceCurve::Kind::kLoop;
   rim.loop.resize(3, 5);
   rim.loop << 0.01, 0.01, 0.01, 0.01, 0.01,  //
       -0.03, 0.03, 0.03, -0.03, -0.03,       //
       0.12, 0.12, 0.20, 0.20, 0.12;
-  const std::vector<ReferenceCurve> refs = {axis, rim};
   KinematicsData kin(s.sdh);
   ForwardKinematics(s.sdh, s.q, &kin);
-  Eigen::MatrixXd J;
-  const Eigen::VectorXd y = EncodeGraspStacked(s.sdh, kin, s.chains, refs, &J);
-  ASSERT_EQ(y.size(), 6);
-  ASSERT_EQ(J.rows(), 6);
-  EXPECT_EQ(y.head(3), EncodeGrasp(s.sdh, kin, s.chains, axis).finger);
-  EXPECT_EQ(y.tail(3), EncodeGrasp(s.sdh, kin, s.chains, rim).finger);
-  EXPECT_GT(y.tail(3).cwiseAbs().maxCoeff(), 0.01);  // the rim sees the fingers
+  const Eigen::VectorXd w = EncodeGrasp(s.sdh, kin, s.chains, rim).finger;
+  const Eigen::Vector2d o = OppositionPair(w);
+  EXPECT_EQ(o[0], w.maxCoeff());
+  EXPECT_EQ(o[1], w.minCoeff());
+  EXPECT_GT(o[0] - o[1], 0.01) << w.transpose();  // the rim sees the fingers
   s.ExpectJacobian([&](const KinematicsData& k, Eigen::MatrixXd* jac) {
-    return EncodeGraspStacked(s.sdh, k, s.chains, refs, jac);
+    Eigen::MatrixXd jf;
+    const Eigen::VectorXd wf = EncodeGrasp(s.sdh, k, s.chains, rim, jac ? &jf : nullptr).finger;
+    return Eigen::VectorXd(OppositionPair(wf, jac ? &jf : nullptr, jac));
   });
-  EXPECT_THROW(EncodeGraspStacked(s.sdh, kin, s.chains, {}), std::invalid_argument);
+  EXPECT_THROW(OppositionPair(Eigen::VectorXd()), std::invalid_argument);
+  const Eigen::MatrixXd wrong(2, 13);
+  Eigen::MatrixXd out;
+  EXPECT_THROW(OppositionPair(w, &wrong, &out), std::invalid_argument);
 }
 
 // The lateral pinch: the box's rim sees on which face each fingertip lies (thumb and index on
-// opposite faces: opposite signs, about half a turn each), where the edge axis sees almost
-// nothing; the winding term of the transfer problem measures about both curves.
+// opposite faces: opposite signs), where the edge axis sees little; the winding term of the
+// transfer problem adds the opposition pair about the rim, and the SDH reaches it.
 TEST(GraspTransferTest, PlateRimSeesTheLateralPinch) {
   const HumanGrasp g = LoadHumanGrasp(kAssets + "grasps/lateral_pinch_box.json");
   const GraspObject& box = FindGraspObject(Objects(), "flat_box");
   ASSERT_EQ(box.extra_references.size(), 1u);
   const TransferSetup setup = MakeTransferSetup(Human(), LwrSdh(), box, g);
   ASSERT_EQ(setup.extra_references.size(), 1u);
-  ASSERT_EQ(WindingReferences(setup).size(), 2u);
   const Eigen::VectorXd target = WindingTarget(setup);
-  ASSERT_EQ(target.size(), 6);
+  ASSERT_EQ(target.size(), 5);  // 3 about the edge axis, the opposition pair about the rim
   EXPECT_LT(target.head(3).cwiseAbs().maxCoeff(), 0.2) << target.transpose();
-  EXPECT_GT(std::abs(target[3]), 0.3) << target.transpose();      // thumb on one face
-  EXPECT_LT(target[3] * target[5], -0.03) << target.transpose();  // index side on the other
+  EXPECT_GT(target[3], 0.2) << target.transpose();   // a finger on one face ...
+  EXPECT_LT(target[4], -0.3) << target.transpose();  // ... the thumb on the other
   const MotionProblem p = MakeTransferProblem(setup, TransferMethod::kWinding);
   for (const Task& t : p.tasks) {
     if (t.name == "winding") {
-      EXPECT_EQ(t.feature->dim(), 6);
+      EXPECT_EQ(t.feature->dim(), 5);
     }
   }
-  // The transferred SDH thumb ends on the thumb's face of the plate (about the rim).
+  // The transferred SDH holds the plate between two fingers on opposite faces.
   const TransferResult r = TransferGrasp(setup, TransferMethod::kWinding);
-  ASSERT_EQ(r.target_extra_winding.size(), 3);
-  ASSERT_EQ(r.robot_extra_winding.size(), 3);
-  EXPECT_EQ(r.target_extra_winding, target.tail(3));
-  EXPECT_LT(r.robot_extra_winding[0], -0.2) << r.robot_extra_winding.transpose();
+  ASSERT_EQ(r.target_extra_winding.size(), 2);
+  ASSERT_EQ(r.robot_extra_winding.size(), 2);
+  EXPECT_EQ(r.target_extra_winding, target.tail(2));
+  EXPECT_GT(r.robot_extra_winding[0], 0.15) << r.robot_extra_winding.transpose();
+  EXPECT_LT(r.robot_extra_winding[1], -0.15) << r.robot_extra_winding.transpose();
 }
 
 TEST(GraspTransferTest, PowerGraspTransfersToTheSdhWithMatchingWindings) {
