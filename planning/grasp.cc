@@ -199,6 +199,22 @@ GraspEncoding EncodeGrasp(const Robot& robot, const KinematicsData& kin,
   return enc;
 }
 
+Eigen::Vector2d OppositionPair(const Eigen::VectorXd& w, const Eigen::MatrixXd* jacobian,
+                               Eigen::MatrixXd* pair_jacobian) {
+  if (w.size() == 0) throw std::invalid_argument("OppositionPair: no finger values");
+  if (jacobian && jacobian->rows() != w.size()) {
+    throw std::invalid_argument("OppositionPair: jacobian rows != number of fingers");
+  }
+  int hi = 0, lo = 0;
+  const Eigen::Vector2d o(w.maxCoeff(&hi), w.minCoeff(&lo));
+  if (jacobian && pair_jacobian) {
+    pair_jacobian->resize(2, jacobian->cols());
+    pair_jacobian->row(0) = jacobian->row(hi);
+    pair_jacobian->row(1) = jacobian->row(lo);
+  }
+  return o;
+}
+
 HandSpheres SampleHandSpheres(const Robot& robot, const std::vector<int>& links, double spacing) {
   HandSpheres out;
   out.center_local.resize(3, 0);

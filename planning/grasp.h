@@ -73,6 +73,14 @@ GraspEncoding EncodeGrasp(const Robot& robot, const KinematicsData& kin,
                           const std::vector<int>& chains, const ReferenceCurve& reference,
                           Eigen::MatrixXd* jacobian = nullptr);
 
+// Opposition pair of per-finger values w (size F >= 1): o = (max_f w_f, min_f w_f), which finger
+// is which left open. If `jacobian` (F × n, row f = ∂w_f/∂q) and `pair_jacobian` are not null,
+// `pair_jacobian` is resized to 2 × n and receives the rows of the arg max and the arg min finger
+// (the lowest index on ties). Throws std::invalid_argument for an empty w or a jacobian whose row
+// count is not F.
+Eigen::Vector2d OppositionPair(const Eigen::VectorXd& w, const Eigen::MatrixXd* jacobian = nullptr,
+                               Eigen::MatrixXd* pair_jacobian = nullptr);
+
 // Spheres approximating a hand's collision geometry (capsules, cylinders, boxes, spheres), used
 // for penetration and contact distances against GraspObject's signed distance.
 struct HandSpheres {

@@ -209,7 +209,7 @@ std::vector<GraspObject> LoadGraspObjects(const std::string& path) {
   std::vector<GraspObject> objects;
   for (size_t i = 0; i < list.Size(); ++i) {
     const JsonNode o = list.At(i);
-    o.CheckKeys({"name", "mass", "description", "primitives", "reference"});
+    o.CheckKeys({"name", "mass", "description", "primitives", "reference", "extra_references"});
     GraspObject obj;
     obj.name = o.At("name").String();
     // Limits keep the ODE simulation in range: a hand holds objects of at most 1000 kg.
@@ -220,6 +220,12 @@ std::vector<GraspObject> LoadGraspObjects(const std::string& path) {
     if (prims.Size() == 0) prims.Fail("missing or empty");
     for (size_t k = 0; k < prims.Size(); ++k) obj.primitives.push_back(ReadPrimitive(prims.At(k)));
     obj.reference = ReadReference(o.At("reference"));
+    if (o.Has("extra_references")) {
+      const JsonNode extra = o.At("extra_references");
+      for (size_t k = 0; k < extra.Size(); ++k) {
+        obj.extra_references.push_back(ReadReference(extra.At(k)));
+      }
+    }
     objects.push_back(obj);
   }
   return objects;

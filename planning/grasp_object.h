@@ -43,6 +43,12 @@ struct GraspObject {
   std::vector<GraspPrimitive> primitives;  // the solid is their union
   double mass = 0.1;                       // [kg]
   ReferenceCurve reference;
+  // Further curves the winding method's target term also measures the fingers about, as an
+  // opposition pair (JSON "extra_references", optional; docs/methods.md §9.1): e.g. the rim of a
+  // thin plate, whose linking integral with a finger chain tells on which face of the plate the
+  // fingertip lies.
+  // `reference` alone places the SDH and is reported as the grasp's winding vector.
+  std::vector<ReferenceCurve> extra_references;
   std::string description;
 };
 
@@ -60,7 +66,8 @@ double PrimitiveSignedDistance(const GraspPrimitive& prim, const Eigen::Vector3d
 // "primitives": [{"type": "sphere|cylinder|box|capsule|torus", "size": [..3], "xyz": [..3],
 // "rpy": [..3]}], "reference": {"type": "axis", "point": [..], "direction": [..]} or
 // {"type": "loop", "points": [[x,y,z], ...]} or {"type": "circle", "center", "normal",
-// "radius", "segments"}}]}. Throws std::invalid_argument naming the file and JSON path.
+// "radius", "segments"}, "extra_references": [reference, ...] (optional)}]}. Throws
+// std::invalid_argument naming the file and JSON path.
 std::vector<GraspObject> LoadGraspObjects(const std::string& path);
 
 // The object with this name; throws std::invalid_argument listing the known names.

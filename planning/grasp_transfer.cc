@@ -24,12 +24,15 @@ struct WindingData : FeatureData {
   topology::WritheWorkspace ws;
 };
 
-// y = per-finger winding vector (as EncodeGrasp), J = its Jacobian ∂y/∂q (chains × n).
+// y = (per-finger winding vector about the main reference (as EncodeGrasp); per extra reference
+// curve the opposition pair (max_f, min_f) of the finger values (OppositionPair)), J = ∂y/∂q
+// ((chains + 2·extra) × n).
 class GraspWindingFeature : public Feature {
  public:
-  GraspWindingFeature(std::vector<int> chains, ReferenceCurve reference)
-      : chains_(std::move(chains)), reference_(std::move(reference)) {}
-  int dim() const override { return static_cast<int>(chains_.size()); }
+  GraspWindingFeature(std::vector<int> chains, ReferenceCurve reference,
+                      std::vector<ReferenceCurve> extra)
+      : chains_(std::move(chains)), reference_(std::move(reference)), extra_(std::move(extra)) {}
+  int dim() const override { return static_cast<int>(chains_.size() + 2 * extra_.size()); }
   std::string name() const override { return "grasp_winding"; }
   std::unique_ptr<FeatureData> CreateData(const Robot&) const override {
     return std::make_unique<WindingData>();
@@ -57,11 +60,21 @@ class GraspWindingFeature : public Feature {
         }
       }
     }
+    const int nc = static_cast<int>(chains_.size());
+    for (size_t r = 0; r < extra_.size(); ++r) {
+      const int row = nc + 2 * static_cast<int>(r);
+      Eigen::MatrixXd jf, jp;
+      const Eigen::VectorXd w =
+          EncodeGrasp(robot, kin, chains_, extra_[r], J ? &jf : nullptr).finger;
+      y.segment<2>(row) = OppositionPair(w, J ? &jf : nullptr, &jp);
+      if (J) J->middleRows(row, 2) = jp;
+    }
   }
 
  private:
   std::vector<int> chains_;
   ReferenceCurve reference_;
+  std::vector<ReferenceCurve> extra_;
 };
 
 struct PointJacobianData : FeatureData {
@@ -247,6 +260,20 @@ Eigen::VectorXd JointMapping(const TransferSetup& s, const Eigen::VectorXd& q_pl
 
 }  // namespace
 
+Eigen::VectorXd WindingTarget(const TransferSetup& s) {
+  KinematicsData hkin(s.human);
+  ForwardKinematics(s.human, s.human_q, &hkin);
+  const int ne = static_cast<int>(s.extra_references.size());
+  Eigen::VectorXd y(3 + 2 * ne);
+  y.head(3) =
+      FingerCorrespondence() * EncodeGrasp(s.human, hkin, s.human_chains, s.reference).finger;
+  for (int r = 0; r < ne; ++r) {
+    y.segment<2>(3 + 2 * r) =
+        OppositionPair(EncodeGrasp(s.human, hkin, s.human_chains, s.extra_references[r]).finger);
+  }
+  return y;
+}
+
 Eigen::MatrixXd FingerCorrespondence() {
   Eigen::MatrixXd m = Eigen::MatrixXd::Zero(3, 5);
   m(0, 0) = 1.0;            // SDH thumb    ← thumb
@@ -352,6 +379,9 @@ TransferSetup MakeTransferSetup(const Robot& human_hand, const Robot& sdh_source
   s.object = object;
   s.grasp = grasp;
   s.reference = TransformReference(object.reference, grasp.world_from_object);
+  for (const ReferenceCurve& extra : object.extra_references) {
+    s.extra_references.push_back(TransformReference(extra, grasp.world_from_object));
+  }
   s.human_q = HumanConfiguration(s.human, grasp);
   KinematicsData kin(s.human);
   ForwardKinematics(s.human, s.human_q, &kin);
@@ -483,13 +513,10 @@ MotionProblem MakeTransferProblem(const TransferSetup& s, TransferMethod method,
     problem.q0.head<3>() -= o.retreat * s.sdh_placement.linear().col(2);
   }
   if (method == TransferMethod::kWinding || method == TransferMethod::kWindingOnly) {
-    KinematicsData hkin(s.human);
-    ForwardKinematics(s.human, s.human_q, &hkin);
-    const Eigen::VectorXd y =
-        FingerCorrespondence() * EncodeGrasp(s.human, hkin, s.human_chains, s.reference).finger;
-    target.push_back(FinalTask("winding",
-                               std::make_unique<GraspWindingFeature>(s.sdh_chains, s.reference), y,
-                               o.winding_precision, T));
+    target.push_back(FinalTask(
+        "winding",
+        std::make_unique<GraspWindingFeature>(s.sdh_chains, s.reference, s.extra_references),
+        WindingTarget(s), o.winding_precision, T));
     contact = method == TransferMethod::kWinding;
   } else if (method == TransferMethod::kFingertip) {
     // Fingertip mapping: SDH tips to the human tips of the corresponding fingers.
@@ -560,6 +587,14 @@ TransferResult TransferGrasp(const TransferSetup& s, TransferMethod method,
   const GraspEncoding enc = EncodeGrasp(sdh, kin, s.sdh_chains, s.reference);
   res.robot_winding = enc.finger;
   res.robot_phalanx_winding = enc.phalanx;
+  if (!s.extra_references.empty()) {
+    res.target_extra_winding = WindingTarget(s).tail(2 * s.extra_references.size());
+    res.robot_extra_winding.resize(2 * s.extra_references.size());
+    for (size_t r = 0; r < s.extra_references.size(); ++r) {
+      res.robot_extra_winding.segment<2>(2 * r) =
+          OppositionPair(EncodeGrasp(sdh, kin, s.sdh_chains, s.extra_references[r]).finger);
+    }
+  }
   res.min_clearance = HandClearance(sdh, kin, SampleHandSpheres(sdh, {}, 0.003), s.object,
                                     s.grasp.world_from_object);
   return res;

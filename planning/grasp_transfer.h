@@ -100,6 +100,10 @@ struct TransferResult {
   Eigen::VectorXd target_winding;                      // 3: M · human_winding
   Eigen::VectorXd robot_winding;                       // 3: SDH thumb, finger_1, finger_2 at q
   std::vector<Eigen::VectorXd> robot_phalanx_winding;
+  // Opposition pairs (max, min over the fingers) about the object's extra reference curves (2 per
+  // curve, stacked; empty without): the human's (the target) and the SDH's at q.
+  Eigen::VectorXd target_extra_winding;
+  Eigen::VectorXd robot_extra_winding;
   double min_clearance = 0.0;  // hand vs object at q [m] (negative = penetration)
   std::string solver;          // "aico" ("demonstration" for the human reference)
   SolveStatus status = SolveStatus::kConverged;
@@ -114,7 +118,8 @@ struct TransferSetup {
   std::vector<int> sdh_chains;
   GraspObject object;
   HumanGrasp grasp;
-  ReferenceCurve reference;  // world frame
+  ReferenceCurve reference;                      // world frame
+  std::vector<ReferenceCurve> extra_references;  // object.extra_references, world frame
   Eigen::VectorXd human_q;
   Eigen::Isometry3d sdh_placement;  // nominal SDH palm pose (world)
 };
@@ -126,6 +131,11 @@ TransferSetup MakeTransferSetup(const Robot& human_hand, const Robot& sdh_source
 
 // Correspondence matrix M (3 × 5), see the file comment.
 Eigen::MatrixXd FingerCorrespondence();
+
+// Target of the winding term (docs/methods.md §9.1): M · w_human about setup.reference (3),
+// then per extra reference curve r the opposition pair OppositionPair(w_human^(r)) = (max, min)
+// over the five human fingers (2 each).
+Eigen::VectorXd WindingTarget(const TransferSetup& setup);
 
 // SDH palm at the placement (6 floating dofs = (placement translation, 0, 0, 0)), the spread
 // joint at grasp.sdh_spread (clamped), every other joint 0. Size = num_dofs(setup.sdh).
@@ -145,7 +155,8 @@ std::vector<Task> SharedTransferTasks(const TransferSetup& setup, const Transfer
 
 // The AICO problem TransferGrasp solves for an SDH method (kinematic, T = options.num_steps,
 // duration 1 s, palm translation metric 100): SharedTransferTasks with the method's target term
-//   winding: "winding" (final slice, winding_precision, target M·y_human) + contact;
+//   winding: "winding" (final slice, winding_precision, WindingTarget: M·y_human about the
+//     main reference, the opposition pair about each extra curve) + contact;
 //   winding_only: "winding", no contact; contact_only: no target + contact;
 //   fingertip: "tip_sdh_thumb", "tip_sdh_finger_1", "tip_sdh_finger_2" (final slice,
 //     tip_precision, the mean human fingertip of the corresponding fingers) + contact;

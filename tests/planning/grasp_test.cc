@@ -5,6 +5,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <functional>
 
 #include "planning/grasp_object.h"
 #include "planning/grasp_transfer.h"
@@ -68,16 +69,24 @@ TEST(GraspObjectTest, CatalogueLoadsAndBadFilesNameThePath) {
   EXPECT_NO_THROW(FindGraspObject(Objects(), "bottle"));
   EXPECT_THROW(FindGraspObject(Objects(), "teapot"), std::invalid_argument);
   const std::string bad = std::string(TOPOPLAN_BINARY_DIR) + "/bad_objects.json";
-  std::ofstream(bad) << R"({"objects": [{"name": "x", "mass": 1, "primitives": [{"type": "cone",
-                          "size": [1, 1, 1]}], "reference": {"type": "axis"}}]})";
-  try {
-    LoadGraspObjects(bad);
-    FAIL();
-  } catch (const std::invalid_argument& e) {
-    EXPECT_NE(std::string(e.what()).find("bad_objects.json: objects[0].primitives[0].type"),
-              std::string::npos)
-        << e.what();
-  }
+  auto expect_error = [&](const std::string& text, const std::string& where) {
+    std::ofstream(bad) << text;
+    try {
+      LoadGraspObjects(bad);
+      FAIL() << where;
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("bad_objects.json: " + where), std::string::npos)
+          << e.what();
+    }
+  };
+  expect_error(R"({"objects": [{"name": "x", "mass": 1, "primitives": [{"type": "cone",
+                  "size": [1, 1, 1]}], "reference": {"type": "axis"}}]})",
+               "objects[0].primitives[0].type");
+  expect_error(R"({"objects": [{"name": "x", "mass": 1, "primitives": [{"type": "sphere",
+                  "size": [1, 0, 0]}], "reference": {"type": "axis", "point": [0, 0, 0],
+                  "direction": [0, 0, 1]}, "extra_references": [{"type": "loop",
+                  "points": [[0, 0, 0]]}]}]})",
+               "objects[0].extra_references[0].points");
 }
 
 TEST(HumanGraspTest, AtLeastEightPlausibleGraspsWithFingersOnTheSurface) {
@@ -159,30 +168,107 @@ TEST(GraspTransferTest, FloatingSdhReproducesTheArmMountedHandKinematics) {
   }
 }
 
-TEST(GraspTransferTest, WindingJacobianMatchesFiniteDifferences) {
+// A floating SDH with its grasp chains at a generic configuration, and a check of an encoding's
+// Jacobian ∂y/∂q against central differences over all 13 dofs.
+struct SdhAtGenericPose {
   Robot sdh = MakeFloatingHand(LwrSdh(), "sdh_palm", Eigen::Matrix3d::Identity());
-  const std::vector<int> chains = AddGraspChains(false, &sdh);
+  std::vector<int> chains = AddGraspChains(false, &sdh);
+  Eigen::VectorXd q = Eigen::VectorXd::Zero(13);
+  SdhAtGenericPose() {
+    q.segment<3>(3) = Eigen::Vector3d(0.05, -0.04, 0.03);
+    q.tail<7>() << 0.3, 0.4, 0.7, 0.5, 0.6, 0.8, 0.9;
+  }
+  // encode(kin, J): the encoding at kin, its Jacobian into J when J is not null.
+  void ExpectJacobian(
+      const std::function<Eigen::VectorXd(const KinematicsData&, Eigen::MatrixXd*)>& encode) {
+    KinematicsData kin(sdh);
+    ForwardKinematics(sdh, q, &kin);
+    Eigen::MatrixXd J;
+    encode(kin, &J);
+    const double h = 1e-6;
+    for (int k = 0; k < 13; ++k) {
+      Eigen::VectorXd qp = q, qm = q;
+      qp[k] += h;
+      qm[k] -= h;
+      ForwardKinematics(sdh, qp, &kin);
+      const Eigen::VectorXd yp = encode(kin, nullptr);
+      ForwardKinematics(sdh, qm, &kin);
+      const Eigen::VectorXd ym = encode(kin, nullptr);
+      EXPECT_LT(((yp - ym) / (2 * h) - J.col(k)).cwiseAbs().maxCoeff(), 1e-5) << "dof " << k;
+    }
+  }
+};
+
+ReferenceCurve TiltedAxis() {
   ReferenceCurve ref;
   ref.axis.point = Eigen::Vector3d(0.0, 0.0, 0.15);
   ref.axis.direction = Eigen::Vector3d(0.1, 1.0, 0.05);
-  Eigen::VectorXd q = Eigen::VectorXd::Zero(13);
-  q.segment<3>(3) = Eigen::Vector3d(0.05, -0.04, 0.03);
-  q.tail<7>() << 0.3, 0.4, 0.7, 0.5, 0.6, 0.8, 0.9;
-  KinematicsData kin(sdh);
-  ForwardKinematics(sdh, q, &kin);
-  Eigen::MatrixXd J;
-  EncodeGrasp(sdh, kin, chains, ref, &J);
-  const double h = 1e-6;
-  for (int k = 0; k < 13; ++k) {
-    Eigen::VectorXd qp = q, qm = q;
-    qp[k] += h;
-    qm[k] -= h;
-    ForwardKinematics(sdh, qp, &kin);
-    const Eigen::VectorXd yp = EncodeGrasp(sdh, kin, chains, ref).finger;
-    ForwardKinematics(sdh, qm, &kin);
-    const Eigen::VectorXd ym = EncodeGrasp(sdh, kin, chains, ref).finger;
-    EXPECT_LT(((yp - ym) / (2 * h) - J.col(k)).cwiseAbs().maxCoeff(), 1e-5) << "dof " << k;
+  return ref;
+}
+
+TEST(GraspTransferTest, WindingJacobianMatchesFiniteDifferences) {
+  SdhAtGenericPose s;
+  const ReferenceCurve ref = TiltedAxis();
+  s.ExpectJacobian([&](const KinematicsData& kin, Eigen::MatrixXd* J) {
+    return EncodeGrasp(s.sdh, kin, s.chains, ref, J).finger;
+  });
+}
+
+// The opposition pair about a plate's rim loop (the extra-curve part of the winding target term):
+// the max and min finger values, Jacobian rows of those fingers, matching central differences.
+TEST(GraspTransferTest, OppositionPairJacobianMatchesFiniteDifferences) {
+  SdhAtGenericPose s;
+  ReferenceCurve rim;  // a 60 x 80 mm rectangle in front of the palm
+  rim.kind = ReferenceCurve::Kind::kLoop;
+  rim.loop.resize(3, 5);
+  rim.loop << 0.01, 0.01, 0.01, 0.01, 0.01,  //
+      -0.03, 0.03, 0.03, -0.03, -0.03,       //
+      0.12, 0.12, 0.20, 0.20, 0.12;
+  KinematicsData kin(s.sdh);
+  ForwardKinematics(s.sdh, s.q, &kin);
+  const Eigen::VectorXd w = EncodeGrasp(s.sdh, kin, s.chains, rim).finger;
+  const Eigen::Vector2d o = OppositionPair(w);
+  EXPECT_EQ(o[0], w.maxCoeff());
+  EXPECT_EQ(o[1], w.minCoeff());
+  EXPECT_GT(o[0] - o[1], 0.01) << w.transpose();  // the rim sees the fingers
+  s.ExpectJacobian([&](const KinematicsData& k, Eigen::MatrixXd* jac) {
+    Eigen::MatrixXd jf;
+    const Eigen::VectorXd wf = EncodeGrasp(s.sdh, k, s.chains, rim, jac ? &jf : nullptr).finger;
+    return Eigen::VectorXd(OppositionPair(wf, jac ? &jf : nullptr, jac));
+  });
+  EXPECT_THROW(OppositionPair(Eigen::VectorXd()), std::invalid_argument);
+  const Eigen::MatrixXd wrong(2, 13);
+  Eigen::MatrixXd out;
+  EXPECT_THROW(OppositionPair(w, &wrong, &out), std::invalid_argument);
+}
+
+// The lateral pinch: the box's rim sees on which face each fingertip lies (thumb and index on
+// opposite faces: opposite signs), where the edge axis sees little; the winding term of the
+// transfer problem adds the opposition pair about the rim, and the SDH reaches it.
+TEST(GraspTransferTest, PlateRimSeesTheLateralPinch) {
+  const HumanGrasp g = LoadHumanGrasp(kAssets + "grasps/lateral_pinch_box.json");
+  const GraspObject& box = FindGraspObject(Objects(), "flat_box");
+  ASSERT_EQ(box.extra_references.size(), 1u);
+  const TransferSetup setup = MakeTransferSetup(Human(), LwrSdh(), box, g);
+  ASSERT_EQ(setup.extra_references.size(), 1u);
+  const Eigen::VectorXd target = WindingTarget(setup);
+  ASSERT_EQ(target.size(), 5);  // 3 about the edge axis, the opposition pair about the rim
+  EXPECT_LT(target.head(3).cwiseAbs().maxCoeff(), 0.2) << target.transpose();
+  EXPECT_GT(target[3], 0.2) << target.transpose();   // a finger on one face ...
+  EXPECT_LT(target[4], -0.3) << target.transpose();  // ... the thumb on the other
+  const MotionProblem p = MakeTransferProblem(setup, TransferMethod::kWinding);
+  for (const Task& t : p.tasks) {
+    if (t.name == "winding") {
+      EXPECT_EQ(t.feature->dim(), 5);
+    }
   }
+  // The transferred SDH holds the plate between two fingers on opposite faces.
+  const TransferResult r = TransferGrasp(setup, TransferMethod::kWinding);
+  ASSERT_EQ(r.target_extra_winding.size(), 2);
+  ASSERT_EQ(r.robot_extra_winding.size(), 2);
+  EXPECT_EQ(r.target_extra_winding, target.tail(2));
+  EXPECT_GT(r.robot_extra_winding[0], 0.15) << r.robot_extra_winding.transpose();
+  EXPECT_LT(r.robot_extra_winding[1], -0.15) << r.robot_extra_winding.transpose();
 }
 
 TEST(GraspTransferTest, PowerGraspTransfersToTheSdhWithMatchingWindings) {
