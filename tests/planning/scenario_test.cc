@@ -1,7 +1,7 @@
 // Scenario loader errors, and the end-to-end planning properties of the shipped scenarios:
-// unwrap from 90°, 270°, 360° and 720° (AICO, one attempt, JudgePlan success), reach_through_ring
-// (inside the box, writhe peak at the link through the ring), RRT paths collision-free, same seed →
-// same report.
+// unwrap from 90°, 270°, 360°, 720° and 900°, and with the pole moved (AICO, one attempt,
+// JudgePlan success), reach_through_ring (inside the box, writhe peak at the link through the
+// ring), RRT paths collision-free, same seed → same report.
 #include "planning/scenario.h"
 
 #include <gtest/gtest.h>
@@ -16,6 +16,7 @@
 #include "planning/planner.h"
 #include "planning/robot_io.h"
 #include "planning/scenario_spec.h"
+#include "planning/unwrap_benchmark.h"
 #include "scenario_test_util.h"
 
 namespace planning {
@@ -67,6 +68,19 @@ TEST(ScenarioLoader, ErrorsNameTheJsonPath) {
                   MiniScenario(R"({"name": "x", "feature": {"type": "position", "link":
                   "sdh_palm"}, "target": {"type": "value", "value": [1, 2]}})"),
                   "tasks[0].target.value");
+  ExpectLoadError("between_order1.json",
+                  MiniScenario(R"({"name": "x", "feature": {"type": "joint_position"}, "order": 1,
+                  "between": 2})"),
+                  "tasks[0]");
+  ExpectLoadError("jump_dim3.json",
+                  MiniScenario(R"({"name": "x", "feature": {"type": "position", "link":
+                  "sdh_palm"}, "max_jump": 0.2})"),
+                  "max_jump");
+  ExpectLoadError("winding_two_lines.json",
+                  MiniScenario(R"({"name": "x", "feature": {"type": "winding", "chain": "arm",
+                  "axis_point": [0, 0, 0], "axis_direction": [0, 0, 1], "object": "pole",
+                  "object_chain": "axis"}})"),
+                  "tasks[0].feature");
   ExpectLoadError("unknown_link.json",
                   MiniScenario(R"({"name": "x", "feature": {"type": "position", "link":
                   "no_such_link"}})"),
@@ -247,6 +261,31 @@ TEST(UnwrapScenario, AicoUnwrapsFrom720Degrees) { CheckUnwrap(720.0); }
 // Regression: these tunnelled through the pole before the wider collision margin.
 TEST(UnwrapScenario, AicoUnwrapsFrom90Degrees) { CheckUnwrap(90.0); }
 TEST(UnwrapScenario, AicoUnwrapsFrom270Degrees) { CheckUnwrap(270.0); }
+// Regression: tunnelled through the pole between time slices before the between-slice collision
+// and line-clearance terms and the winding guard.
+TEST(UnwrapScenario, AicoUnwrapsFrom900Degrees) { CheckUnwrap(900.0); }
+
+// The pole moved by up to 3 cm perpendicular to its axis (bench unwrap --perturb 0.03): AICO still
+// unwraps in one attempt (seeds 0 and 1 of the benchmark's offsets).
+TEST(UnwrapScenario, AicoUnwrapsWithThePoleMoved) {
+  UnwrapBenchmarkOptions o;
+  o.scenario_path = kAssets + "scenarios/unwrap.json";
+  o.angles_deg = {450.0};
+  o.planners = {Planner::kAico};
+  o.seeds = 2;
+  o.perturb_m = 0.03;
+  const UnwrapBenchmarkResult r = RunUnwrapBenchmark(o);
+  ASSERT_EQ(r.runs.size(), 2u);
+  for (const UnwrapRun& run : r.runs) {
+    SCOPED_TRACE("seed " + std::to_string(run.seed));
+    EXPECT_GT(run.pole_offset.norm(), 0.0);
+    EXPECT_LE(run.pole_offset.norm(), 0.03 + 1e-12);
+    EXPECT_TRUE(run.report.success) << FailureReasonName(run.report.failure_reason);
+    EXPECT_EQ(run.report.attempts, 1);
+    EXPECT_LT(run.report.reach_error_m, 0.05);
+    EXPECT_LT(run.report.max_winding_jump_turns, 0.1);
+  }
+}
 
 TEST(ReachThroughRing, AicoEndsInsideTheBoxWithTheWrithePeakAtTheLinkThroughTheRing) {
   const auto s = LoadScenario(kAssets + "scenarios/reach_through_ring.json");
