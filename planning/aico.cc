@@ -74,6 +74,9 @@ class Aico {
   void Initialise(const Trajectory* init);
   Trajectory Rollout();
   void TaskMessage(int t, const Eigen::VectorXd& x);
+  double BetweenMessage(int t);
+  // CountJumps (task.h) of the q part of the current beliefs.
+  int Jumps();
   void InvertSpd(const Eigen::MatrixXd& m, Eigen::MatrixXd* out);
   // The message (mean m, precision Minv) arriving at neighbour slice k combined with k's task
   // message (r, R): w.Sbar = (Minv + R_k)⁻¹, w.vtmp2 = w.Sbar (r_k + Minv m). The shared first step
@@ -97,6 +100,9 @@ class Aico {
   AicoResult result_;
   AicoStep last_;
   int backtracks_ = 0;
+  bool guarded_ = false;  // some task has max_jump > 0
+  int jumps_ = 0;         // CountJumps of the accepted beliefs
+  Eigen::MatrixXd qguard_;
   long evals0_ = 0, coll0_ = 0;
   Eigen::VectorXd metric_;
   std::vector<Eigen::VectorXd> err_;  // per task residual buffer, allocated once per run
@@ -170,7 +176,43 @@ void Aico::TaskMessage(int t, const Eigen::VectorXd& x) {
     }
   }
   st().rhat[t] = rhat;
-  st().task_cost[t] = cost;
+  st().task_cost[t] = cost + BetweenMessage(t);
+}
+
+// Tasks with `between` > 0 (task.h): the states between slice t and each neighbour k = t ± 1,
+// held at its linearisation point x̂_k (the Gauss–Newton treatment of the pair factor):
+// q(β) = (1 − β) q_t + β q̂_k, so ∂φ(q(β))/∂q_t = (1 − β) J. Adds ρ c² JᵀJ and ρ c Jᵀ(e + c J q̂_t)
+// (c = 1 − β, e = y* − φ(q(β)); target and precision of the step's later slice) to R_t, r_t.
+// Each such state is seen from both ends of its step: returns half its cost.
+double Aico::BetweenMessage(int t) {
+  AicoWorkspace& w = *ws_;
+  Eigen::MatrixXd& R = st().R[t];
+  Eigen::VectorXd& r = st().r[t];
+  double cost = 0.0;
+  for (int k = t - 1; k <= t + 1; k += 2) {
+    if (k < 0 || k > T_) continue;
+    const int step = std::max(t, k);
+    for (size_t i = 0; i < p_.tasks.size(); ++i) {
+      const Task& task = p_.tasks[i];
+      const double rho = task.precision[step];
+      if (task.between <= 0 || rho <= 0.0) continue;
+      for (int j = 1; j <= task.between; ++j) {
+        const double alpha = static_cast<double>(j) / (task.between + 1);  // along t−1 → t
+        const double c = k < t ? alpha : 1.0 - alpha;                      // weight of q_t
+        w.qbetween = c * w.q;
+        w.qbetween.noalias() += (1.0 - c) * st().xhat[k].head(n_);
+        EvaluateTask(p_, static_cast<int>(i), w.qbetween, true, &w.tasks);
+        const Eigen::MatrixXd& J = w.tasks.J[i];
+        Eigen::VectorXd& e = err_[i];
+        e = task.target.col(step) - w.tasks.y[i];
+        cost += 0.5 * rho * e.squaredNorm();
+        e.noalias() += c * (J * w.q);
+        R.topLeftCorner(n_, n_).noalias() += (rho * c * c) * J.transpose() * J;
+        r.head(n_).noalias() += (rho * c) * J.transpose() * e;
+      }
+    }
+  }
+  return cost;
 }
 
 void Aico::AbsorbTaskMessage(int k, const Eigen::MatrixXd& Minv, const Eigen::VectorXd& m) {
@@ -251,6 +293,12 @@ bool Aico::Relocate(int t, bool force) {
   return true;
 }
 
+int Aico::Jumps() {
+  qguard_.resize(n_, T_ + 1);
+  for (int t = 0; t <= T_; ++t) qguard_.col(t) = st().b[t].head(n_);
+  return CountJumps(p_, qguard_, &ws_->tasks);
+}
+
 double Aico::ControlCost(const AicoState& s) const {
   double cost = 0.0;
   for (int t = 0; t < T_; ++t) {
@@ -264,8 +312,8 @@ double Aico::ControlCost(const AicoState& s) const {
 double Aico::EvaluateAll() {
   AicoState& s = st();
   double task = 0.0;
+  for (int t = 0; t <= T_; ++t) s.xhat[t] = s.b[t];  // (the between terms read the neighbours)
   for (int t = 0; t <= T_; ++t) {
-    s.xhat[t] = s.b[t];
     TaskMessage(t, s.xhat[t]);
     task += s.task_cost[t];
   }
@@ -417,6 +465,9 @@ void Aico::Start(const Trajectory* init) {
     init = &rollout;
   }
   Initialise(init);
+  guarded_ = false;
+  for (const Task& task : p_.tasks) guarded_ = guarded_ || task.max_jump > 0.0;
+  jumps_ = guarded_ ? Jumps() : 0;
   if (!o_.accept_first_sweep) result_.cost_history.push_back(st().cost);
   backtracks_ = 0;
   last_ = AicoStep{};
@@ -451,8 +502,10 @@ AicoStep Aico::Step() {
   }
   const double cost = EvaluateAll();
   ++result_.iterations;
-  const bool accepted =
-      std::isfinite(cost) && (cost <= ws_->backup.cost || (sweep == 0 && o_.accept_first_sweep));
+  const int jumps = guarded_ ? Jumps() : 0;
+  const bool accepted = std::isfinite(cost) &&
+                        (cost <= ws_->backup.cost || (sweep == 0 && o_.accept_first_sweep)) &&
+                        jumps <= jumps_;
   if (!accepted) {
     std::swap(ws_->state, ws_->backup);
     lambda_ *= 10.0;
@@ -461,6 +514,7 @@ AicoStep Aico::Step() {
   } else {
     lambda_ /= 5.0;
     backtracks_ = 0;
+    jumps_ = jumps;
     result_.cost_history.push_back(cost);
   }
   last_ = AicoStep{SolveStatus::kMaxIterations, sweep, cost, accepted, false};
@@ -513,6 +567,7 @@ AicoWorkspace::AicoWorkspace(const MotionProblem& problem) : tasks(problem) {
   vtmp2.setZero(d);
   q.setZero(n);
   qdot.setZero(n);
+  qbetween.setZero(n);
   // Preallocates by factorising I_d (assigning a fresh LLT(d) would copy its uninitialised info).
   llt.compute(Eigen::MatrixXd::Identity(d, d));
 }
@@ -582,6 +637,7 @@ double TrajectoryCost(const MotionProblem& problem, const Eigen::MatrixXd& q,
     EvaluateTasks(problem, t, q.col(t), true, ws);
     task +=
         TaskCost(problem, t, problem.dynamic ? Eigen::VectorXd(v.col(t)) : Eigen::VectorXd(), *ws);
+    if (t > 0) task += BetweenCost(problem, t, q.col(t - 1), q.col(t), ws);
     if (t < T) {
       const Eigen::MatrixXd& x = problem.dynamic ? v : q;
       control += StepControlCost(problem, metric, dt, x.col(t), x.col(t + 1));

@@ -12,13 +12,16 @@
 //             V_t = A⁻¹ (Q̄ + V̄) A⁻ᵀ (kinematic: V_t = W⁻¹ + V̄); v_T = b_T, V_T⁻¹ = 10⁻⁴ I (dynamic)
 //             or I (kinematic).
 //   task      linearised at x̂_t: R_t = Σ ρ JᵀJ, r_t = Σ ρ Jᵀ (y* − φ(q̂) + J q̂) (position block);
-//             velocity block Σ ν JᵀJ and Σ ν Jᵀ v* for order-1 tasks.
+//             velocity block Σ ν JᵀJ and Σ ν Jᵀ v* for order-1 tasks; tasks with `between` > 0
+//             add the states between x̂_t and its neighbours x̂_{t±1} (held fixed), Jacobian
+//             scaled by the weight of q_t in the interpolation.
 //   belief    B_t⁻¹ = S_t⁻¹ + V_t⁻¹ + R_t + λI, b_t = B_t (S_t⁻¹ s_t + V_t⁻¹ v_t + r_t + λ
 //   b_ref,t).
 // Relocation: when |b_t − x̂_t|∞ > tolerance, x̂_t ← b_t (moved at most max_step), task message and
 // belief recomputed. After each sweep the true cost (task.h) is evaluated at the beliefs; a sweep
-// that raises it is rejected (state restored, λ ← 10λ), otherwise λ ← λ/5. Converged when an
-// accepted sweep moves the beliefs by less than `tolerance` (max norm).
+// that raises it is rejected (state restored, λ ← 10λ), otherwise λ ← λ/5; so is a sweep whose
+// beliefs have more jumps of the tasks with max_jump > 0 (task.h CountJumps) than before it.
+// Converged when an accepted sweep moves the beliefs by less than `tolerance` (max norm).
 #pragma once
 
 #include <Eigen/Cholesky>
@@ -75,7 +78,7 @@ struct AicoWorkspace {
   AicoState state, backup;
   TaskWorkspace tasks;
   Eigen::MatrixXd A, Ainv, Qbar, Winv, Sbar, tmp, tmp2, eye;
-  Eigen::VectorXd vtmp, vtmp2, q, qdot;
+  Eigen::VectorXd vtmp, vtmp2, q, qdot, qbetween;
   Eigen::LLT<Eigen::MatrixXd> llt;
 };
 

@@ -90,6 +90,17 @@ std::unique_ptr<Feature> MakeWritheFeature(const Robot& robot, int chain,
 std::unique_ptr<Feature> MakeWindingFeature(const Robot& robot, int chain,
                                             const topology::Axis& axis);
 
+// Clearance of the robot chain from a line (e.g. a pole's axis, taken as infinite both ways) as a
+// hinge per chain segment (dim = ChainSize − 1, target 0): with d_s the distance of segment
+// s = [p_s, p_{s+1}] to the line and σ_s ∈ [0, 1] its closest segment parameter,
+//   y_s = max(0, 1 − d_s / margin),
+// J row s = −(1/margin) n_sᵀ ((1 − σ_s) ∂p_s/∂q + σ_s ∂p_{s+1}/∂q) where active (n_s the unit
+// vector from the line to the closest point). A segment crossing the line changes the winding
+// about it by a whole turn; this keeps the chain off the line also beyond the object's ends.
+// Throws std::invalid_argument for a bad chain, a zero direction or margin <= 0.
+std::unique_ptr<Feature> MakeLineClearanceFeature(const Robot& robot, int chain,
+                                                  const topology::Axis& line, double margin);
+
 // Collision avoidance against `env` (and self-collision per `options`) as a hinge per robot link
 // (dim = number of links, target 0): with the FCL proximity pairs p closer than `margin` (signed
 // distance d_p, witness points, normal n_p from b to a),

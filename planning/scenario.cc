@@ -29,6 +29,15 @@ Eigen::Matrix3Xd ObjectChain(const Scenario& s, const SpecName& object, const Sp
   return ObjectChainPoints(s.objects, o, c);
 }
 
+// The line through the first and last point of the feature's object chain.
+topology::Axis ObjectLine(const Scenario& s, const FeatureSpec& f) {
+  const Eigen::Matrix3Xd o = ObjectChain(s, f.object, f.object_chain);
+  topology::Axis line;
+  line.point = o.col(0);
+  line.direction = o.col(o.cols() - 1) - o.col(0);
+  return line;
+}
+
 std::unique_ptr<Feature> BuildFeature(const Scenario& s, const FeatureSpec& f) {
   const Robot& r = s.robot;
   auto link = [&] { return FindIn(f.link, FindLink, r); };
@@ -48,6 +57,7 @@ std::unique_ptr<Feature> BuildFeature(const Scenario& s, const FeatureSpec& f) {
       case FeatureType::kWrithe:
         return MakeWritheFeature(r, chain(), ObjectChain(s, f.object, f.object_chain), f.output);
       case FeatureType::kWinding: {
+        if (!f.object.name.empty()) return MakeWindingFeature(r, chain(), ObjectLine(s, f));
         topology::Axis axis;
         axis.point = f.axis_point;
         axis.direction = f.axis_direction;
@@ -55,6 +65,8 @@ std::unique_ptr<Feature> BuildFeature(const Scenario& s, const FeatureSpec& f) {
       }
       case FeatureType::kCollision:
         return MakeCollisionFeature(r, s.env, s.collision, f.margin);
+      case FeatureType::kLineClearance:
+        return MakeLineClearanceFeature(r, chain(), ObjectLine(s, f), f.margin);
     }
     throw std::invalid_argument("unknown feature type");
   });
@@ -68,6 +80,8 @@ Task BuildTask(const Scenario& s, const TaskSpec& spec, const Eigen::VectorXd& q
   task.name = spec.name;
   task.feature = BuildFeature(s, spec.feature);
   task.order = spec.order;
+  task.between = spec.between;
+  task.max_jump = spec.max_jump;
   const double mid = spec.precision, fin = spec.final_precision;
   const int dim = task.feature->dim();
   const TargetSpec& target = spec.target;

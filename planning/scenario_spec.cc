@@ -179,13 +179,27 @@ FeatureSpec ReadFeature(const JsonNode& n) {
       if (n.Has("output")) f.output = Parse<WritheOutput>(n.At("output"), "writhe output");
       break;
     case FeatureType::kWinding:
-      n.CheckKeys({"type", "chain", "axis_point", "axis_direction"});
+      n.CheckKeys({"type", "chain", "axis_point", "axis_direction", "object", "object_chain"});
       f.chain = Name(n, "chain");
-      f.axis_point = n.At("axis_point").Vec3();
-      f.axis_direction = n.At("axis_direction").Vec3();
+      if (n.Has("object") || n.Has("object_chain")) {
+        if (n.Has("axis_point") || n.Has("axis_direction"))
+          n.Fail("give either axis_point and axis_direction or object and object_chain");
+        f.object = Name(n, "object");
+        f.object_chain = Name(n, "object_chain");
+      } else {
+        f.axis_point = n.At("axis_point").Vec3();
+        f.axis_direction = n.At("axis_direction").Vec3();
+      }
       break;
     case FeatureType::kCollision:
       n.CheckKeys({"type", "margin"});
+      f.margin = n.Number("margin", 0.05);
+      break;
+    case FeatureType::kLineClearance:
+      n.CheckKeys({"type", "chain", "object", "object_chain", "margin"});
+      f.chain = Name(n, "chain");
+      f.object = Name(n, "object");
+      f.object_chain = Name(n, "object_chain");
       f.margin = n.Number("margin", 0.05);
       break;
   }
@@ -193,12 +207,17 @@ FeatureSpec ReadFeature(const JsonNode& n) {
 }
 
 TaskSpec ReadTask(const JsonNode& n) {
-  n.CheckKeys({"name", "feature", "order", "target", "precision", "final_precision"});
+  n.CheckKeys({"name", "feature", "order", "between", "max_jump", "target", "precision",
+               "final_precision"});
   TaskSpec t;
   t.where = n.Where();
   t.name = n.String("name", t.name);
   t.feature = ReadFeature(n.At("feature"));
   if (n.Has("order")) t.order = static_cast<int>(n.At("order").Integer(0, 1));
+  if (n.Has("between")) t.between = static_cast<int>(n.At("between").Integer(0, 64));
+  if (t.between > 0 && t.order != 0) n.Fail("\"between\" needs an order-0 task");
+  t.max_jump = n.Number("max_jump", 0.0, 0.0, kMaxWeight);
+  if (t.max_jump > 0 && t.order != 0) n.Fail("\"max_jump\" needs an order-0 task");
   t.precision = n.Number("precision", 0.0, 0.0, kMaxWeight);
   t.final_precision = n.Number("final_precision", t.precision, 0.0, kMaxWeight);
   if (t.precision < 0 || t.final_precision < 0) n.Fail("precisions must be >= 0");

@@ -57,6 +57,10 @@
 //                            "interpolate")
 //     precision     number   ρ for t < T, >= 0, default 0
 //     final_precision number ρ at t = T, >= 0, default = precision
+//     between       integer  K in 0..64, default 0 (order-0 tasks): AICO also evaluates the task
+//                            at the K states interpolated between neighbouring slices (Task)
+//     max_jump      number   > 0 (order-0 tasks of dim 1): AICO rejects sweeps that add jumps of
+//                            the feature by max_jump or more between neighbouring states (Task)
 //   final_pose      object   the goal q̂_T (thesis §4.2.2; also the RRT goal), default: the start.
 //                            tasks: [task names] (required); alpha: default 0.05; prior_scale:
 //                            default 1; init: "start" (default) | "unwrapped" (the coil
@@ -102,8 +106,12 @@
 //   box             link (required), offset [3] (default 0), center [3], half_extent [3]
 //                   (required), margin (m, default 0)
 //   writhe          chain, object, object_chain (required), output: "matrix" (default) | "total"
-//   winding         chain, axis_point [3], axis_direction [3] (all required)
+//   winding         chain (required), and either axis_point [3] and axis_direction [3], or
+//                   object and object_chain (the line through that chain's first and last point)
 //   collision       margin (m, default 0.05)
+//   line_clearance  chain, object, object_chain (required), margin (m, default 0.05): the robot
+//                   chain's segments kept `margin` off the line through the first and last point
+//                   of the object chain (MakeLineClearanceFeature)
 #pragma once
 
 #include <Eigen/Core>
@@ -177,7 +185,8 @@ enum class FeatureType {
   kBox,
   kWrithe,
   kWinding,
-  kCollision
+  kCollision,
+  kLineClearance
 };
 inline constexpr EnumName<FeatureType> kFeatureTypeNames[] = {
     {FeatureType::kPosition, "position"},
@@ -188,6 +197,7 @@ inline constexpr EnumName<FeatureType> kFeatureTypeNames[] = {
     {FeatureType::kWrithe, "writhe"},
     {FeatureType::kWinding, "winding"},
     {FeatureType::kCollision, "collision"},
+    {FeatureType::kLineClearance, "line_clearance"},
 };
 constexpr std::span<const EnumName<FeatureType>> EnumNames(FeatureType) {
   return kFeatureTypeNames;
@@ -230,6 +240,8 @@ struct TaskSpec {
   std::string name = "task";
   FeatureSpec feature;
   int order = 0;
+  int between = 0;
+  double max_jump = 0.0;
   double precision = 0.0;
   double final_precision = 0.0;
   TargetSpec target;

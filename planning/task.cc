@@ -1,5 +1,6 @@
 #include "planning/task.h"
 
+#include <cmath>
 #include <stdexcept>
 #include <string>
 
@@ -62,6 +63,11 @@ void ValidateProblem(const MotionProblem& p) {
     }
     if (task.order != 0 && task.order != 1)
       throw std::invalid_argument(who + ": order must be 0|1");
+    if (task.between < 0 || (task.between > 0 && task.order != 0))
+      throw std::invalid_argument(who + ": between must be >= 0 (and 0 for order-1 tasks)");
+    if (!(task.max_jump >= 0.0) ||
+        (task.max_jump > 0.0 && (task.order != 0 || task.feature->dim() != 1)))
+      throw std::invalid_argument(who + ": max_jump must be >= 0 (and 0 unless order 0, dim 1)");
   }
 }
 
@@ -84,6 +90,52 @@ void EvaluateTasks(const MotionProblem& problem, int t, const Eigen::VectorXd& q
     task.feature->Eval(*problem.robot, ws->kin, ws->data[i].get(), ws->y[i],
                        jacobians ? &ws->J[i] : nullptr);
   }
+}
+
+void EvaluateTask(const MotionProblem& problem, int i, const Eigen::VectorXd& q, bool jacobians,
+                  TaskWorkspace* ws) {
+  ForwardKinematics(*problem.robot, q, &ws->kin);
+  ++ws->evaluations;
+  const Task& task = problem.tasks[static_cast<size_t>(i)];
+  task.feature->Eval(*problem.robot, ws->kin, ws->data[i].get(), ws->y[i],
+                     jacobians ? &ws->J[i] : nullptr);
+}
+
+double BetweenCost(const MotionProblem& problem, int t, const Eigen::VectorXd& q_prev,
+                   const Eigen::VectorXd& q, TaskWorkspace* ws) {
+  double cost = 0.0;
+  for (size_t i = 0; i < problem.tasks.size(); ++i) {
+    const Task& task = problem.tasks[i];
+    if (task.between <= 0 || task.precision[t] <= 0.0) continue;
+    for (int k = 1; k <= task.between; ++k) {
+      const double alpha = static_cast<double>(k) / (task.between + 1);
+      EvaluateTask(problem, static_cast<int>(i), (1.0 - alpha) * q_prev + alpha * q, false, ws);
+      cost += task.precision[t] * (task.target.col(t) - ws->y[i]).squaredNorm();
+    }
+  }
+  return cost;
+}
+
+int CountJumps(const MotionProblem& problem, const Eigen::MatrixXd& q, TaskWorkspace* ws) {
+  int jumps = 0;
+  for (size_t i = 0; i < problem.tasks.size(); ++i) {
+    const Task& task = problem.tasks[i];
+    if (task.max_jump <= 0.0) continue;
+    const int task_index = static_cast<int>(i);
+    EvaluateTask(problem, task_index, q.col(0), false, ws);
+    double prev = ws->y[i][0];
+    for (Eigen::Index t = 1; t < q.cols(); ++t) {
+      for (int k = 1; k <= task.between + 1; ++k) {
+        const double alpha = static_cast<double>(k) / (task.between + 1);
+        EvaluateTask(problem, task_index, (1.0 - alpha) * q.col(t - 1) + alpha * q.col(t), false,
+                     ws);
+        const double y = ws->y[i][0];
+        if (std::abs(y - prev) >= task.max_jump) ++jumps;
+        prev = y;
+      }
+    }
+  }
+  return jumps;
 }
 
 double TaskCost(const MotionProblem& problem, int t, const Eigen::VectorXd& qdot,

@@ -3,6 +3,8 @@
 // Cost of a trajectory x_{0:T} (x = q, or x = (q, q̇) in the dynamic variant):
 //   C = Σ_t Σ_i ρ_{i,t} ||y*_{i,t} − φ_i(q_t)||²          (order-0 tasks)
 //     + Σ_t Σ_i ν_{i,t} ||y*_{i,t} − J_i(q_t) q̇_t||²      (order-1 tasks, dynamic variant only)
+//     + Σ_t Σ_k ρ_{i,t} ||y*_{i,t} − φ_i(q_t(α_k))||²   (tasks with `between` > 0: states between
+//                                                    slices t − 1 and t, see Task::between)
 //     + control cost: kinematic Σ_t ||q_{t+1} − q_t||²_W, dynamic Σ_t (h/τ) ||q̇_{t+1} − q̇_t||²_W
 // with τ = duration / T and W = w_rate·diag(metric) (docs/methods.md §4).
 #pragma once
@@ -24,6 +26,16 @@ struct Task {
   Eigen::MatrixXd target;            // dim × (T+1): column t = y*_t
   Eigen::VectorXd precision;         // size T+1: ρ_t (0 = inactive at t)
   int order = 0;                     // 0: position term; 1: velocity term (dynamic variant)
+  // Order-0 tasks only: K >= 0 extra states per step. The task is also evaluated between
+  // neighbouring slices, at q_t(α_k) = (1 − α_k) q_{t−1} + α_k q_t with α_k = k/(K+1), k = 1..K
+  // (target y*_t, precision ρ_t), adding Σ_k ρ_t ||y*_t − φ(q_t(α_k))||² per step t = 1..T to
+  // the cost, so e.g. collision is seen on the straight joint-space motion between slices.
+  int between = 0;
+  // > 0 (order-0 tasks of dim 1, e.g. the winding about a pole's line): a continuity guard, not a
+  // cost. AICO rejects a sweep whose beliefs have more jumps |Δφ| >= max_jump between neighbouring
+  // states (slices and the `between` states) than the beliefs before it: a jump is a change of
+  // homotopy class (the arm tunnelling through the pole between slices), which no local cost sees.
+  double max_jump = 0.0;
 };
 
 // target_t = y for all t; precision_t = `precision` for all t.
@@ -71,6 +83,21 @@ struct TaskWorkspace {
 // tasks) into ws->y[i] (and ws->J[i] if `jacobians`). No allocation.
 void EvaluateTasks(const MotionProblem& problem, int t, const Eigen::VectorXd& q, bool jacobians,
                    TaskWorkspace* ws);
+
+// ForwardKinematics at q, then task i alone into ws->y[i] (and ws->J[i] if `jacobians`).
+void EvaluateTask(const MotionProblem& problem, int i, const Eigen::VectorXd& q, bool jacobians,
+                  TaskWorkspace* ws);
+
+// The between-slice part of the cost of step t (1 <= t <= T) from slice t − 1 at q_prev to slice
+// t at q: Σ_i Σ_k ρ_{i,t} ||y*_{i,t} − φ_i(q_t(α_k))||² over the tasks with between > 0 (see
+// Task). Evaluates through `ws` (overwrites its kinematics and those tasks' y and J).
+double BetweenCost(const MotionProblem& problem, int t, const Eigen::VectorXd& q_prev,
+                   const Eigen::VectorXd& q, TaskWorkspace* ws);
+
+// Number of jumps of the tasks with max_jump > 0 along q (n × (T+1)): per step t and task i,
+// the neighbouring pairs among φ_i(q_{t−1}), φ_i(q_t(α_1)), ..., φ_i(q_t(α_K)), φ_i(q_t) (K =
+// between_i) whose values differ by max_jump_i or more. Evaluates through `ws`.
+int CountJumps(const MotionProblem& problem, const Eigen::MatrixXd& q, TaskWorkspace* ws);
 
 // Task part of the cost at step t from the last EvaluateTasks(t, q, jacobians = true, ws):
 // Σ ρ||y* − φ||² over order-0 tasks + Σ ν||y* − J q̇||² over order-1 tasks (q̇ may be empty: 0).

@@ -116,12 +116,110 @@ INSTANTIATE_TEST_SUITE_P(KinematicAndDynamic, AicoPlanarTest, ::testing::Values(
                            return info.param ? std::string("Dynamic") : std::string("Kinematic");
                          });
 
+// A task seen between the slices (Task::between): AICO's task message at slice t, linearised with
+// the neighbours held at their estimates, has the gradient 2 (R_t q̂_t − r_t) of the whole task
+// cost (slice and between terms, task.h) with respect to q_t; and the per-slice costs add up to
+// TrajectoryCost's task part.
+TEST_P(AicoPlanarTest, BetweenTaskMessageIsTheCostGradient) {
+  const Robot robot = ParseRobot(kPlanar2Link, "planar2", ".");
+  MotionProblem problem = ReachProblem(robot, GetParam(), Eigen::Vector3d(0.4, 1.2, 0.0));
+  Task via;
+  via.name = "via";
+  via.feature = MakePositionFeature(robot, FindLink(robot, "link2"), Eigen::Vector3d(kL2, 0, 0));
+  via.between = 3;
+  SetConstantTarget(&via, Eigen::Vector3d(1.0, 0.9, 0.0), 2.0, problem.num_steps);
+  problem.tasks.push_back(std::move(via));
+  const int T = problem.num_steps;
+  Trajectory init;
+  init.dt = tau(problem);
+  init.q.resize(2, T + 1);
+  for (int t = 0; t <= T; ++t) {
+    init.q.col(t) = problem.q0 + Eigen::Vector2d(0.9 * std::sin(0.4 * t), 0.05 * t);
+  }
+  AicoOptions options;
+  options.max_iterations = 1;
+  const AicoSolver solver(problem, options, &init);
+  const AicoState& st = solver.state();
+  Eigen::MatrixXd q(2, T + 1), qdot(2, T + 1);
+  for (int t = 0; t <= T; ++t) {
+    q.col(t) = st.xhat[t].head(2);
+    qdot.col(t) = st.xhat[t].tail(2);
+  }
+  TaskWorkspace tw(problem);
+  double task_cost = 0.0;
+  TrajectoryCost(problem, q, qdot, &tw, &task_cost);
+  double sum = 0.0;
+  for (int t = 0; t <= T; ++t) sum += st.task_cost[t];
+  EXPECT_NEAR(sum, task_cost, 1e-9 * std::max(1.0, task_cost));
+  const double h = 1e-6;
+  for (int t : {1, 7, T - 1, T}) {
+    const Eigen::Vector2d grad = 2.0 * (st.R[t] * st.xhat[t] - st.r[t]).head(2);
+    for (int k = 0; k < 2; ++k) {
+      Eigen::MatrixXd qp = q, qm = q;
+      qp(k, t) += h;
+      qm(k, t) -= h;
+      double cp = 0.0, cm = 0.0;
+      TrajectoryCost(problem, qp, qdot, &tw, &cp);
+      TrajectoryCost(problem, qm, qdot, &tw, &cm);
+      EXPECT_NEAR(grad[k], (cp - cm) / (2 * h), 1e-5 * std::max(1.0, std::abs(grad[k])))
+          << "slice " << t << " dof " << k;
+    }
+  }
+}
+
+// y = q_0 (dim 1): a feature whose jumps are easy to place.
+class FirstJoint : public Feature {
+ public:
+  int dim() const override { return 1; }
+  std::string name() const override { return "first_joint"; }
+  void Eval(const Robot& robot, const KinematicsData& kin, FeatureData*,
+            Eigen::Ref<Eigen::VectorXd> y, Eigen::MatrixXd* J) const override {
+    y[0] = kin.q[0];
+    if (J != nullptr) {
+      J->setZero(1, num_dofs(robot));
+      (*J)(0, 0) = 1.0;
+    }
+  }
+};
+
+TEST(Aico, CountJumpsSeesTheStatesBetweenSlices) {
+  const Robot robot = ParseRobot(kPlanar2Link, "planar2", ".");
+  MotionProblem problem = ReachProblem(robot, false, Eigen::Vector3d(0.4, 1.2, 0.0));
+  problem.num_steps = 2;
+  problem.tasks.clear();
+  Task guard;
+  guard.name = "guard";
+  guard.feature = std::make_unique<FirstJoint>();
+  SetConstantTarget(&guard, Eigen::VectorXd::Zero(1), 0.0, problem.num_steps);
+  guard.between = 1;  // halves each step
+  guard.max_jump = 0.4;
+  problem.tasks.push_back(std::move(guard));
+  ValidateProblem(problem);
+  Eigen::MatrixXd q(2, 3);
+  q << 0.0, 0.1, 1.0,  //
+      0.0, 0.0, 0.0;
+  TaskWorkspace ws(problem);
+  EXPECT_EQ(CountJumps(problem, q, &ws), 2);  // 0.9 in two halves of 0.45
+  problem.tasks[0].max_jump = 0.5;
+  EXPECT_EQ(CountJumps(problem, q, &ws), 0);
+  problem.tasks[0].between = 0;
+  EXPECT_EQ(CountJumps(problem, q, &ws), 1);  // the whole step
+  // Only order-0 tasks of dim 1.
+  problem.tasks[0].feature = MakeJointPositionFeature(robot);
+  problem.tasks[0].target.setZero(2, 3);
+  EXPECT_THROW(ValidateProblem(problem), std::invalid_argument);
+}
+
 TEST(Aico, InvalidProblemThrows) {
   const Robot robot = ParseRobot(kPlanar2Link, "planar2", ".");
   MotionProblem problem = ReachProblem(robot, true, Eigen::Vector3d(0.4, 1.2, 0));
   AicoWorkspace ws(problem);
   problem.tasks[0].target.resize(2, problem.num_steps + 1);
   EXPECT_THROW(SolveAico(problem, AicoOptions{}, &ws), std::invalid_argument);
+  MotionProblem velocity = ReachProblem(robot, true, Eigen::Vector3d(0.4, 1.2, 0));
+  velocity.tasks[0].order = 1;
+  velocity.tasks[0].between = 2;  // only order-0 tasks are seen between slices
+  EXPECT_THROW(ValidateProblem(velocity), std::invalid_argument);
 }
 
 }  // namespace

@@ -48,6 +48,7 @@ std::vector<FeatureCase> AllFeatureCases(const FeatureFixture& f) {
   cases.push_back({"writhe_matrix", MakeWritheFeature(r, arm, ring, WritheOutput::kMatrix)});
   cases.push_back({"writhe_total", MakeWritheFeature(r, finger, ring, WritheOutput::kTotal)});
   cases.push_back({"winding", MakeWindingFeature(r, arm, axis)});
+  cases.push_back({"line_clearance", MakeLineClearanceFeature(r, arm, axis, 2.0)});
   CollisionOptions options;
   // Hand self-contacts penetrate at random q (contact depth is not smooth), and FCL's witness
   // points of mesh-vs-primitive distances come back in swapped order: check primitives only.

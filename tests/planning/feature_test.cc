@@ -66,7 +66,8 @@ TEST_P(FeatureJacobianTest, MatchesCentralDifferences) {
     }
     const double scale = std::max(1.0, Jfd.lpNorm<Eigen::Infinity>());
     // Hinges and FCL distances can switch pair sets within ±h: skip such (rare) trials.
-    const bool kink = (c.name == "collision" || c.name == "joint_limits" || c.name == "box") &&
+    const bool kink = (c.name == "collision" || c.name == "joint_limits" || c.name == "box" ||
+                       c.name == "line_clearance") &&
                       (J - Jfd).lpNorm<Eigen::Infinity>() > 5 * tol * scale;
     if (kink) {
       if (getenv("FD_DEBUG"))
@@ -97,6 +98,10 @@ TEST(Features, BadArgumentsThrow) {
   EXPECT_THROW(MakeWritheFeature(f.robot, 0, Eigen::Matrix3Xd(3, 1), WritheOutput::kTotal),
                std::invalid_argument);
   EXPECT_THROW(MakeCollisionFeature(f.robot, f.env, {}, 0.0), std::invalid_argument);
+  EXPECT_THROW(MakeLineClearanceFeature(f.robot, 0, topology::Axis{}, 0.0), std::invalid_argument);
+  topology::Axis no_direction;
+  no_direction.direction.setZero();
+  EXPECT_THROW(MakeLineClearanceFeature(f.robot, 0, no_direction, 0.1), std::invalid_argument);
   EXPECT_THROW(MakeBoxFeature(f.robot, 0, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(),
                               Eigen::Vector3d::Constant(0.01), 0.02),
                std::invalid_argument);

@@ -1,7 +1,8 @@
 // Scenario loader errors, and the end-to-end planning properties of the shipped scenarios:
-// unwrap from 90°, 270°, 360° and 720° (AICO, one attempt, JudgePlan success), reach_through_ring
-// (writhe + box only: inside the box, hand through the ring, writhe peak at the finger through the
-// ring), the box criterion without the margin, RRT paths collision-free, same seed → same report.
+// unwrap from 90°, 270°, 360°, 720° and 900°, and with the pole moved (AICO, one attempt,
+// JudgePlan success), reach_through_ring (writhe + box only: inside the box, hand through the
+// ring, writhe peak at the finger through the ring), the box criterion without the margin, RRT
+// paths collision-free, same seed → same report.
 #include "planning/scenario.h"
 
 #include <gtest/gtest.h>
@@ -17,6 +18,7 @@
 #include "planning/replan.h"
 #include "planning/robot_io.h"
 #include "planning/scenario_spec.h"
+#include "planning/unwrap_benchmark.h"
 #include "scenario_test_util.h"
 
 namespace planning {
@@ -68,6 +70,19 @@ TEST(ScenarioLoader, ErrorsNameTheJsonPath) {
                   MiniScenario(R"({"name": "x", "feature": {"type": "position", "link":
                   "sdh_palm"}, "target": {"type": "value", "value": [1, 2]}})"),
                   "tasks[0].target.value");
+  ExpectLoadError("between_order1.json",
+                  MiniScenario(R"({"name": "x", "feature": {"type": "joint_position"}, "order": 1,
+                  "between": 2})"),
+                  "tasks[0]");
+  ExpectLoadError("jump_dim3.json",
+                  MiniScenario(R"({"name": "x", "feature": {"type": "position", "link":
+                  "sdh_palm"}, "max_jump": 0.2})"),
+                  "max_jump");
+  ExpectLoadError("winding_two_lines.json",
+                  MiniScenario(R"({"name": "x", "feature": {"type": "winding", "chain": "arm",
+                  "axis_point": [0, 0, 0], "axis_direction": [0, 0, 1], "object": "pole",
+                  "object_chain": "axis"}})"),
+                  "tasks[0].feature");
   ExpectLoadError("unknown_link.json",
                   MiniScenario(R"({"name": "x", "feature": {"type": "position", "link":
                   "no_such_link"}})"),
@@ -248,6 +263,31 @@ TEST(UnwrapScenario, AicoUnwrapsFrom720Degrees) { CheckUnwrap(720.0); }
 // Regression: these tunnelled through the pole before the wider collision margin.
 TEST(UnwrapScenario, AicoUnwrapsFrom90Degrees) { CheckUnwrap(90.0); }
 TEST(UnwrapScenario, AicoUnwrapsFrom270Degrees) { CheckUnwrap(270.0); }
+// Regression: tunnelled through the pole between time slices before the between-slice collision
+// and line-clearance terms and the winding guard.
+TEST(UnwrapScenario, AicoUnwrapsFrom900Degrees) { CheckUnwrap(900.0); }
+
+// The pole moved by up to 3 cm perpendicular to its axis (bench unwrap --perturb 0.03): AICO still
+// unwraps in one attempt (seeds 0 and 1 of the benchmark's offsets).
+TEST(UnwrapScenario, AicoUnwrapsWithThePoleMoved) {
+  UnwrapBenchmarkOptions o;
+  o.scenario_path = kAssets + "scenarios/unwrap.json";
+  o.angles_deg = {450.0};
+  o.planners = {Planner::kAico};
+  o.seeds = 2;
+  o.perturb_m = 0.03;
+  const UnwrapBenchmarkResult r = RunUnwrapBenchmark(o);
+  ASSERT_EQ(r.runs.size(), 2u);
+  for (const UnwrapRun& run : r.runs) {
+    SCOPED_TRACE("seed " + std::to_string(run.seed));
+    EXPECT_GT(run.pole_offset.norm(), 0.0);
+    EXPECT_LE(run.pole_offset.norm(), 0.03 + 1e-12);
+    EXPECT_TRUE(run.report.success) << FailureReasonName(run.report.failure_reason);
+    EXPECT_EQ(run.report.attempts, 1);
+    EXPECT_LT(run.report.reach_error_m, 0.05);
+    EXPECT_LT(run.report.max_winding_jump_turns, 0.1);
+  }
+}
 
 // The thesis' set-up (§4.2, Fig. 4.4): writhe-matrix target of the hand chain × the ring loop and
 // "remain inside the box", besides collision, joint limits and the velocity regulariser; no reach
