@@ -89,6 +89,13 @@ void CheckAnalytic(const Capsule& a, const Capsule& b, const ProximityPair& p) {
   }
 }
 
+// The closed-form answer for a and b, checked by CheckAnalytic.
+ProximityPair Checked(const Capsule& a, const Capsule& b) {
+  const ProximityPair p = Query(a, b, true, nullptr);
+  CheckAnalytic(a, b, p);
+  return p;
+}
+
 Capsule At(double r, double len, const Eigen::Vector3d& xyz, const Eigen::Vector3d& axis) {
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
   pose.linear() = Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), axis).matrix();
@@ -99,8 +106,7 @@ Capsule At(double r, double len, const Eigen::Vector3d& xyz, const Eigen::Vector
 TEST(CapsuleDistance, ParallelSideBySideTakesTheMiddleOfTheOverlap) {
   const Capsule a = At(0.05, 0.4, Eigen::Vector3d(0, 0, 0), Eigen::Vector3d::UnitZ());
   const Capsule b = At(0.03, 0.4, Eigen::Vector3d(0.3, 0, 0.1), Eigen::Vector3d::UnitZ());
-  const ProximityPair p = Query(a, b, true, nullptr);
-  CheckAnalytic(a, b, p);
+  const ProximityPair p = Checked(a, b);
   EXPECT_NEAR(p.distance, 0.22, 1e-12);
   EXPECT_TRUE(p.point_a.isApprox(Eigen::Vector3d(0.05, 0, 0.05), 1e-12));
   EXPECT_TRUE(p.point_b.isApprox(Eigen::Vector3d(0.27, 0, 0.05), 1e-12));
@@ -115,8 +121,7 @@ TEST(CapsuleDistance, ParallelSideBySideTakesTheMiddleOfTheOverlap) {
 TEST(CapsuleDistance, CollinearEndToEnd) {
   const Capsule a = At(0.05, 0.2, Eigen::Vector3d(0, 0, 0), Eigen::Vector3d::UnitZ());
   const Capsule b = At(0.05, 0.2, Eigen::Vector3d(0, 0, 0.4), Eigen::Vector3d::UnitZ());
-  const ProximityPair p = Query(a, b, true, nullptr);
-  CheckAnalytic(a, b, p);
+  const ProximityPair p = Checked(a, b);
   EXPECT_NEAR(p.distance, 0.1, 1e-12);
   EXPECT_TRUE(p.normal.isApprox(Eigen::Vector3d(0, 0, -1), 1e-12));
   EXPECT_TRUE(p.point_a.isApprox(Eigen::Vector3d(0, 0, 0.15), 1e-12));
@@ -125,8 +130,7 @@ TEST(CapsuleDistance, CollinearEndToEnd) {
 TEST(CapsuleDistance, CrossingAxesPenetrateByBothRadiiAlongTheCrossProduct) {
   const Capsule a = At(0.05, 0.4, Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitX());
   const Capsule b = At(0.03, 0.4, Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitY());
-  const ProximityPair p = Query(a, b, true, nullptr);
-  CheckAnalytic(a, b, p);
+  const ProximityPair p = Checked(a, b);
   EXPECT_NEAR(p.distance, -0.08, 1e-12);
   EXPECT_NEAR(std::abs(p.normal.z()), 1.0, 1e-12);
 }
@@ -134,21 +138,18 @@ TEST(CapsuleDistance, CrossingAxesPenetrateByBothRadiiAlongTheCrossProduct) {
 TEST(CapsuleDistance, CoaxialOverlapAndZeroLength) {
   const Capsule a = At(0.05, 0.4, Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitZ());
   const Capsule b = At(0.03, 0.2, Eigen::Vector3d(0, 0, 0.1), Eigen::Vector3d::UnitZ());
-  const ProximityPair p = Query(a, b, true, nullptr);
-  CheckAnalytic(a, b, p);
+  const ProximityPair p = Checked(a, b);
   EXPECT_NEAR(p.distance, -0.08, 1e-12);
   EXPECT_NEAR(p.normal.z(), 0.0, 1e-12);  // perpendicular to the common axis
   // Zero-length capsules are spheres.
   const Capsule s1 = At(0.1, 0.0, Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitZ());
   const Capsule s2 = At(0.1, 0.0, Eigen::Vector3d(1, 0, 0), Eigen::Vector3d::UnitY());
-  const ProximityPair q = Query(s1, s2, true, nullptr);
-  CheckAnalytic(s1, s2, q);
+  const ProximityPair q = Checked(s1, s2);
   EXPECT_NEAR(q.distance, 0.8, 1e-12);
   EXPECT_TRUE(q.normal.isApprox(Eigen::Vector3d(-1, 0, 0), 1e-12));
   // A sphere against a segment's middle.
   const Capsule s3 = At(0.1, 0.0, Eigen::Vector3d(0.3, 0, 0.05), Eigen::Vector3d::UnitX());
-  const ProximityPair r = Query(a, s3, true, nullptr);
-  CheckAnalytic(a, s3, r);
+  const ProximityPair r = Checked(a, s3);
   EXPECT_NEAR(r.distance, 0.15, 1e-12);
 }
 
