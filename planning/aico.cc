@@ -332,45 +332,52 @@ Trajectory Aico::Rollout() {
   Eigen::VectorXd g(n_), q(n_), step(n_), prev(n_), trial(n_);
   Eigen::LLT<Eigen::MatrixXd> llt(n_);
   const double rho_p = o_.rollout_prior;
-  // Cost at q (evaluates tasks with Jacobians into tw) and, if wanted, the GN system at q.
-  auto cost_at = [&](int t, const Eigen::VectorXd& x, bool system) {
+  // Cost at x; evaluates the tasks with Jacobians into tw and their residuals into err_, which
+  // system() then turns into the GN system at the same x without evaluating again.
+  auto cost_at = [&](int t, const Eigen::VectorXd& x) {
     EvaluateTasks(p_, t, x, true, &tw);
     double c = rho_p * (x - prev).squaredNorm();
-    if (system) {
-      H.setZero();
-      H.diagonal().setConstant(rho_p);
-      g = rho_p * (x - prev);
-    }
     for (size_t i = 0; i < p_.tasks.size(); ++i) {
       const Task& task = p_.tasks[i];
       const double rho = task.precision[t];
       if (rho <= 0.0 || task.order != 0) continue;
       err_[i] = task.target.col(t) - tw.y[i];
       c += rho * err_[i].squaredNorm();
-      if (system) {
-        H.noalias() += rho * tw.J[i].transpose() * tw.J[i];
-        g.noalias() -= rho * tw.J[i].transpose() * err_[i];
-      }
     }
     return c;
+  };
+  auto system = [&](int t, const Eigen::VectorXd& x) {
+    H.setZero();
+    H.diagonal().setConstant(rho_p);
+    g = rho_p * (x - prev);
+    for (size_t i = 0; i < p_.tasks.size(); ++i) {
+      const Task& task = p_.tasks[i];
+      const double rho = task.precision[t];
+      if (rho <= 0.0 || task.order != 0) continue;
+      H.noalias() += rho * tw.J[i].transpose() * tw.J[i];
+      g.noalias() -= rho * tw.J[i].transpose() * err_[i];
+    }
   };
   for (int t = 1; t <= T_; ++t) {
     prev = out.q.col(t - 1);
     q = prev;
     double mu = 1e-3;
-    double cost = cost_at(t, q, true);
+    double cost = cost_at(t, q);
+    system(t, q);
     for (int it = 0; it < o_.rollout_iterations; ++it) {
       H.diagonal().array() += mu;
       llt.compute(H);
-      step = -llt.solve(g);
+      step = -g;
+      llt.solveInPlace(step);
       const double norm = step.norm();
       if (norm > o_.max_step) step *= o_.max_step / norm;
       trial = q + step;
-      const double c = cost_at(t, trial, false);
+      const double c = cost_at(t, trial);
       if (std::isfinite(c) && c < cost) {
         q = trial;
         mu = std::max(1e-6, mu / 5.0);
-        cost = cost_at(t, q, true);
+        cost = c;
+        system(t, q);
         if (step.lpNorm<Eigen::Infinity>() < 1e-4) break;
       } else {
         H.diagonal().array() -= mu;

@@ -84,6 +84,13 @@ std::shared_ptr<fcl::CollisionGeometryd> MakeGeometry(const Robot& model, const 
   throw std::logic_error("unknown geometry kind");
 }
 
+// Marks a capsule shape for the closed-form distance (if enabled).
+void SetCapsule(const Geometry& g, const CollisionOptions& options, FclShape* shape) {
+  if (!options.analytic_capsules || g.kind != Geometry::Kind::kCapsule) return;
+  shape->capsule_radius = g.size[0];
+  shape->capsule_half_length = 0.5 * g.size[1];
+}
+
 // Shape pointer stored as FCL user data.
 const FclShape* ShapeOf(const fcl::CollisionObjectd* o) {
   return static_cast<const FclShape*>(o->getUserData());
@@ -129,17 +136,95 @@ bool CollideCallback(fcl::CollisionObjectd* o1, fcl::CollisionObjectd* o2, void*
   return hit;
 }
 
-void UpdateRobot(const KinematicsData& kin, FclScene* s) {
+// Moves the robot's shapes to `kin` (transforms and world AABBs); the broadphase tree is refreshed
+// only for boolean checks (`broadphase`), distance queries test the boxes pair by pair.
+void UpdateRobot(const KinematicsData& kin, FclScene* s, bool broadphase) {
   for (FclShape& shape : s->robot) {
     shape.obj->setTransform(kin.world_from_link[shape.link] * shape.link_from_shape);
     shape.obj->computeAABB();
   }
-  s->robot_manager.update();
+  if (broadphase) s->robot_manager.update();
+}
+
+// Closest points P = a0 + s·u and Q = b0 + t·v (s, t ∈ [0, 1]) of the segments a0 + [0, 1]·u and
+// b0 + [0, 1]·v: minimises |P − Q|² = |w + s·u − t·v|² with w = a0 − b0, whose stationary point
+// solves [u·u, −u·v; −u·v, v·v] (s, t) = (−u·w, v·w); the clamped solution is found by fixing s,
+// clamping t, and re-solving s for the clamped t. Parallel segments (the 2 × 2 system is
+// singular) take the middle of their overlap, so the witness points move continuously with the
+// pose; point-like segments (length² ≤ 1e-24) are handled as points.
+void ClosestSegmentPoints(const Eigen::Vector3d& a0, const Eigen::Vector3d& u,
+                          const Eigen::Vector3d& b0, const Eigen::Vector3d& v, Eigen::Vector3d* p,
+                          Eigen::Vector3d* q) {
+  constexpr double kTiny = 1e-24;
+  const Eigen::Vector3d w = a0 - b0;
+  const double uu = u.squaredNorm(), vv = v.squaredNorm(), uv = u.dot(v);
+  const double uw = u.dot(w), vw = v.dot(w);
+  const auto clamp01 = [](double x) { return std::clamp(x, 0.0, 1.0); };
+  double s = 0.0, t = 0.0;
+  if (uu <= kTiny && vv <= kTiny) {
+    // Two points.
+  } else if (uu <= kTiny) {
+    t = clamp01(vw / vv);
+  } else if (vv <= kTiny) {
+    s = clamp01(-uw / uu);
+  } else {
+    const double det = uu * vv - uv * uv;  // = |u × v|² ≥ 0
+    if (det > 1e-12 * uu * vv) {
+      s = clamp01((uv * vw - vv * uw) / det);
+    } else {
+      // Parallel: b0 and b0 + v project to s0, s1 on a's line; take the middle of the overlap
+      // of [s0, s1] with [0, 1], or the nearer end of a when they do not overlap.
+      const double s0 = -uw / uu, s1 = (uv - uw) / uu;
+      const double lo = std::max(0.0, std::min(s0, s1)), hi = std::min(1.0, std::max(s0, s1));
+      s = lo <= hi ? 0.5 * (lo + hi) : (std::max(s0, s1) < 0.0 ? 0.0 : 1.0);
+    }
+    t = (uv * s + vw) / vv;
+    if (t < 0.0 || t > 1.0) {
+      t = clamp01(t);
+      s = clamp01((uv * t - uw) / uu);
+    }
+  }
+  *p = a0 + s * u;
+  *q = b0 + t * v;
+}
+
+// Signed distance of two capsules (core segments along their local z, FclShape radius and half
+// length) in closed form: |P − Q| − r_a − r_b with P, Q the closest points of the core segments.
+// The normal is (P − Q)/|P − Q| (from b to a); when the segments meet it is u × v, or a vector
+// perpendicular to a's axis for parallel ones. Witness points lie on the two surfaces along the
+// normal; a penetrating pair reports the middle of its two surface points as both witnesses.
+void CapsuleDistance(const FclShape& a, const FclShape& b, ProximityPair* out) {
+  const Eigen::Vector3d ua = a.obj->getRotation().col(2), ub = b.obj->getRotation().col(2);
+  const Eigen::Vector3d a0 = a.obj->getTranslation() - a.capsule_half_length * ua;
+  const Eigen::Vector3d b0 = b.obj->getTranslation() - b.capsule_half_length * ub;
+  const Eigen::Vector3d u = 2.0 * a.capsule_half_length * ua;
+  const Eigen::Vector3d v = 2.0 * b.capsule_half_length * ub;
+  Eigen::Vector3d p, q;
+  ClosestSegmentPoints(a0, u, b0, v, &p, &q);
+  const Eigen::Vector3d diff = p - q;
+  const double len = diff.norm();
+  Eigen::Vector3d n;
+  if (len > 1e-12) {
+    n = diff / len;
+  } else {
+    n = ua.cross(ub);
+    if (n.norm() < 1e-9) n = ua.unitOrthogonal();
+    n.normalize();
+  }
+  out->distance = len - a.capsule_radius - b.capsule_radius;
+  out->normal = n;
+  out->point_a = p - a.capsule_radius * n;
+  out->point_b = q + b.capsule_radius * n;
+  if (out->distance < 0.0) out->point_a = out->point_b = 0.5 * (out->point_a + out->point_b);
 }
 
 // Signed distance between two shapes with witness points and the normal from b to a.
 void ShapeDistance(const FclShape& a, const FclShape& b, CollisionData* coll, ProximityPair* out) {
   ++coll->narrow_phase_calls;
+  if (a.capsule_radius > 0.0 && b.capsule_radius > 0.0) {
+    CapsuleDistance(a, b, out);
+    return;
+  }
   fcl::DistanceRequestd request(true, true);
   fcl::DistanceResultd result;
   double d = 0.0;
@@ -208,7 +293,7 @@ void ForEachClosePair(const Robot& robot, const KinematicsData& kin, double marg
   FclScene& s = *coll->scene;
   assert(kin.world_from_link.size() == robot.links.size());
   (void)robot;
-  UpdateRobot(kin, &s);
+  UpdateRobot(kin, &s, false);
   ++coll->queries;
   for (const FclPair& p : s.pairs) {
     const FclShape& a = s.robot[p.a];
@@ -309,6 +394,7 @@ CollisionData::CollisionData(const Robot& robot, const Environment& env,
       shape.obj = std::make_unique<fcl::CollisionObjectd>(
           MakeGeometry(robot, g, options.exact_meshes ? nullptr : &hulls));
       shape.obj->setUserData(&shape);
+      SetCapsule(g, options, &shape);
     }
   }
   // Environment shapes at their fixed world poses.
@@ -334,6 +420,7 @@ CollisionData::CollisionData(const Robot& robot, const Environment& env,
                                 g.link_from_geometry);
         shape.obj->computeAABB();
         shape.obj->setUserData(&shape);
+        SetCapsule(g, options, &shape);
       }
     }
   }
@@ -391,7 +478,7 @@ bool InCollision(const Robot& robot, const KinematicsData& kin, CollisionData* c
   FclScene& s = *coll->scene;
   assert(kin.world_from_link.size() == robot.links.size());
   (void)robot;
-  UpdateRobot(kin, &s);
+  UpdateRobot(kin, &s, true);
   ++coll->queries;
   BroadphaseQuery q{&s, coll, false, {}};
   if (s.environment && !s.env.empty()) s.robot_manager.collide(&s.env_manager, &q, CollideCallback);
@@ -426,13 +513,13 @@ double MinDistance(const Robot& robot, const KinematicsData& kin, CollisionData*
   FclScene& s = *coll->scene;
   assert(kin.world_from_link.size() == robot.links.size());
   (void)robot;
-  UpdateRobot(kin, &s);
+  UpdateRobot(kin, &s, false);
   ++coll->queries;
   // Branch and bound: a pair's distance is at least the gap between its bounding boxes, so pairs
   // are visited by increasing gap until the gap reaches the best distance found. Ties keep the
   // pair that comes first in the checked-pair order.
-  std::vector<std::pair<double, int>> order;
-  order.reserve(s.pairs.size());
+  std::vector<std::pair<double, int>>& order = s.order;
+  order.clear();
   for (size_t i = 0; i < s.pairs.size(); ++i) {
     const FclPair& p = s.pairs[i];
     const FclShape& b = p.env_pair ? s.env[p.b] : s.robot[p.b];

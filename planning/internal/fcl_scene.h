@@ -6,6 +6,7 @@
 
 #include <Eigen/Geometry>
 #include <memory>
+#include <utility>
 #include <vector>
 
 namespace planning::internal {
@@ -17,6 +18,10 @@ struct FclShape {
   int index = 0;    // position in FclScene::robot / env
   Eigen::Isometry3d link_from_shape = Eigen::Isometry3d::Identity();
   std::unique_ptr<fcl::CollisionObjectd> obj;
+  // Capsules answered in closed form (CollisionOptions::analytic_capsules): radius and half the
+  // length of the core segment along the shape's local z; radius 0 = not a capsule / use FCL.
+  double capsule_radius = 0.0;
+  double capsule_half_length = 0.0;
 };
 
 // A candidate pair for distance queries: shape indices (b into env if env_pair) and the AABB test
@@ -39,6 +44,7 @@ struct FclScene {
   bool self_collision = true;
   bool environment = true;
   std::vector<FclPair> pairs;  // every checked shape pair, ordered (self first, then by object)
+  std::vector<std::pair<double, int>> order;  // MinDistance scratch: (AABB gap, pair index)
   fcl::DynamicAABBTreeCollisionManagerd robot_manager;
   fcl::DynamicAABBTreeCollisionManagerd env_manager;
 };
