@@ -45,7 +45,9 @@ SimHand ClawHand(double closing_target) {
     double z = 0.0;
     for (int k = 0; k < 3; ++k) {
       SimHandLink l;
-      l.name = "f" + std::to_string(f) + "_" + std::to_string(k);
+      char name[32];  // "f%d_%d" of two ints fits in 25 bytes
+      std::snprintf(name, sizeof(name), "f%d_%d", f, k);
+      l.name = name;
       l.parent = parent;
       const Eigen::Vector3d base(fingers[f].x, 0.045 * fingers[f].side, z);
       l.world_from_link.translation() = base;
