@@ -208,26 +208,10 @@ def check_common(args):
         raise UsageError(f"-o: {args.output} exists and is not a folder")
 
 
-def affinity(client, todo, group):
-    """{run: [worker address]}: the runs of one group (group(run), e.g. the angle: the runs that
-    share a scenario set-up) go to the same worker, groups dealt round-robin in submission order,
-    so each worker sets a scenario up once instead of every worker setting up every scenario.
-    The restriction is loose (allow_other_workers): when a worker dies or idles, runs move on.
-    group None: no preference (the scheduler places every run)."""
-    workers = sorted(client.scheduler_info().get("workers", {}))
-    if group is None or not workers:
-        return {}
-    order = {}
-    for run in todo:
-        order.setdefault(group(run), len(order))
-    return {run: [workers[order[group(run)] % len(workers)]] for run in todo}
-
-
-def run_tasks(args, csv_path, header, runs, done, key, line, submit, label, group):
-    """Submits one task per run not yet in `done` (submit(client, run, workers) -> future, with
-    workers the preferred worker of the run's group, see affinity), appends each finished row to
-    csv_path (line(row), fsync'ed) and records it in done[key(row)]. Returns the number of runs
-    that raised."""
+def run_tasks(args, csv_path, header, runs, done, key, line, submit, label):
+    """Submits one task per run not yet in `done` (submit(client, run) -> future), appends each
+    finished row to csv_path (line(row), fsync'ed) and records it in done[key(row)]. Returns the
+    number of runs that raised."""
     todo = [r for r in runs if r not in done]
     if not todo:
         return 0
@@ -243,8 +227,7 @@ def run_tasks(args, csv_path, header, runs, done, key, line, submit, label, grou
                 f.write(header + "\n")
                 f.flush()
                 os.fsync(f.fileno())
-            where = affinity(client, todo, group)
-            futures = [submit(client, r, where.get(r)) for r in todo]
+            futures = [submit(client, r) for r in todo]
             count = len(runs) - len(todo)
             start = time.monotonic()
             for future in as_completed(futures):
@@ -306,24 +289,19 @@ def sweep_unwrap(args):
                 f"(seed {row['seed']}: offset {fmt_number(row['pole_offset_m'])} m); use another -o"
             )
 
-    def submit(client, run, workers):
+    def submit(client, run):
         # By reference (topoplan.sweep.run_unwrap), also when this file runs as __main__.
         from topoplan.sweep import run_unwrap as task
 
         return client.submit(
             task, float(run[0]), run[1], run[2], args.budget, args.seeds, args.perturb,
-            pure=False, retries=1, workers=workers, allow_other_workers=True,
+            pure=False, retries=1,
         )
-
-    def group(run):  # runs sharing one scenario set-up: the angle (and seed when perturbed)
-        return (run[0], run[2]) if args.perturb > 0 else run[0]
 
     def label(row):
         return f"{row['planner']} @ {fmt_number(row['angle_deg'])} deg seed {row['seed']}"
 
-    if run_tasks(
-        args, csv_path, CSV_HEADER, runs, done, unwrap_key, row_line, submit, label, group
-    ):
+    if run_tasks(args, csv_path, CSV_HEADER, runs, done, unwrap_key, row_line, submit, label):
         return 1
     rows = [done[r] for r in runs]
     figure = topoplan.unwrap_figure(rows, angles, planners, args.seeds)
@@ -447,21 +425,17 @@ def sweep_grasp(args):
     mu = fmt_number(args.mu)
     runs = [(g, m, s, mu) for g in grasps for m in methods for s in range(args.seeds)]
 
-    def submit(client, run, workers):
+    def submit(client, run):
         from topoplan.sweep import run_grasp as task
 
         return client.submit(
             task, run[0], run[1], run[2], args.mu, args.perturb, pure=False, retries=1
         )
 
-    group = None  # every grasp run sets its own transfer up: no set-up to share
-
     def label(row):
         return f"{row['grasp']} / {row['method']} seed {row['seed']}"
 
-    if run_tasks(
-        args, csv_path, GRASP_HEADER, runs, done, grasp_key, grasp_line, submit, label, group
-    ):
+    if run_tasks(args, csv_path, GRASP_HEADER, runs, done, grasp_key, grasp_line, submit, label):
         return 1
     summary = grasp_summary([done[r] for r in runs], args.perturb)
     summary_path = os.path.join(args.output, "grasp_summary.csv")
