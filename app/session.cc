@@ -125,47 +125,6 @@ void RunRecordingEnd(Output* out, Fn&& job) {
 
 namespace {
 
-// Adds one AICO solve to `out` as RunPlanner reports it (planning/planner.h): trajectory, status,
-// sweeps, cost, its collision queries plus those of validating the path at check_resolution, and
-// the verdict of JudgePlan. Returns whether the path is valid and meets the success criteria.
-bool AddAicoSolve(const planning::Scenario& s, const planning::AicoResult& r,
-                  planning::PlanResult* out) {
-  planning::PlanReport& rep = out->report;
-  out->trajectory = r.trajectory;
-  rep.status = r.status;
-  rep.iterations += r.iterations;
-  rep.cost = r.cost;
-  rep.cost_history = r.cost_history;
-  rep.collision_checks += r.collision_queries;
-  planning::CollisionData coll(s.robot, s.env, s.collision);
-  planning::KinematicsData kin(s.robot);
-  rep.path_collision_free = r.status != planning::SolveStatus::kInvalidInput &&
-                            planning::PathIsValid(r.trajectory, s.check_resolution,
-                                                  planning::ValidityChecker(s, &coll, &kin));
-  rep.collision_checks += coll.queries;
-  rep.narrow_phase_calls += coll.narrow_phase_calls;
-  const planning::PlanVerdict v = planning::JudgePlan(s, r.trajectory);
-  rep.start_writhe_total = planning::ReportWritheTotal(s, r.trajectory.q.col(0));
-  rep.final_writhe_total = v.final_writhe_total;
-  rep.path_length = planning::PathLength(r.trajectory);
-  rep.min_clearance_m = v.min_clearance_m;
-  rep.failure_reason = v.reason;
-  rep.failure_step = v.step;
-  rep.reach_error_m = v.reach_error_m;
-  rep.max_winding_jump_turns = v.max_winding_jump_turns;
-  rep.final_winding_turns = v.final_winding_turns;
-  rep.writhe_peak_row = v.writhe_peak_row;
-  rep.writhe_peak_col = v.writhe_peak_col;
-  rep.writhe_peak_value = v.writhe_peak_value;
-  rep.success = rep.path_collision_free && v.reason == planning::FailureReason::kNone;
-  if (!rep.success && rep.failure_reason == planning::FailureReason::kNone) {
-    rep.failure_reason = r.status == planning::SolveStatus::kDiverged
-                             ? planning::FailureReason::kDiverged
-                             : planning::FailureReason::kBudgetExhausted;
-  }
-  return rep.success;
-}
-
 // RunPlanner's AICO attempts (planning/planner.h), each an AicoSolver driven one Step() at a time
 // on the worker: `on_sweep(solver, step)` after every sweep (records it, then waits at the
 // worker's checkpoint while the step budget is used up). The trajectory equals RunPlanner's bit
@@ -183,8 +142,11 @@ planning::PlanResult RunSteppedAico(
     ++out.report.attempts;
     planning::AicoSolver solver(k > 0 ? later : s.problem, planning::AttemptOptions(s, k));
     while (!solver.done()) on_sweep(solver, solver.Step());
-    if (AddAicoSolve(s, solver.result(), &out)) break;
+    // The solver's own narrow-phase calls are not exposed by AicoSolver (0 here); the rest of the
+    // report is RunPlanner's.
+    if (planning::AddAicoAttempt(s, solver.result(), 0, &out)) break;
   }
+  planning::NameFailure(&out.report);
   out.report.start_writhe_total = planning::ReportWritheTotal(s, s.problem.q0);
   out.report.time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return out;
@@ -409,7 +371,9 @@ void Session::StartMove(const SessionCommand& c, Settings* settings) {
       planning::ReplanFrom(*scenario, elapsed, options, &ws, &plan, &a);
       planning::PlanResult r;
       r.report.planner = "aico (warm start)";
-      AddAicoSolve(*scenario, a, &r);
+      planning::AddAicoAttempt(*scenario, a, 0, &r);
+      planning::NameFailure(&r.report);
+      r.report.start_writhe_total = planning::ReportWritheTotal(*scenario, a.trajectory.q.col(0));
       std::lock_guard<std::mutex> lock(out->mutex);
       out->result = std::move(r);
       out->horizon = std::move(plan);

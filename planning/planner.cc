@@ -2,7 +2,6 @@
 
 #include <chrono>
 #include <cmath>
-#include <optional>
 #include <random>
 #include <stdexcept>
 
@@ -178,7 +177,7 @@ PlanResult RunPlanner(const Scenario& s, Planner planner, unsigned seed,
   const ValidityFn valid = ValidityChecker(s, &coll, &kin);
   const auto t0 = std::chrono::steady_clock::now();
   bool found = false;
-  std::optional<PlanVerdict> verdict;  // AICO: of the last attempt
+  bool judged = false;  // AICO: the report holds the last attempt's verdict
   if (planner == Planner::kAico) {
     // Attempt k: solve, then validate the path at the edge resolution (counted: a plan is only
     // usable once checked) and test the success criteria; the next attempt only on failure.
@@ -191,20 +190,8 @@ PlanResult RunPlanner(const Scenario& s, Planner planner, unsigned seed,
       const MotionProblem& problem = k == 0 ? s.problem : later;
       AicoWorkspace ws(problem);
       const AicoResult r = SolveAico(problem, AttemptOptions(s, k), &ws, callback);
-      rep.status = r.status;
-      rep.iterations += r.iterations;
-      rep.cost = r.cost;
-      rep.cost_history = r.cost_history;
-      rep.collision_checks += r.collision_queries;
-      rep.narrow_phase_calls += NarrowPhaseCalls(problem, ws.tasks);
-      out.trajectory = r.trajectory;
-      const std::int64_t q0 = coll.queries, n0 = coll.narrow_phase_calls;
-      rep.path_collision_free = r.status != SolveStatus::kInvalidInput &&
-                                PathIsValid(out.trajectory, s.check_resolution, valid);
-      rep.collision_checks += coll.queries - q0;
-      rep.narrow_phase_calls += coll.narrow_phase_calls - n0;
-      verdict = JudgePlan(s, out.trajectory);
-      found = rep.path_collision_free && verdict->reason == FailureReason::kNone;
+      found = AddAicoAttempt(s, r, NarrowPhaseCalls(problem, ws.tasks), &out);
+      judged = true;
     }
     found = found || out.trajectory.num_points() > 0;
   } else {
@@ -254,45 +241,73 @@ PlanResult RunPlanner(const Scenario& s, Planner planner, unsigned seed,
 
   // Report quantities (not counted).
   rep.start_writhe_total = ReportWritheTotal(s, s.problem.q0);
-  rep.final_writhe_total = rep.start_writhe_total;
+  if (!judged) rep.final_writhe_total = rep.start_writhe_total;
   rep.success = false;
   if (out.trajectory.num_points() > 0) {
-    if (!verdict) verdict = JudgePlan(s, out.trajectory);
-    rep.final_writhe_total = verdict->final_writhe_total;
+    if (!judged) ApplyVerdict(JudgePlan(s, out.trajectory), &rep);
     rep.path_length = PathLength(out.trajectory);
     if (planner != Planner::kAico) rep.cost = rep.path_length;
-    rep.min_clearance_m = verdict->min_clearance_m;
-    rep.failure_reason = verdict->reason;
-    rep.failure_step = verdict->step;
-    rep.reach_error_m = verdict->reach_error_m;
-    rep.max_winding_jump_turns = verdict->max_winding_jump_turns;
-    rep.final_winding_turns = verdict->final_winding_turns;
-    rep.writhe_peak_row = verdict->writhe_peak_row;
-    rep.writhe_peak_col = verdict->writhe_peak_col;
-    rep.writhe_peak_value = verdict->writhe_peak_value;
-    rep.success = found && rep.path_collision_free && verdict->reason == FailureReason::kNone;
+    rep.success = found && rep.path_collision_free && rep.failure_reason == FailureReason::kNone;
   }
-  // A failed run whose solver status is a failure in itself is named by that status.
-  if (!rep.success) {
-    switch (rep.status) {
-      case SolveStatus::kDiverged:
-        rep.failure_reason = FailureReason::kDiverged;
-        break;
-      case SolveStatus::kInvalidInput:
-        rep.failure_reason = FailureReason::kInvalidInput;
-        break;
-      case SolveStatus::kBudgetExhausted:
-        rep.failure_reason = FailureReason::kBudgetExhausted;
-        break;
-      case SolveStatus::kConverged:
-      case SolveStatus::kMaxIterations:
-        if (rep.failure_reason == FailureReason::kNone) {
-          rep.failure_reason = FailureReason::kBudgetExhausted;  // no path within the limits
-        }
-        break;
-    }
-  }
+  NameFailure(&rep);
   return out;
+}
+
+void ApplyVerdict(const PlanVerdict& v, PlanReport* rep) {
+  rep->final_writhe_total = v.final_writhe_total;
+  rep->min_clearance_m = v.min_clearance_m;
+  rep->failure_reason = v.reason;
+  rep->failure_step = v.step;
+  rep->reach_error_m = v.reach_error_m;
+  rep->max_winding_jump_turns = v.max_winding_jump_turns;
+  rep->final_winding_turns = v.final_winding_turns;
+  rep->writhe_peak_row = v.writhe_peak_row;
+  rep->writhe_peak_col = v.writhe_peak_col;
+  rep->writhe_peak_value = v.writhe_peak_value;
+}
+
+bool AddAicoAttempt(const Scenario& s, const AicoResult& r, long solver_narrow_phase_calls,
+                    PlanResult* out) {
+  PlanReport& rep = out->report;
+  rep.status = r.status;
+  rep.iterations += r.iterations;
+  rep.cost = r.cost;
+  rep.cost_history = r.cost_history;
+  rep.collision_checks += r.collision_queries;
+  rep.narrow_phase_calls += solver_narrow_phase_calls;
+  out->trajectory = r.trajectory;
+  CollisionData coll(s.robot, s.env, s.collision);
+  KinematicsData kin(s.robot);
+  rep.path_collision_free =
+      r.status != SolveStatus::kInvalidInput &&
+      PathIsValid(out->trajectory, s.check_resolution, ValidityChecker(s, &coll, &kin));
+  rep.collision_checks += coll.queries;
+  rep.narrow_phase_calls += coll.narrow_phase_calls;
+  ApplyVerdict(JudgePlan(s, out->trajectory), &rep);
+  rep.path_length = PathLength(out->trajectory);
+  rep.success = rep.path_collision_free && rep.failure_reason == FailureReason::kNone;
+  return rep.success;
+}
+
+void NameFailure(PlanReport* rep) {
+  if (rep->success) return;
+  switch (rep->status) {
+    case SolveStatus::kDiverged:
+      rep->failure_reason = FailureReason::kDiverged;
+      break;
+    case SolveStatus::kInvalidInput:
+      rep->failure_reason = FailureReason::kInvalidInput;
+      break;
+    case SolveStatus::kBudgetExhausted:
+      rep->failure_reason = FailureReason::kBudgetExhausted;
+      break;
+    case SolveStatus::kConverged:
+    case SolveStatus::kMaxIterations:
+      if (rep->failure_reason == FailureReason::kNone) {
+        rep->failure_reason = FailureReason::kBudgetExhausted;  // no path within the limits
+      }
+      break;
+  }
 }
 
 }  // namespace planning

@@ -117,6 +117,26 @@ using PollFn = std::function<void()>;
 PlanResult RunPlanner(const Scenario& scenario, Planner planner, unsigned seed,
                       const AicoCallback& callback = {}, const PollFn& poll = {});
 
+// Folds one AICO solve `r` of the scenario (or of one of its attempts' problems) into `out`, as
+// RunPlanner does for every attempt: trajectory, status, iterations, cost and its history are
+// replaced; collision checks (the solver's r.collision_queries plus the validation's) and
+// narrow-phase calls (`solver_narrow_phase_calls` plus the validation's) are added; the path is
+// validated at check_resolution (counted queries) and judged by JudgePlan, whose fields fill the
+// report (ApplyVerdict). Returns whether the attempt is a success (valid path, no failure reason);
+// report.success is set accordingly.
+bool AddAicoAttempt(const Scenario& s, const AicoResult& r, long solver_narrow_phase_calls,
+                    PlanResult* out);
+
+// Copies a verdict's fields into a report (final writhe, clearance, failure reason and step,
+// reach error, winding jump and final winding, writhe peak).
+void ApplyVerdict(const PlanVerdict& v, PlanReport* report);
+
+// Names a failed run (report.success false) by its solver status when that status is a failure
+// in itself: kDiverged, kInvalidInput, kBudgetExhausted replace the verdict's reason; after
+// kConverged / kMaxIterations a run without a verdict reason is kBudgetExhausted (no path within
+// the limits). A successful report is left as it is.
+void NameFailure(PlanReport* report);
+
 // Judges `path` (non-empty) by the scenario's success criteria, the same for every planner
 // (uncounted queries on a collision state of its own). The path is resampled with
 // Densify(path, check_resolution); walking its states k = 0, 1, ...: outside the joint limits ->
