@@ -139,13 +139,15 @@ TEST_F(ViewerSnapshotTest, SimPhaseStepsWholeProtocolPhases) {
   const double dt = protocol.sim.dt;
   const auto steps = [&](double seconds) { return std::lround(seconds / dt); };
   const std::string p1 = Tmp("phase1.json"), p2 = Tmp("phase2.json"), s2 = Tmp("steps2.json");
-  const render::Image phases =
-      RunScript("phases", "sim_phase\nstatus " + p1 +
-                              "\nclick Step_phase\nframes 3\nwait\nstatus " + p2 + "\nframes 2\n");
+  // The view frames the hand when its first frames arrive (timing-dependent): fix the camera.
+  const std::string camera = "camera -52 26 0.7 0 0 0.05\n";
+  const render::Image phases = RunScript(
+      "phases", "sim_phase\nstatus " + p1 + "\nclick Step_phase\nframes 3\nwait\nstatus " + p2 +
+                    "\n" + camera + "frames 2\n");
   const render::Image stepped =
       RunScript("phase_steps", "sim_step " + std::to_string(steps(protocol.close_time)) +
                                    "\nsim_step " + std::to_string(steps(protocol.trial_time)) +
-                                   "\nstatus " + s2 + "\nframes 2\n");
+                                   "\nstatus " + s2 + "\n" + camera + "frames 2\n");
   const nlohmann::json j1 = ReadJson(p1), j2 = ReadJson(p2), js = ReadJson(s2);
   EXPECT_EQ(j1["job"].get<std::string>(), "grasp");
   EXPECT_TRUE(j1["held"].get<bool>());
