@@ -40,7 +40,9 @@ void AddViewCommand(CLI::App* root, CommandList* commands) {
       "object (the arm re-plans from where it is as the object moves). Buttons: Plan (on a worker "
       "thread; the window keeps drawing), "
       "Step sweep (runs one more real AICO sweep), Cancel, Play/Pause and the timeline scrubber "
-      "(seconds); joint sliders move the robot.");
+      "(seconds); joint sliders move the robot; the grasp panel's Step and Step phase advance the "
+      "live ODE test by 20 ms or to the end of its current phase. The 3-D scene is rendered "
+      "again only when it changes (at most every --preview-interval ms while the worker runs).");
   commands->push_back({view, [o, size]() {
                          ParseImageSize(*size, "--size", &o->width, &o->height);
                          if (o->width < 64 || o->height < 64) {
