@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <deque>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -11,6 +12,7 @@
 #include <optional>
 #include <sstream>
 #include <stdexcept>
+#include <utility>
 
 #include "app/assets.h"
 #include "app/grasp_inputs.h"
@@ -97,10 +99,24 @@ struct Session::GraspOutput {
   bool started = false;  // hand and object are set
   bool finished = false;
   bool stepped = false;  // started by kSimStep: keep showing the newest frame at the end
+  // What the budgeted units of a stepped run are, in the order asked: {count, whole phases}
+  // (a phase unit is StabilityRun::StepPhase, else one physics step); empty: physics steps.
+  std::deque<std::pair<long, bool>> units;
   std::string error;
 };
 
 namespace {
+
+// Whether the next budgeted unit of a live simulation is a whole phase (takes it from
+// out->units; a run without units steps physics).
+template <typename Output>
+bool NextUnitIsPhase(Output* out) {
+  std::lock_guard<std::mutex> lock(out->mutex);
+  if (out->units.empty()) return false;
+  const bool phases = out->units.front().second;
+  if (--out->units.front().first <= 0) out->units.pop_front();
+  return phases;
+}
 
 // Runs `job` and records in `out` (under its mutex) that it ended, also when it throws.
 template <typename Output, typename Fn>
@@ -384,7 +400,7 @@ void Session::StartMove(const SessionCommand& c, Settings* settings) {
             std::to_string(plan->start_slice + elapsed) + " ...";
 }
 
-void Session::StartGrasp(Settings* settings, long budget) {
+void Session::StartGrasp(Settings* settings, long budget, bool phases) {
   namespace phys = planning::physics;
   const std::string name = settings->grasp.grasp;
   const planning::TransferMethod method = planning::ParseTransferMethod(settings->grasp.method);
@@ -395,6 +411,7 @@ void Session::StartGrasp(Settings* settings, long budget) {
   out->replay.grasp = name;
   out->replay.method = settings->grasp.method;
   out->stepped = budget >= 0;
+  if (budget >= 0) out->units.emplace_back(budget, phases);
   grasp_out_ = out;
   grasp_.reset();
   Worker::Job job;
@@ -413,13 +430,31 @@ void Session::StartGrasp(Settings* settings, long budget) {
         out->replay.object = phys::BuildSimObject(setup.object, setup.grasp.world_from_object);
         out->started = true;
       }
-      // The stability test as a resumable run: one physics step per worker checkpoint.
+      // The stability test as a resumable run: one physics step or one whole phase per worker
+      // checkpoint. Every stride-th step is recorded (also inside a phase), and the state a
+      // stepped run holds at; a phase is cancelled between its steps.
       const phys::OdeRuntime ode;
-      phys::StabilityRun run(ode, out->replay.hand, out->replay.object, phys::StabilityOptions{});
       const int stride = out->replay.stride;
-      for (long step = 0; run.StepPhysics(); ++step) {
-        // Every stride-th step, and the state a stepped run holds at.
-        if (step % stride == 0 || worker.AtBudget()) {
+      long steps = 0;
+      bool recorded = false;  // the latest step is recorded
+      phys::StabilityRun run(ode, out->replay.hand, out->replay.object, phys::StabilityOptions{},
+                             [&](int phase, const phys::GraspSimulation& sim) {
+                               recorded = steps++ % stride == 0;
+                               if (recorded) {
+                                 std::lock_guard<std::mutex> lock(out->mutex);
+                                 out->replay.frames.push_back({phase, sim.state()});
+                               }
+                               worker.ThrowIfCancelled();
+                             });
+      for (;;) {
+        const long before = steps;
+        if (NextUnitIsPhase(out.get())) {
+          run.StepPhase();
+        } else {
+          run.StepPhysics();
+        }
+        if (steps == before) break;  // done
+        if (worker.AtBudget() && !recorded) {
           std::lock_guard<std::mutex> lock(out->mutex);
           out->replay.frames.push_back({run.phase(), run.state()});
         }
@@ -607,9 +642,15 @@ void Session::Apply(const SessionCommand& c, Settings* settings) {
     case K::kGraspRun:
       StartGrasp(settings, -1);
       return;
-    case K::kSimStep: {
-      const long n = count("sim_step");
-      if (!grasp_out_ || !worker_.AddBudget(n)) StartGrasp(settings, n);
+    case K::kSimStep:
+    case K::kSimPhase: {
+      const bool phases = c.kind == K::kSimPhase;
+      const long n = count(phases ? "sim_phase" : "sim_step");
+      if (grasp_out_) {  // before the budget: the job reads what its next unit is
+        std::lock_guard<std::mutex> lock(grasp_out_->mutex);
+        grasp_out_->units.emplace_back(n, phases);
+      }
+      if (!grasp_out_ || !worker_.AddBudget(n)) StartGrasp(settings, n, phases);
       return;
     }
     case K::kGraspStep: {
@@ -808,6 +849,7 @@ const std::vector<VerbSpec>& ScriptVerbs() {
       {"cancel", 0, 0, "cancel"},
       {"rrt_step", 1, 1, "rrt_step N"},
       {"sim_step", 1, 1, "sim_step N"},
+      {"sim_phase", 0, 1, "sim_phase [N]"},
       {"move", 4, 4, "move OBJECT X Y Z"},
       {"status", 1, 1, "status FILE"},
       {"play", 0, 0, "play"},
@@ -831,8 +873,8 @@ const std::vector<VerbSpec>& ScriptVerbs() {
 // The arguments of a script line, checked when the script is read (the viewer converts them
 // later): "frames" an integer in [1, kMaxScriptFrames] (and all frames lines together at most
 // kMaxScriptTotalFrames), "seed" an integer in [0, 2^32 − 1], step/rrt_step/sim_step N in
-// [1, 1e6], "joint" an index in [0, 1e6] and a finite value, camera/seek/grasp_step/move finite
-// numbers that fit a float; names from their fixed lists.
+// [1, 1e6], sim_phase N in [1, 7], "joint" an index in [0, 1e6] and a finite value,
+// camera/seek/grasp_step/move finite numbers that fit a float; names from their fixed lists.
 void CheckScriptArgs(const std::string& path, const ScriptLine& l, long long* total_frames) {
   const std::string at = path + ":" + std::to_string(l.line) + ": ";
   const auto where = [&](size_t i) { return at + "'" + l.args[i] + "'"; };
@@ -881,6 +923,8 @@ void CheckScriptArgs(const std::string& path, const ScriptLine& l, long long* to
     number(0, -1e9, 1e9);
   } else if (l.verb == "step" || l.verb == "rrt_step" || l.verb == "sim_step") {
     if (!l.args.empty()) integer(0, 1, 1e6);
+  } else if (l.verb == "sim_phase") {
+    if (!l.args.empty()) integer(0, 1, planning::physics::StabilityRun::kNumPhases);
   } else if (l.verb == "move") {
     for (size_t i = 1; i < 4; ++i) number(i, -1e6, 1e6);
   } else if (l.verb == "plan") {
@@ -951,7 +995,7 @@ std::vector<ScriptLine> ParseScript(const std::string& path) {
 }
 
 void WriteStatusJson(const std::string& path, const std::string& planner, const WorkerStatus& st,
-                     const std::vector<double>& frame_ms, long frames_while_planning) {
+                     const FrameStats& frames) {
   nlohmann::json j;
   j["planner"] = planner;
   j["planning"] = st.computing && st.job != "grasp";  // plan, step, rrt_step, move
@@ -963,8 +1007,11 @@ void WriteStatusJson(const std::string& path, const std::string& planner, const 
   j["rrt_nodes"] = st.rrt_nodes;
   j["rrt_checks"] = st.rrt_checks;
   j["sim_time_s"] = st.sim_time_s;
-  j["frame_ms"] = frame_ms;
-  j["frames_while_planning"] = frames_while_planning;
+  j["frame_ms"] = frames.frame_ms;
+  j["frame_planning"] = frames.frame_planning;
+  j["frames"] = frames.frames;
+  j["frames_while_planning"] = frames.frames_while_planning;
+  j["scene_renders"] = frames.scene_renders;
   const std::string tmp = path + ".tmp";
   {
     std::ofstream f(tmp);

@@ -45,6 +45,8 @@ struct SessionCommand {
     kGraspStep,  // value = recorded simulation frames to advance (negative: back)
     kSimStep,    // value = N: advance the live ODE test by N physics steps (starts one if none is
                  // parked), then hold it
+    kSimPhase,   // value = N: advance the live ODE test to the end of the N-th protocol phase from
+                 // here (closing, gravity +x, ...; StabilityRun::StepPhase), then hold it
     kMove,       // text = object, position = new world position [m] of its frame: moves the object
                  // and the tasks attached to it (planning/replan.h) and, while an AICO plan is
                  // shown, re-plans on the worker with planning::ReplanFrom from the shown slice
@@ -173,7 +175,9 @@ class Session {
   void Load(const std::string& path, const Settings& settings);
   // Starts settings.planner on the worker (budget < 0: to the end; else that many AICO sweeps).
   void StartPlan(Settings* settings, long budget);
-  void StartGrasp(Settings* settings, long budget);
+  // The live ODE stability test of settings.grasp (budget < 0: to the end; else that many
+  // units, whole protocol phases when `phases`, else physics steps).
+  void StartGrasp(Settings* settings, long budget, bool phases = false);
   // The RRT/BiRRT of settings.planner as a resumable solver (planning::RrtSolver), one
   // iteration per worker checkpoint, publishing its trees.
   void StartRrt(Settings* settings, long budget);
@@ -208,17 +212,28 @@ class Session {
   Worker worker_{kWorkerNice};
 };
 
-// Writes `status` (and the recent frame times [ms]) as the JSON object {"planner", "planning",
-// "held", "job", "sweep", "max_sweeps", "cost", "rrt_nodes", "rrt_checks", "sim_time_s",
-// "frame_ms": [...], "frames_while_planning"} to `path`, through a temporary file renamed into
-// place (never a half-written file). Throws std::invalid_argument when it cannot be written.
+// What the viewer's draw loop measured, for `status FILE`.
+struct FrameStats {
+  // Wall time [ms] of each recent drawn frame (from its start to the next frame's start: the
+  // whole draw loop iteration) and whether the worker planned during it.
+  std::vector<double> frame_ms;
+  std::vector<bool> frame_planning;
+  long frames = 0;                 // frames drawn so far
+  long frames_while_planning = 0;  // of which while the worker planned
+  long scene_renders = 0;          // 3-D scene renders so far (the other frames reused the image)
+};
+
+// Writes `status` and `frames` as the JSON object {"planner", "planning", "held", "job",
+// "sweep", "max_sweeps", "cost", "rrt_nodes", "rrt_checks", "sim_time_s", "frame_ms": [...],
+// "frame_planning": [...], "frames", "frames_while_planning", "scene_renders"} to `path`, through
+// a temporary file renamed into place (never a half-written file). Throws std::invalid_argument
+// when it cannot be written.
 void WriteStatusJson(const std::string& path, const std::string& planner,
-                     const WorkerStatus& status, const std::vector<double>& frame_ms,
-                     long frames_while_planning);
+                     const WorkerStatus& status, const FrameStats& frames);
 
 // Parses a `--script` file: one command per line, `#` comments. Lines (ScriptUsage() lists
 // them):
-//   load PATH | plan [async] | step [N] | wait | cancel | rrt_step N | sim_step N |
+//   load PATH | plan [async] | step [N] | wait | cancel | rrt_step N | sim_step N | sim_phase [N] |
 //   move OBJECT X Y Z | status FILE | play | pause | seek SECONDS | joint INDEX ANGLE | reset |
 //   toggle chains|collision|grid|contacts|heatmap|cost | planner aico|rrt|birrt | seed N |
 //   camera YAW PITCH DISTANCE [TX TY TZ] | frames N (draw N frames) | screenshot PATH |
@@ -228,8 +243,9 @@ void WriteStatusJson(const std::string& path, const std::string& planner,
 // right moment by RunScript (viewer). Throws std::invalid_argument "FILE:LINE: ..." for unknown
 // verbs, wrong argument counts and bad values, listing the valid choices as "(valid: a, b, c)";
 // also for numbers out of range: frames N in [1, kMaxScriptFrames] (all frames lines together <=
-// kMaxScriptTotalFrames), step/rrt_step/sim_step N in [1, 1e6], seed in [0, 2^32 − 1], finite
-// numbers elsewhere; files larger than topology::kMaxInputFileBytes are refused.
+// kMaxScriptTotalFrames), step/rrt_step/sim_step N in [1, 1e6], sim_phase N in [1, 7] (the
+// protocol's phases), seed in [0, 2^32 − 1], finite numbers elsewhere; files larger than
+// topology::kMaxInputFileBytes are refused.
 inline constexpr int kMaxScriptFrames = 100000;
 inline constexpr long long kMaxScriptTotalFrames = 1000000;
 struct ScriptLine {

@@ -161,4 +161,9 @@ bool Worker::AtBudget() const {
   return budget_ >= 0 && units_ + 1 >= budget_;
 }
 
+void Worker::ThrowIfCancelled() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (cancel_) throw Cancelled{};
+}
+
 }  // namespace app

@@ -69,6 +69,9 @@ class Worker {
   void Checkpoint();
   // Called by the job: true when the next Checkpoint() will park (record what should be shown).
   bool AtBudget() const;
+  // Called by the job inside a unit of work (e.g. between the physics steps of a phase): throws
+  // Cancelled after Cancel(); counts nothing, never parks.
+  void ThrowIfCancelled() const;
 
  private:
   void StartLocked(Job job);

@@ -208,6 +208,7 @@ class Renderer::Impl {
     gl_.DeleteFramebuffers(1, &shadow_fbo_);
     gl_.DeleteTextures(1, &shadow_texture_);
     ReleaseTargets();
+    ReleaseTarget(&cache_);
   }
 
   GlInfo info() const {
@@ -224,15 +225,53 @@ class Renderer::Impl {
     CheckSize(width, height);
     const int samples = options.msaa_samples > 1 ? options.msaa_samples : 0;
     EnsureTargets(width, height, samples);
-    Draw(scene, camera, width, height, samples ? msaa_fbo_ : fbo_, options);
-    if (samples) {
-      gl_.BindFramebuffer(GL_READ_FRAMEBUFFER, msaa_fbo_);
-      gl_.BindFramebuffer(GL_DRAW_FRAMEBUFFER, fbo_);
-      gl_.BlitFramebuffer(0, 0, width, height, 0, 0, width, height, GL_COLOR_BUFFER_BIT,
-                          GL_NEAREST);
+    Draw(scene, camera, width, height, samples ? msaa_.fbo : target_.fbo, options);
+    if (samples) Copy(msaa_.fbo, target_.fbo, width, height);
+    if (overlay != nullptr) DrawOverlay(*overlay, width, height, target_.fbo);
+    return ReadBack(width, height);
+  }
+
+  void CacheScene(const Scene& scene, const Camera& camera, int width, int height,
+                  const RenderOptions& options) {
+    CheckSize(width, height);
+    const int samples = options.msaa_samples > 1 ? options.msaa_samples : 0;
+    if (!cache_.fbo || width != cache_w_ || height != cache_h_) {
+      ReleaseTarget(&cache_);
+      cache_w_ = cache_h_ = 0;
+      MakeTarget(width, height, 0, &cache_);
+      cache_w_ = width;
+      cache_h_ = height;
     }
-    if (overlay != nullptr) DrawOverlay(*overlay, width, height, fbo_);
-    gl_.BindFramebuffer(GL_FRAMEBUFFER, fbo_);
+    if (samples) {
+      EnsureTargets(width, height, samples);
+      Draw(scene, camera, width, height, msaa_.fbo, options);
+      Copy(msaa_.fbo, cache_.fbo, width, height);
+    } else {
+      Draw(scene, camera, width, height, cache_.fbo, options);
+    }
+    gl_.BindFramebuffer(GL_FRAMEBUFFER, 0);
+  }
+
+  void DrawCachedScene(GLuint fbo) {
+    if (!cache_.fbo) throw std::logic_error("DrawCachedScene: no scene cached");
+    Copy(cache_.fbo, fbo, cache_w_, cache_h_);
+    gl_.BindFramebuffer(GL_FRAMEBUFFER, fbo);
+    gl_.Viewport(0, 0, cache_w_, cache_h_);
+  }
+
+  Image ReadCachedScene(const Overlay* overlay) {
+    if (!cache_.fbo) throw std::logic_error("ReadCachedScene: no scene cached");
+    if (!target_.fbo || target_w_ != cache_w_ || target_h_ != cache_h_) {
+      EnsureTargets(cache_w_, cache_h_, 0);
+    }
+    Copy(cache_.fbo, target_.fbo, cache_w_, cache_h_);
+    if (overlay != nullptr) DrawOverlay(*overlay, cache_w_, cache_h_, target_.fbo);
+    return ReadBack(cache_w_, cache_h_);
+  }
+
+  // target_ (width x height) read back into an image, rows top-down.
+  Image ReadBack(int width, int height) {
+    gl_.BindFramebuffer(GL_FRAMEBUFFER, target_.fbo);
     gl_.ReadBuffer(GL_COLOR_ATTACHMENT0);
     gl_.PixelStorei(GL_PACK_ALIGNMENT, 1);
     Image out;
@@ -695,54 +734,73 @@ class Renderer::Impl {
     gl_.BindFramebuffer(GL_FRAMEBUFFER, 0);
   }
 
-  // Single-sample colour+depth FBO (fbo_) and, for MSAA, a multisample one resolved into it.
-  void EnsureTargets(int width, int height, int samples) {
-    if (fbo_ && width == target_w_ && height == target_h_ && samples == target_samples_) return;
-    ReleaseTargets();
-    auto make = [&](int s, GLuint* fbo, GLuint* color, GLuint* depth) {
-      gl_.GenFramebuffers(1, fbo);
-      gl_.GenRenderbuffers(1, color);
-      gl_.GenRenderbuffers(1, depth);
-      gl_.BindFramebuffer(GL_FRAMEBUFFER, *fbo);
-      gl_.BindRenderbuffer(GL_RENDERBUFFER, *color);
-      if (s) {
-        gl_.RenderbufferStorageMultisample(GL_RENDERBUFFER, s, GL_RGBA8, width, height);
-      } else {
-        gl_.RenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, width, height);
-      }
-      gl_.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, *color);
-      gl_.BindRenderbuffer(GL_RENDERBUFFER, *depth);
-      if (s) {
-        gl_.RenderbufferStorageMultisample(GL_RENDERBUFFER, s, GL_DEPTH24_STENCIL8, width, height);
-      } else {
-        gl_.RenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH24_STENCIL8, width, height);
-      }
-      gl_.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_RENDERBUFFER,
-                                  *depth);
-      if (gl_.CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
-        gl_.BindFramebuffer(GL_FRAMEBUFFER, 0);
-        throw ContextError("GL: framebuffer " + std::to_string(width) + "x" +
-                           std::to_string(height) + " with " + std::to_string(s) +
-                           " samples is incomplete (MSAA unsupported?)");
-      }
-    };
-    make(0, &fbo_, &color_rb_, &depth_rb_);
-    if (samples) make(samples, &msaa_fbo_, &msaa_color_rb_, &msaa_depth_rb_);
+  // A framebuffer object with colour and depth renderbuffers.
+  struct Target {
+    GLuint fbo = 0, color = 0, depth = 0;
+  };
+
+  void MakeTarget(int width, int height, int samples, Target* t) {
+    gl_.GenFramebuffers(1, &t->fbo);
+    gl_.GenRenderbuffers(1, &t->color);
+    gl_.GenRenderbuffers(1, &t->depth);
+    gl_.BindFramebuffer(GL_FRAMEBUFFER, t->fbo);
+    gl_.BindRenderbuffer(GL_RENDERBUFFER, t->color);
+    if (samples) {
+      gl_.RenderbufferStorageMultisample(GL_RENDERBUFFER, samples, GL_RGBA8, width, height);
+    } else {
+      gl_.RenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, width, height);
+    }
+    gl_.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, t->color);
+    gl_.BindRenderbuffer(GL_RENDERBUFFER, t->depth);
+    if (samples) {
+      gl_.RenderbufferStorageMultisample(GL_RENDERBUFFER, samples, GL_DEPTH24_STENCIL8, width,
+                                         height);
+    } else {
+      gl_.RenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH24_STENCIL8, width, height);
+    }
+    gl_.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_RENDERBUFFER,
+                                t->depth);
+    if (gl_.CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
+      gl_.BindFramebuffer(GL_FRAMEBUFFER, 0);
+      throw ContextError("GL: framebuffer " + std::to_string(width) + "x" + std::to_string(height) +
+                         " with " + std::to_string(samples) +
+                         " samples is incomplete (MSAA unsupported?)");
+    }
     gl_.BindFramebuffer(GL_FRAMEBUFFER, 0);
+  }
+
+  void ReleaseTarget(Target* t) {
+    if (t->fbo) gl_.DeleteFramebuffers(1, &t->fbo);
+    for (GLuint* r : {&t->color, &t->depth}) {
+      if (*r) gl_.DeleteRenderbuffers(1, r);
+    }
+    *t = Target{};
+  }
+
+  // Colour copy (same size; resolves a multisampled source). Unaffected by the scissor test,
+  // which nothing leaves enabled.
+  void Copy(GLuint from, GLuint to, int width, int height) {
+    gl_.BindFramebuffer(GL_READ_FRAMEBUFFER, from);
+    gl_.BindFramebuffer(GL_DRAW_FRAMEBUFFER, to);
+    gl_.BlitFramebuffer(0, 0, width, height, 0, 0, width, height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+  }
+
+  // Single-sample colour+depth FBO (target_) and, for MSAA, a multisample one resolved into it.
+  void EnsureTargets(int width, int height, int samples) {
+    if (target_.fbo && width == target_w_ && height == target_h_ && samples == target_samples_) {
+      return;
+    }
+    ReleaseTargets();
+    MakeTarget(width, height, 0, &target_);
+    if (samples) MakeTarget(width, height, samples, &msaa_);
     target_w_ = width;
     target_h_ = height;
     target_samples_ = samples;
   }
 
   void ReleaseTargets() {
-    for (GLuint* f : {&fbo_, &msaa_fbo_}) {
-      if (*f) gl_.DeleteFramebuffers(1, f);
-      *f = 0;
-    }
-    for (GLuint* r : {&color_rb_, &depth_rb_, &msaa_color_rb_, &msaa_depth_rb_}) {
-      if (*r) gl_.DeleteRenderbuffers(1, r);
-      *r = 0;
-    }
+    ReleaseTarget(&target_);
+    ReleaseTarget(&msaa_);
   }
 
   GlApi gl_;
@@ -756,9 +814,10 @@ class Renderer::Impl {
   std::map<const TriangleMesh*, CachedMesh> mesh_cache_;
   GLuint line_vao_ = 0, line_buffer_ = 0;
   GLuint shadow_fbo_ = 0, shadow_texture_ = 0;
-  GLuint fbo_ = 0, color_rb_ = 0, depth_rb_ = 0;
-  GLuint msaa_fbo_ = 0, msaa_color_rb_ = 0, msaa_depth_rb_ = 0;
+  Target target_, msaa_;  // Render()'s read-back target and its multisampled twin
   int target_w_ = 0, target_h_ = 0, target_samples_ = 0;
+  Target cache_;  // CacheScene()'s image
+  int cache_w_ = 0, cache_h_ = 0;
   // Per-frame scratch, reused between frames (no reallocation once sized).
   std::vector<std::pair<const GpuMesh*, std::vector<Instance>>> opaque_;
   std::vector<std::pair<const GpuMesh*, Instance>> translucent_;
@@ -782,6 +841,15 @@ void Renderer::Draw(const Scene& scene, const Camera& camera, int width, int hei
                     const RenderOptions& options) {
   impl_->Draw(scene, camera, width, height, fbo, options);
 }
+
+void Renderer::CacheScene(const Scene& scene, const Camera& camera, int width, int height,
+                          const RenderOptions& options) {
+  impl_->CacheScene(scene, camera, width, height, options);
+}
+
+void Renderer::DrawCachedScene(unsigned fbo) { impl_->DrawCachedScene(fbo); }
+
+Image Renderer::ReadCachedScene(const Overlay* overlay) { return impl_->ReadCachedScene(overlay); }
 
 GlInfo Renderer::info() const { return impl_->info(); }
 

@@ -61,6 +61,20 @@ class Renderer {
   // width x height, which already holds a frame; no depth test, source-alpha blending.
   void DrawOverlay(const Overlay& overlay, int width, int height, unsigned fbo);
 
+  // Scene cache, for a viewer whose 3-D scene changes far less often than its panels: renders
+  // `scene` (as Draw, MSAA resolved) into an internal width x height colour target that keeps
+  // the image until the next CacheScene call. Throws as Render.
+  void CacheScene(const Scene& scene, const Camera& camera, int width, int height,
+                  const RenderOptions& options = {});
+  // Copies the cached scene image into framebuffer `fbo` (0: the window's default framebuffer),
+  // which must be the cached size; leaves the viewport set. Throws std::logic_error when nothing
+  // is cached.
+  void DrawCachedScene(unsigned fbo);
+  // The cached scene with `overlay` (if not null) drawn over it, read back: byte-identical to
+  // Render(scene, camera, width, height, options, overlay) with CacheScene's arguments. Throws
+  // std::logic_error when nothing is cached.
+  Image ReadCachedScene(const Overlay* overlay);
+
   GlInfo info() const;
 
   class Impl;

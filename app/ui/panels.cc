@@ -209,6 +209,12 @@ void GraspPanel(const Session& session, const std::vector<std::string>& grasps, 
   if (ImGui::Button("Step")) commands->emplace_back(SessionCommand::Kind::kSimStep, "", 0, 20.0);
   Remember("Grasp step", rects);
   ImGui::SameLine();
+  // To the end of the protocol phase being simulated (closing, then each gravity direction).
+  if (ImGui::Button("Step phase")) {
+    commands->emplace_back(SessionCommand::Kind::kSimPhase, "", 0, 1.0);
+  }
+  Remember("Step_phase", rects);  // one word: `click Step_phase`
+  ImGui::SameLine();
   ImGui::Checkbox("show", &s->grasp.active);
   if (const auto& g = session.grasp(); g && !g->frames.empty()) {
     int f = s->grasp.frame;

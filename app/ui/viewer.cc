@@ -9,6 +9,7 @@
 #include <cfloat>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <deque>
 #include <filesystem>
@@ -22,6 +23,7 @@
 #include "app/session.h"
 #include "app/ui/imgui_overlay.h"
 #include "app/ui/panels.h"
+#include "app/ui/scene_pacer.h"
 #include "render/image.h"
 #include "render/offscreen_context.h"
 #include "render/overlay.h"
@@ -55,29 +57,44 @@ std::vector<std::string> ListScenarios() {
   return names;
 }
 
-// Frame times of the recent drawn frames (wall time between successive frame starts) and how
-// many frames were drawn while the worker planned: what `status FILE` reports.
+// Frame times of the recent drawn frames and how many frames were drawn while the worker
+// planned: what `status FILE` reports. A frame's time is the wall time from its FrameStart() to
+// the next one: the whole draw-loop iteration (script, worker output, panels, scene render or
+// cached image, overlay, read-back or swap).
 class FrameClock {
  public:
   static constexpr size_t kKeep = 240;
   void FrameStart(bool planning) {
     const auto now = std::chrono::steady_clock::now();
-    if (started_) {
+    if (frames_ > 0) {
       ms_.push_back(std::chrono::duration<double, std::milli>(now - last_).count());
-      if (ms_.size() > kKeep) ms_.pop_front();
+      planning_.push_back(last_planning_);
+      if (ms_.size() > kKeep) {
+        ms_.pop_front();
+        planning_.pop_front();
+      }
     }
-    started_ = true;
+    ++frames_;
     last_ = now;
+    last_planning_ = planning;
     if (planning) ++while_planning_;
   }
-  std::vector<double> recent() const { return {ms_.begin(), ms_.end()}; }
-  long while_planning() const { return while_planning_; }
+  // The measured frames and counts (scene_renders left to the caller).
+  FrameStats stats() const {
+    FrameStats s;
+    s.frame_ms.assign(ms_.begin(), ms_.end());
+    s.frame_planning.assign(planning_.begin(), planning_.end());
+    s.frames = frames_;
+    s.frames_while_planning = while_planning_;
+    return s;
+  }
 
  private:
   std::deque<double> ms_;
+  std::deque<bool> planning_;
   std::chrono::steady_clock::time_point last_;
-  bool started_ = false;
-  long while_planning_ = 0;
+  bool last_planning_ = false;
+  long frames_ = 0, while_planning_ = 0;
 };
 
 // Runs `--script` lines one frame at a time: session commands immediately, `frames N` waits N
@@ -95,7 +112,7 @@ class ScriptRunner {
   bool quit() const { return quit_; }
 
   // Before ImGui::NewFrame: consumes lines up to the next wait; sets the scripted mouse.
-  void BeforeFrame(const WidgetRects& rects, const FrameClock& clock, Session* session,
+  void BeforeFrame(const WidgetRects& rects, const FrameStats& stats, Session* session,
                    Settings* settings, std::vector<std::string>* screenshots, ImGuiIO* io) {
     screenshots->clear();
     if (click_phase_ == 1) {  // press
@@ -132,7 +149,7 @@ class ScriptRunner {
     while (next_ < lines_.size()) {
       const ScriptLine& l = lines_[next_++];
       try {
-        if (!Run(l, rects, clock, session, settings, io)) return;
+        if (!Run(l, rects, stats, session, settings, io)) return;
       } catch (const std::invalid_argument& e) {
         const std::string prefix = l.file + ":" + std::to_string(l.line) + ": ";
         const std::string what = e.what();
@@ -143,7 +160,7 @@ class ScriptRunner {
 
  private:
   // Runs one line; false when the script must wait before the next one.
-  bool Run(const ScriptLine& l, const WidgetRects& rects, const FrameClock& clock, Session* session,
+  bool Run(const ScriptLine& l, const WidgetRects& rects, const FrameStats& stats, Session* session,
            Settings* settings, ImGuiIO* io) {
     using K = SessionCommand::Kind;
     const auto arg = [&](size_t i) { return l.args.at(i); };
@@ -202,8 +219,7 @@ class ScriptRunner {
       settings->camera_initialised = true;
     } else if (l.verb == "status") {
       session->Poll(settings);
-      WriteStatusJson(arg(0), settings->planner.planner, session->worker_status(*settings),
-                      clock.recent(), clock.while_planning());
+      WriteStatusJson(arg(0), settings->planner.planner, session->worker_status(*settings), stats);
       std::printf("wrote %s\n", arg(0).c_str());
     } else if (l.verb == "wait") {
       wait_worker_ = true;
@@ -213,11 +229,13 @@ class ScriptRunner {
       if (!l.args.empty()) return true;  // plan async
       wait_worker_ = true;
       return false;
-    } else if (l.verb == "step" || l.verb == "sim_step" || l.verb == "rrt_step") {
+    } else if (l.verb == "step" || l.verb == "sim_step" || l.verb == "rrt_step" ||
+               l.verb == "sim_phase") {
       const double n = l.args.empty() ? 1.0 : num(0);
-      apply(SessionCommand(l.verb == "step"       ? K::kStep
-                           : l.verb == "sim_step" ? K::kSimStep
-                                                  : K::kRrtStep,
+      apply(SessionCommand(l.verb == "step"        ? K::kStep
+                           : l.verb == "sim_step"  ? K::kSimStep
+                           : l.verb == "sim_phase" ? K::kSimPhase
+                                                   : K::kRrtStep,
                            "", 0, n));
       wait_worker_ = true;
       return false;
@@ -299,6 +317,29 @@ struct Viewer {
   std::vector<SessionCommand> pending;  // from mouse input, applied with the panels' commands
   Eigen::Vector3d drag_sent = Eigen::Vector3d::Zero();  // object position of the last drag move
   FrameClock clock;
+  ScenePacer pacer;
+  bool worker_computing = false;  // in this frame (plan, step, re-plan or simulation)
+  const std::chrono::steady_clock::time_point started = std::chrono::steady_clock::now();
+
+  // What `status` reports.
+  FrameStats stats() const {
+    FrameStats s = clock.stats();
+    s.scene_renders = pacer.renders();
+    return s;
+  }
+
+  // Renders `scene` into the renderer's cached image when the pacer says it is due (always when
+  // `force`d); true when it did.
+  bool CacheSceneIfDue(const render::Scene& scene, const render::Camera& camera, int width,
+                       int height, bool force, render::Renderer* renderer) {
+    const std::uint64_t content = SceneHash(scene), view = ViewHash(camera, width, height);
+    const double now =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    if (!pacer.Due(content, view, worker_computing, force, now)) return false;
+    renderer->CacheScene(scene, camera, width, height);
+    pacer.Rendered(content, view, now);
+    return true;
+  }
 
   // Worker output → session; panels → commands → session; returns the scene and camera of this
   // frame.
@@ -307,6 +348,7 @@ struct Viewer {
     session.Poll(&settings);
     const WorkerStatus w = session.worker_status(settings);
     clock.FrameStart(w.computing && w.job != "grasp");
+    worker_computing = w.computing;
     ImGui::NewFrame();
     DrawPanels(session, scenarios, grasps, &settings, &commands, &rects);
     ImGui::Render();
@@ -324,6 +366,7 @@ struct Viewer {
       *scene = BuildFrameScene(session, settings, &cache);
       if (!settings.grasp.active) AddRrtTrees(session.rrt_trees(), scene);
     } else {
+      *scene = render::Scene();
       scene->grid.enabled = true;
     }
     if (!settings.camera_initialised && (session.loaded() || session.grasp())) {
@@ -408,17 +451,21 @@ int RunHeadless(const ViewerOptions& o, Viewer* v, ScriptRunner* script) {
   SetUpImGui(v, o.width, o.height);
   ImGuiIO& io = ImGui::GetIO();
   io.MousePos = ImVec2(-FLT_MAX, -FLT_MAX);
+  const render::Overlay* overlay = o.overlay ? &v->overlay : nullptr;
   render::Image last;
+  render::Scene scene;
+  render::Camera camera;
   std::vector<std::string> screenshots;
   // At least two frames: ImGui settles focus and window state on the second one.
   // The final screenshot waits two frames after the script's end, like `screenshot`.
   int frame = 0, settle = 2;
   for (; frame < 2 || (!script->done() && !script->quit()) || settle-- > 0; ++frame) {
-    script->BeforeFrame(v->rects, v->clock, &v->session, &v->settings, &screenshots, &io);
-    render::Scene scene;
-    render::Camera camera;
+    script->BeforeFrame(v->rects, v->stats(), &v->session, &v->settings, &screenshots, &io);
     v->UiAndUpdate(&scene, &camera);
-    last = renderer.Render(scene, camera, o.width, o.height, {}, o.overlay ? &v->overlay : nullptr);
+    // The scene is rendered again only when it changed (screenshots: always); every frame
+    // composes the cached image with the panels and reads it back, as a window would present it.
+    v->CacheSceneIfDue(scene, camera, o.width, o.height, !screenshots.empty(), &renderer);
+    last = renderer.ReadCachedScene(overlay);
     for (const std::string& path : screenshots) {
       render::WritePng(path, last);
       std::printf("wrote %s\n", path.c_str());
@@ -427,6 +474,8 @@ int RunHeadless(const ViewerOptions& o, Viewer* v, ScriptRunner* script) {
     if (frame > 100000) throw std::runtime_error("script did not finish");
   }
   if (!o.screenshot.empty()) {
+    v->CacheSceneIfDue(scene, camera, o.width, o.height, /*force=*/true, &renderer);
+    last = renderer.ReadCachedScene(overlay);
     render::WritePng(o.screenshot, last);
     std::printf("wrote %s (%dx%d, %d frames)\n", o.screenshot.c_str(), o.width, o.height, frame);
   }
@@ -458,7 +507,7 @@ int RunWindow(const ViewerOptions& o, Viewer* v, ScriptRunner* script) {
     for (int frame = 0; !glfwWindowShouldClose(window); ++frame) {
       glfwPollEvents();
       ImGui_ImplGlfw_NewFrame();
-      script->BeforeFrame(v->rects, v->clock, &v->session, &v->settings, &screenshots, &io);
+      script->BeforeFrame(v->rects, v->stats(), &v->session, &v->settings, &screenshots, &io);
       int fb_w = 0, fb_h = 0;
       glfwGetFramebufferSize(window, &fb_w, &fb_h);
       v->settings.width = fb_w;
@@ -476,7 +525,8 @@ int RunWindow(const ViewerOptions& o, Viewer* v, ScriptRunner* script) {
       render::Camera camera;
       v->UiAndUpdate(&scene, &camera);
       if (fb_w > 0 && fb_h > 0) {
-        renderer.Draw(scene, camera, fb_w, fb_h, 0);
+        v->CacheSceneIfDue(scene, camera, fb_w, fb_h, false, &renderer);
+        renderer.DrawCachedScene(0);
         renderer.DrawOverlay(v->overlay, fb_w, fb_h, 0);
       }
       // Screenshots render the same frame into an offscreen buffer of the window's size.
@@ -501,7 +551,11 @@ int RunWindow(const ViewerOptions& o, Viewer* v, ScriptRunner* script) {
 }  // namespace
 
 int RunViewer(const ViewerOptions& options) {
+  if (!(options.preview_interval_ms >= 0.0 && options.preview_interval_ms <= 1e6)) {
+    throw std::invalid_argument("--preview-interval: expected milliseconds in [0, 1e6]");
+  }
   Viewer v;
+  v.pacer = ScenePacer(options.preview_interval_ms / 1000.0);
   v.settings.width = options.width;
   v.settings.height = options.height;
   v.settings.robot_input = options.robot_input;

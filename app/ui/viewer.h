@@ -18,6 +18,9 @@ struct ViewerOptions {
   int width = 1280, height = 720;
   int exit_after = 0;          // window: close after this many frames (0 = when the user closes it)
   bool print_widgets = false;  // print "widget NAME x0 y0 x1 y1" for the first frame's widgets
+  // While the worker computes, the 3-D scene is rendered again at most this often [ms] (the
+  // panels every frame); camera or size changes and screenshots render at once (ScenePacer).
+  double preview_interval_ms = 200.0;
   RobotInputOptions robot_input;  // --package-path, --srdf
 };
 

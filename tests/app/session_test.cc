@@ -295,8 +295,17 @@ TEST(ScriptTest, ParsesCommandsAndRejectsBadLinesWithFileAndLine) {
             std::string::npos);
   EXPECT_NE(error("grasp power_bottle magic\n").find("(valid: winding, joint, fingertip)"),
             std::string::npos);
+  EXPECT_NE(error("sim_phase 8\n").find(path + ":1: '8' is out of range [1, 7]"),
+            std::string::npos);
+  EXPECT_NE(error("sim_phase 0.5\n").find(path + ":1: '0.5' is out of range [1, 7]"),
+            std::string::npos);
+  EXPECT_NE(error("sim_phase 1.5\n").find(path + ":1: '1.5' is not an integer"), std::string::npos);
+  EXPECT_NE(error("sim_phase 1 2\n")
+                .find(path + ":1: 'sim_phase' takes 0 to 1 argument(s), got 2: sim_phase [N]"),
+            std::string::npos);
   EXPECT_EQ(error("plan async\nstep\nstep 3\nwait\ncancel\nrrt_step 5\nsim_step 2\n"
-                  "move ring 0.5 0 1\nstatus s.json\ncamera 0 20 3 0 0 1\n"),
+                  "move ring 0.5 0 1\nstatus s.json\ncamera 0 20 3 0 0 1\nsim_phase\n"
+                  "sim_phase 7\n"),
             "no error");
   EXPECT_THROW(ParseScript("/nonexistent/script.txt"), std::invalid_argument);
 }
@@ -308,16 +317,23 @@ TEST(StatusJsonTest, WritesEveryFieldThroughARename) {
   st.computing = true;
   st.sweep = 3;
   st.cost = 12.5;
-  WriteStatusJson(path, "aico", st, {16.0, 17.5}, 2);
+  FrameStats frames;
+  frames.frame_ms = {16.0, 17.5};
+  frames.frame_planning = {false, true};
+  frames.frames = 9;
+  frames.frames_while_planning = 2;
+  frames.scene_renders = 4;
+  WriteStatusJson(path, "aico", st, frames);
   std::ifstream in(path);
   const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  for (const char* key :
-       {"\"planner\": \"aico\"", "\"planning\": true", "\"sweep\": 3", "\"cost\": 12.5",
-        "\"rrt_nodes\": 0", "\"sim_time_s\": 0.0", "\"frame_ms\": [", "17.5"}) {
+  for (const char* key : {"\"planner\": \"aico\"", "\"planning\": true", "\"sweep\": 3",
+                          "\"cost\": 12.5", "\"rrt_nodes\": 0", "\"sim_time_s\": 0.0",
+                          "\"frame_ms\": [", "17.5", "\"frame_planning\": [", "\"frames\": 9",
+                          "\"frames_while_planning\": 2", "\"scene_renders\": 4"}) {
     EXPECT_NE(text.find(key), std::string::npos) << key << " in " << text;
   }
   EXPECT_FALSE(std::filesystem::exists(path + ".tmp"));
-  EXPECT_THROW(WriteStatusJson("/nonexistent/dir/s.json", "aico", st, {}, 0),
+  EXPECT_THROW(WriteStatusJson("/nonexistent/dir/s.json", "aico", st, FrameStats{}),
                std::invalid_argument);
 }
 

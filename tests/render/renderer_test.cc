@@ -152,6 +152,40 @@ TEST(RendererTest, MsaaRendersAndDiffersOnlyAtEdges) {
   EXPECT_TRUE(SameImage(smooth, again));
 }
 
+// A translucent panel-like quad over the left half, untextured.
+Overlay HalfPanel() {
+  Overlay o;
+  o.vertices = {{0, 0, 0, 0, 0x80c08040u},
+                {kW / 2.0f, 0, 0, 0, 0x80c08040u},
+                {kW / 2.0f, kH, 0, 0, 0x80c08040u},
+                {0, kH, 0, 0, 0x80c08040u}};
+  o.indices = {0, 1, 2, 0, 2, 3};
+  o.commands.push_back({0, 6, 0, 0, 0, kW, kH});
+  return o;
+}
+
+TEST(RendererTest, CachedSceneEqualsAFreshRender) {
+  {
+    OffscreenContext context;
+    Renderer fresh(context.proc_loader());
+    EXPECT_THROW(fresh.ReadCachedScene(nullptr), std::logic_error);
+    EXPECT_THROW(fresh.DrawCachedScene(0), std::logic_error);
+  }
+  Renderer& r = testing::SharedRenderer();
+  const Overlay panel = HalfPanel();
+  r.CacheScene(BeadChain(-1), TestCamera(), kW, kH);
+  // Renders in between (another scene, another size) leave the cached image alone.
+  r.Render(BeadChain(7), TestCamera(), kW / 2, kH / 2);
+  const Image fresh = r.Render(BeadChain(-1), TestCamera(), kW, kH, {}, &panel);
+  EXPECT_TRUE(SameImage(r.ReadCachedScene(&panel), fresh));
+  EXPECT_TRUE(SameImage(r.ReadCachedScene(nullptr), r.Render(BeadChain(-1), TestCamera(), kW, kH)));
+  RenderOptions msaa;
+  msaa.msaa_samples = 4;
+  r.CacheScene(BeadChain(-1), TestCamera(), kW, kH, msaa);
+  EXPECT_TRUE(SameImage(r.ReadCachedScene(&panel),
+                        r.Render(BeadChain(-1), TestCamera(), kW, kH, msaa, &panel)));
+}
+
 TEST(RendererTest, EglMatchesOsmesa) {
   Scene s = BeadChain(-1);
   const Image a = testing::SharedRenderer().Render(s, TestCamera(), kW, kH);
