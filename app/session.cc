@@ -158,9 +158,7 @@ planning::PlanResult RunSteppedAico(
     ++out.report.attempts;
     planning::AicoSolver solver(k > 0 ? later : s.problem, planning::AttemptOptions(s, k));
     while (!solver.done()) on_sweep(solver, solver.Step());
-    // The solver's own narrow-phase calls are not exposed by AicoSolver (0 here); the rest of the
-    // report is RunPlanner's.
-    if (planning::AddAicoAttempt(s, solver.result(), 0, &out)) break;
+    if (planning::AddAicoAttempt(s, solver.result(), &out)) break;
   }
   planning::NameFailure(&out.report);
   out.report.start_writhe_total = planning::ReportWritheTotal(s, s.problem.q0);
@@ -387,7 +385,7 @@ void Session::StartMove(const SessionCommand& c, Settings* settings) {
       planning::ReplanFrom(*scenario, elapsed, options, &ws, &plan, &a);
       planning::PlanResult r;
       r.report.planner = "aico (warm start)";
-      planning::AddAicoAttempt(*scenario, a, 0, &r);
+      planning::AddAicoAttempt(*scenario, a, &r);
       planning::NameFailure(&r.report);
       r.report.start_writhe_total = planning::ReportWritheTotal(*scenario, a.trajectory.q.col(0));
       std::lock_guard<std::mutex> lock(out->mutex);

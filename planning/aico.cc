@@ -91,6 +91,9 @@ class Aico {
   void Sweep(int sweep);
   void Export(AicoResult* result) const;
   void Finish(SolveStatus status);
+  // Sets result_'s counters (task evaluations, collision queries, narrow-phase calls) since the
+  // solve began.
+  void Count();
 
   const MotionProblem& p_;
   const AicoOptions o_;
@@ -103,7 +106,7 @@ class Aico {
   bool guarded_ = false;  // some task has max_jump > 0
   int jumps_ = 0;         // CountJumps of the accepted beliefs
   Eigen::MatrixXd qguard_;
-  long evals0_ = 0, coll0_ = 0;
+  long evals0_ = 0, coll0_ = 0, narrow0_ = 0;
   Eigen::VectorXd metric_;
   std::vector<Eigen::VectorXd> err_;  // per task residual buffer, allocated once per run
 };
@@ -464,6 +467,7 @@ void Aico::Export(AicoResult* result) const {
 void Aico::Start(const Trajectory* init) {
   evals0_ = ws_->tasks.evaluations;
   coll0_ = CollisionQueries(p_, ws_->tasks);
+  narrow0_ = NarrowPhaseCalls(p_, ws_->tasks);
   err_.clear();
   for (const Task& task : p_.tasks) err_.emplace_back(Eigen::VectorXd::Zero(task.feature->dim()));
   Trajectory rollout;
@@ -482,8 +486,7 @@ void Aico::Start(const Trajectory* init) {
     Finish(SolveStatus::kMaxIterations);
   } else {
     Export(&result_);
-    result_.task_evaluations = ws_->tasks.evaluations - evals0_;
-    result_.collision_queries = CollisionQueries(p_, ws_->tasks) - coll0_;
+    Count();
   }
 }
 
@@ -492,8 +495,13 @@ void Aico::Finish(SolveStatus status) {
   last_.status = status;
   last_.done = true;
   Export(&result_);
+  Count();
+}
+
+void Aico::Count() {
   result_.task_evaluations = ws_->tasks.evaluations - evals0_;
   result_.collision_queries = CollisionQueries(p_, ws_->tasks) - coll0_;
+  result_.narrow_phase_calls = NarrowPhaseCalls(p_, ws_->tasks) - narrow0_;
 }
 
 AicoStep Aico::Step() {
@@ -533,8 +541,7 @@ AicoStep Aico::Step() {
     Finish(SolveStatus::kMaxIterations);
   } else {
     Export(&result_);
-    result_.task_evaluations = ws_->tasks.evaluations - evals0_;
-    result_.collision_queries = CollisionQueries(p_, ws_->tasks) - coll0_;
+    Count();
   }
   return last_;
 }

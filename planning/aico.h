@@ -89,13 +89,14 @@ struct AicoResult {
   // Cost of each accepted sweep (preceded by the initial trajectory's cost when
   // accept_first_sweep is false); non-increasing.
   std::vector<double> cost_history;
-  double cost = 0.0;           // final total cost
-  double task_cost = 0.0;      // its task part
-  double control_cost = 0.0;   // its control part
-  int iterations = 0;          // sweeps run (accepted + rejected)
-  int rejected = 0;            // rejected sweeps
-  long task_evaluations = 0;   // EvaluateTasks calls (one kinematics + features pass each)
-  long collision_queries = 0;  // narrow-phase queries made by collision features
+  double cost = 0.0;            // final total cost
+  double task_cost = 0.0;       // its task part
+  double control_cost = 0.0;    // its control part
+  int iterations = 0;           // sweeps run (accepted + rejected)
+  int rejected = 0;             // rejected sweeps
+  long task_evaluations = 0;    // EvaluateTasks calls (one kinematics + features pass each)
+  long collision_queries = 0;   // narrow-phase queries made by collision features
+  long narrow_phase_calls = 0;  // FCL narrow-phase calls inside those queries
 };
 
 // Called after every sweep: sweep index (0-based), its cost, whether it was accepted, and the

@@ -190,7 +190,7 @@ PlanResult RunPlanner(const Scenario& s, Planner planner, unsigned seed,
       const MotionProblem& problem = k == 0 ? s.problem : later;
       AicoWorkspace ws(problem);
       const AicoResult r = SolveAico(problem, AttemptOptions(s, k), &ws, callback);
-      found = AddAicoAttempt(s, r, NarrowPhaseCalls(problem, ws.tasks), &out);
+      found = AddAicoAttempt(s, r, &out);
       judged = true;
     }
     found = found || out.trajectory.num_points() > 0;
@@ -266,15 +266,14 @@ void ApplyVerdict(const PlanVerdict& v, PlanReport* rep) {
   rep->writhe_peak_value = v.writhe_peak_value;
 }
 
-bool AddAicoAttempt(const Scenario& s, const AicoResult& r, long solver_narrow_phase_calls,
-                    PlanResult* out) {
+bool AddAicoAttempt(const Scenario& s, const AicoResult& r, PlanResult* out) {
   PlanReport& rep = out->report;
   rep.status = r.status;
   rep.iterations += r.iterations;
   rep.cost = r.cost;
   rep.cost_history = r.cost_history;
   rep.collision_checks += r.collision_queries;
-  rep.narrow_phase_calls += solver_narrow_phase_calls;
+  rep.narrow_phase_calls += r.narrow_phase_calls;
   out->trajectory = r.trajectory;
   CollisionData coll(s.robot, s.env, s.collision);
   KinematicsData kin(s.robot);

@@ -120,12 +120,11 @@ PlanResult RunPlanner(const Scenario& scenario, Planner planner, unsigned seed,
 // Folds one AICO solve `r` of the scenario (or of one of its attempts' problems) into `out`, as
 // RunPlanner does for every attempt: trajectory, status, iterations, cost and its history are
 // replaced; collision checks (the solver's r.collision_queries plus the validation's) and
-// narrow-phase calls (`solver_narrow_phase_calls` plus the validation's) are added; the path is
+// narrow-phase calls (r.narrow_phase_calls plus the validation's) are added; the path is
 // validated at check_resolution (counted queries) and judged by JudgePlan, whose fields fill the
 // report (ApplyVerdict). Returns whether the attempt is a success (valid path, no failure reason);
 // report.success is set accordingly.
-bool AddAicoAttempt(const Scenario& s, const AicoResult& r, long solver_narrow_phase_calls,
-                    PlanResult* out);
+bool AddAicoAttempt(const Scenario& s, const AicoResult& r, PlanResult* out);
 
 // Copies a verdict's fields into a report (final writhe, clearance, failure reason and step,
 // reach error, winding jump and final winding, writhe peak).
