@@ -43,8 +43,12 @@ void ProgressRow(const Session& session, const Settings& s, std::vector<SessionC
                    ? static_cast<float>(w.rrt_checks) / static_cast<float>(w.rrt_budget)
                    : 0.0f;
   } else {
-    std::snprintf(text, sizeof text, "sweep %d/%d, cost %.3g%s", w.sweep, w.max_sweeps, w.cost,
-                  w.held ? " (held)" : "");
+    if (w.sweep == 0 && !w.held) {  // set-up and first sweep: no cost yet
+      std::snprintf(text, sizeof text, "starting: sweep 0/%d", w.max_sweeps);
+    } else {
+      std::snprintf(text, sizeof text, "sweep %d/%d, cost %.3g%s", w.sweep, w.max_sweeps, w.cost,
+                    w.held ? " (held)" : "");
+    }
     fraction =
         w.max_sweeps > 0 ? static_cast<float>(w.sweep) / static_cast<float>(w.max_sweeps) : 0.0f;
   }
