@@ -69,6 +69,7 @@ struct TransferArgs {
   std::string grasp = "all";
   std::string method = "all";
   double mu = 1.0;
+  double contact_patch_mm = planning::physics::SimOptions{}.contact_patch_radius * 1e3;
   std::string out_dir;
   double timeout = 0.0;
   bool frames = false;
@@ -82,6 +83,9 @@ struct TransferArgs {
 int RunTransfer(const TransferArgs& a) {
   if (!(a.mu >= 0) || !std::isfinite(a.mu)) {
     throw std::invalid_argument("--mu: must be a finite number >= 0");
+  }
+  if (!(a.contact_patch_mm >= 0 && a.contact_patch_mm <= 50)) {
+    throw std::invalid_argument("--contact-patch: must be a number of mm in [0, 50]");
   }
   std::vector<planning::TransferMethod> methods;
   if (a.method == "all") {
@@ -101,6 +105,7 @@ int RunTransfer(const TransferArgs& a) {
   const phys::GraspTrialHooks hooks = GraspTransferHooks(out.staging(), frames.get());
   phys::GraspTrialsOptions options;
   options.mu = a.mu;
+  options.contact_patch_radius = a.contact_patch_mm * 1e-3;
   options.perturb = a.perturb;
   options.seed = a.seed;
   options.threads = a.threads;
@@ -165,6 +170,12 @@ void AddGraspCommands(CLI::App* root, CommandList* commands) {
                    "winding | winding_only | contact_only | fingertip | joint | human | all")
       ->capture_default_str();
   transfer->add_option("--mu", ta->mu, "Coulomb friction coefficient (friction pyramid)")
+      ->capture_default_str();
+  transfer
+      ->add_option("--contact-patch", ta->contact_patch_mm,
+                   "soft-finger contact patch radius in mm, the same for every method and the "
+                   "human hand: torsional friction up to (3 pi/16) mu a times the normal force; "
+                   "0 = point contacts")
       ->capture_default_str();
   transfer->add_option("-o,--output", ta->out_dir, "output folder")->required();
   AddTimeoutFlag(transfer, &ta->timeout);
