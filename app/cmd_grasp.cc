@@ -28,9 +28,11 @@ namespace {
 
 struct SynthesizeArgs {
   std::string spec_path, out_path;
+  bool out_given = false;  // -o given (possibly as "")
 };
 
 int RunSynthesize(const SynthesizeArgs& a) {
+  if (a.out_given) CheckOutputFile(a.out_path, "-o");  // before any work; "" is refused
   const std::vector<planning::GraspObject> objects =
       planning::LoadGraspObjects(AssetPath("grasps/objects.json"));
   planning::Robot human = planning::LoadRobot(AssetPath("robots/human_hand.urdf"));
@@ -151,7 +153,10 @@ void AddGraspCommands(CLI::App* root, CommandList* commands) {
       "print contacts and windings, and write the resulting grasp file");
   synth->add_option("spec", sa->spec_path, "grasp file with a \"close\" list")->required();
   synth->add_option("-o,--output", sa->out_path, "output grasp file (JSON)");
-  commands->push_back({synth, [sa] { return RunSynthesize(*sa); }});
+  commands->push_back({synth, [sa, synth] {
+                         sa->out_given = synth->count("-o") > 0;
+                         return RunSynthesize(*sa);
+                       }});
 
   auto ta = std::make_shared<TransferArgs>();
   CLI::App* transfer = grasp->add_subcommand(
