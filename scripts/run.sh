@@ -6,10 +6,8 @@
 #   scripts/run.sh bench                 runs the Google Benchmark programs
 # Environment: BUILD_DIR (default build), JOBS (default nproc), CI=true turns warnings into errors.
 # `test` with SANITIZE=1 also builds ASan + UBSan (TOPOPLAN_SANITIZE, with float-cast-overflow,
-# at -O1) in ASAN_BUILD_DIR (default build-asan) and runs there, JOBS at a time: the unit and
-# property test programs of topology, planning, planning/physics and render, then the command-line
-# tests against the sanitized `topoplan` (bad input, hostile files, good runs of render, heatmap,
-# writhe, plan --frames, grasp transfer and the headless viewer); any sanitizer report fails.
+# at -O1) in ASAN_BUILD_DIR (default build-asan) and runs the unit and property test programs of
+# topology, planning and planning/physics there, JOBS at a time; any sanitizer report fails.
 # (.ci/run sets SANITIZE=1.)
 # ccache is used when it is installed (not required).
 set -euo pipefail
@@ -52,25 +50,17 @@ case "$cmd" in
         "-DCMAKE_CXX_FLAGS_RELEASE=-O1 -DNDEBUG" -DTOPOPLAN_BUILD_BENCHMARKS=OFF \
         -DTOPOPLAN_BUILD_PYTHON=OFF "${werror[@]}" "${launcher[@]}" >/dev/null
       # The unit and property test programs of the numeric libraries (topology, planning,
-      # planning/physics): the code that reads files and numbers and runs the solvers; then
-      # render's (images, figures, fonts; GL renders against the golden images).
+      # planning/physics): the code that reads files and numbers and runs the solvers; no GL.
       sanitized=(topology_test robot_io_test kinematics_test collision_test srdf_test
         mesh_collision_test mesh_limits_test planning_rrt_test planning_aico_test
         planning_aico_step_test planning_rrt_step_test planning_feature_test
         planning_scenario_test planning_grasp_test grasp_quality_test planning_success_test
         planning_replan_test grasp_simulation_test stability_step_test hand_builder_test
-        human_hand_test grasp_trials_test render_unit_test render_figure_test
-        render_snapshot_test)
-      cmake --build "$ASAN_BUILD_DIR" -j "$JOBS" --target "${sanitized[@]}" topoplan
+        human_hand_test grasp_trials_test)
+      cmake --build "$ASAN_BUILD_DIR" -j "$JOBS" --target "${sanitized[@]}"
       echo "run.sh: sanitizer build took $((SECONDS - sanitize_start)) s"
-      # Any report aborts (exit 134), whatever exit code the program or test expects; UBSan's
-      # default would be exit 1, which some command-line tests expect. Leak checking is off: ODE
-      # keeps process-lifetime allocations. Mesa (OSMesa, llvmpipe) is not instrumented and needs
-      # no suppression.
-      export ASAN_OPTIONS=detect_leaks=0:abort_on_error=1
-      export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1:abort_on_error=1
-      export GALLIUM_DRIVER=llvmpipe
-      # JOBS programs at a time, each one's output in ASAN_BUILD_DIR/sanitized-logs.
+      # JOBS programs at a time, each one's output in ASAN_BUILD_DIR/sanitized-logs. Leak checking
+      # is off: ODE keeps process-lifetime allocations.
       logs=$ASAN_BUILD_DIR/sanitized-logs
       mkdir -p "$logs"
       run_sanitized() {
@@ -80,7 +70,10 @@ case "$cmd" in
           echo "run.sh: $1 was not built" >"$logs/$1.log"
           rc=1
         else
-          (cd "$(dirname "$exe")" && "$exe" --gtest_brief=1) >"$logs/$1.log" 2>&1 || rc=$?
+          (cd "$(dirname "$exe")" &&
+            ASAN_OPTIONS=detect_leaks=0:abort_on_error=1 \
+            UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 "$exe" --gtest_brief=1) \
+            >"$logs/$1.log" 2>&1 || rc=$?
         fi
         echo "$rc" >"$logs/$1.rc"
       }
@@ -102,25 +95,6 @@ case "$cmd" in
         fi
       done
       echo "run.sh: sanitized tests took $((SECONDS - tests_start)) s"
-      # The command-line tests against the sanitized binary: every bad-input, limit and hostile-
-      # file test of the CLI (cli.*, robot_cli.*, grasp_cli.*: each checks the exit code, so an
-      # abort fails it) and the good runs among them (render, heatmap, writhe, grasp transfer,
-      # cli.run_*: plan --frames and the headless viewer with a script). Not the long sweeps
-      # (bench --formats, the OMPL logs, 1 vs 2 threads), which add minutes and no other code.
-      cli_start=$SECONDS
-      cli_log=$logs/cli-tests.log
-      if (cd "$ASAN_BUILD_DIR" && ctest -R '^(cli|robot_cli|grasp_cli)\.' \
-        -E 'bench_formats|ompl_benchmark_log|threads_same_report' -j "$JOBS" \
-        --output-on-failure --timeout 900) >"$cli_log" 2>&1; then
-        echo "run.sh: sanitized command-line tests: $(grep -E 'tests passed' "$cli_log")"
-      else
-        failed+=("command-line tests:"
-          "$(sed -n '/The following tests FAILED/,$p' "$cli_log" | grep -Eo '(cli|robot_cli|grasp_cli)\.[^ ]+' | tr '\n' ' ')")
-        echo "run.sh: sanitized command-line tests: FAILED (log: $cli_log)"
-        # The failed tests' output (ctest prints it under each failed test's name).
-        grep -Ev '^ *[0-9]+/[0-9]+ Test +#[0-9]+: .*Passed|^ +Start ' "$cli_log" | tail -n 400
-      fi
-      echo "run.sh: sanitized command-line tests took $((SECONDS - cli_start)) s"
       if ((${#failed[@]})); then
         echo "run.sh: sanitized tests failed: ${failed[*]} (logs: $logs)" >&2
         exit 1
