@@ -28,9 +28,11 @@ namespace {
 
 struct SynthesizeArgs {
   std::string spec_path, out_path;
+  bool out_given = false;  // -o given (possibly as "")
 };
 
 int RunSynthesize(const SynthesizeArgs& a) {
+  if (a.out_given) CheckOutputFile(a.out_path, "-o");  // before any work; "" is refused
   const std::vector<planning::GraspObject> objects =
       planning::LoadGraspObjects(AssetPath("grasps/objects.json"));
   planning::Robot human = planning::LoadRobot(AssetPath("robots/human_hand.urdf"));
@@ -69,6 +71,7 @@ struct TransferArgs {
   std::string grasp = "all";
   std::string method = "all";
   double mu = 1.0;
+  double contact_patch_mm = planning::physics::SimOptions{}.contact_patch_radius * 1e3;
   std::string out_dir;
   double timeout = 0.0;
   bool frames = false;
@@ -82,6 +85,9 @@ struct TransferArgs {
 int RunTransfer(const TransferArgs& a) {
   if (!(a.mu >= 0) || !std::isfinite(a.mu)) {
     throw std::invalid_argument("--mu: must be a finite number >= 0");
+  }
+  if (!(a.contact_patch_mm >= 0 && a.contact_patch_mm <= 50)) {
+    throw std::invalid_argument("--contact-patch: must be a number of mm in [0, 50]");
   }
   std::vector<planning::TransferMethod> methods;
   if (a.method == "all") {
@@ -101,6 +107,7 @@ int RunTransfer(const TransferArgs& a) {
   const phys::GraspTrialHooks hooks = GraspTransferHooks(out.staging(), frames.get());
   phys::GraspTrialsOptions options;
   options.mu = a.mu;
+  options.contact_patch_radius = a.contact_patch_mm * 1e-3;
   options.perturb = a.perturb;
   options.seed = a.seed;
   options.threads = a.threads;
@@ -146,7 +153,10 @@ void AddGraspCommands(CLI::App* root, CommandList* commands) {
       "print contacts and windings, and write the resulting grasp file");
   synth->add_option("spec", sa->spec_path, "grasp file with a \"close\" list")->required();
   synth->add_option("-o,--output", sa->out_path, "output grasp file (JSON)");
-  commands->push_back({synth, [sa] { return RunSynthesize(*sa); }});
+  commands->push_back({synth, [sa, synth] {
+                         sa->out_given = synth->count("-o") > 0;
+                         return RunSynthesize(*sa);
+                       }});
 
   auto ta = std::make_shared<TransferArgs>();
   CLI::App* transfer = grasp->add_subcommand(
@@ -165,6 +175,12 @@ void AddGraspCommands(CLI::App* root, CommandList* commands) {
                    "winding | winding_only | contact_only | fingertip | joint | human | all")
       ->capture_default_str();
   transfer->add_option("--mu", ta->mu, "Coulomb friction coefficient (friction pyramid)")
+      ->capture_default_str();
+  transfer
+      ->add_option("--contact-patch", ta->contact_patch_mm,
+                   "soft-finger contact patch radius in mm, the same for every method and the "
+                   "human hand: torsional friction up to (3 pi/16) mu a times the normal force; "
+                   "0 = point contacts")
       ->capture_default_str();
   transfer->add_option("-o,--output", ta->out_dir, "output folder")->required();
   AddTimeoutFlag(transfer, &ta->timeout);

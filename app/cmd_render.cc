@@ -192,8 +192,8 @@ void AddRenderCommands(CLI::App* root, CommandList* commands) {
       "Exit codes: 0 within tolerance, 1 images differ, 2 bad input (missing file, not "
       "a PNG, sizes differ).");
   commands->push_back(
-      {diff, [da]() {
-         if (!da->output.empty()) CheckOutputFile(da->output, "-o");
+      {diff, [da, diff]() {
+         if (diff->count("-o") > 0) CheckOutputFile(da->output, "-o");  // "" is refused
          const render::Image a = render::ReadPng(da->expected);
          const render::Image b = render::ReadPng(da->actual);
          render::DiffOptions options;

@@ -78,12 +78,12 @@ void AddTopologyCommands(CLI::App* root, CommandList* commands) {
       "Entry (i,j) = 1/(4pi) * double integral over segment i of A and segment j of B of\n"
       "(a-b).(da x db)/|a-b|^3. For two closed polygons the total is their linking number.");
   commands->push_back(
-      {writhe, [wa]() {
+      {writhe, [wa, writhe]() {
          const topology::Chain a = topology::ReadChainCsv(wa->a_path);
          const topology::Chain b = topology::ReadChainCsv(wa->b_path);
          CheckWrithePairs(a.cols(), b.cols());
          int width = 0, height = 0;
-         if (!wa->heatmap_path.empty()) {
+         if (writhe->count("--heatmap") > 0) {  // "" is refused
            ParseImageSize(wa->heatmap_size, "--heatmap-size", &width, &height);
            CheckOutputFile(wa->heatmap_path, "--heatmap");
            render::FigureFormatForPath(wa->heatmap_path, "--heatmap");

@@ -476,6 +476,7 @@ nlohmann::json GraspReportJson(const phys::GraspTrialsResult& result) {
   report["protocol"] = {{"close_time_s", stab.close_time},
                         {"trial_time_s", stab.trial_time},
                         {"dt_s", stab.sim.dt},
+                        {"contact_patch_radius_m", stab.sim.contact_patch_radius},
                         {"max_slip_m", stab.max_slip},
                         {"max_rotation_deg", stab.max_rotation_deg},
                         {"min_contact_links", stab.min_contact_links}};
@@ -501,6 +502,10 @@ nlohmann::json GraspReportJson(const phys::GraspTrialsResult& result) {
       nlohmann::json j;
       j["target_winding"] = VecJson(t.target_winding);
       j["robot_winding"] = VecJson(t.robot_winding);
+      // Per extra reference curve of the object (objects.json "extra_references"), stacked: the
+      // opposition pair (max, min over the fingers) asked for and reached; [] without such curves.
+      j["target_extra_winding"] = VecJson(t.target_extra_winding);
+      j["robot_extra_winding"] = VecJson(t.robot_extra_winding);
       nlohmann::json ph = nlohmann::json::array();
       for (const Eigen::VectorXd& v : t.robot_phalanx_winding) ph.push_back(VecJson(v));
       j["robot_phalanx_winding"] = ph;
@@ -557,7 +562,9 @@ nlohmann::json GraspReportJson(const phys::GraspTrialsResult& result) {
 
 std::string GraspSummaryMarkdown(const phys::GraspTrialsResult& result) {
   std::ostringstream md;
-  md << "# Grasp transfer to the SDH: ODE stability (mu = " << result.stability.sim.mu << ")\n\n"
+  md << "# Grasp transfer to the SDH: ODE stability (mu = " << result.stability.sim.mu
+     << ", soft-finger contact patch " << result.stability.sim.contact_patch_radius * 1e3
+     << " mm)\n\n"
      << "Directions passed out of 6 (gravity along +-x, +-y, +-z of the palm, 2 s each at 1 kHz); "
         "a grasp is stable when it passes all 6. eps: Ferrari-Canny epsilon of the contacts at "
         "the end of closing.\n\n| grasp |";

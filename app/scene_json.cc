@@ -5,6 +5,9 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
+#include <map>
+#include <memory>
 #include <set>
 #include <stdexcept>
 
@@ -115,6 +118,8 @@ class Reader {
       const std::vector<double> q = Numbers(obj.at("quaternion"), Join(path, "quaternion"), 4, 4);
       Eigen::Quaternionf quat(static_cast<float>(q[0]), static_cast<float>(q[1]),
                               static_cast<float>(q[2]), static_cast<float>(q[3]));
+      // Components near the float limit: the norm overflows, so scale by the largest first.
+      if (!std::isfinite(quat.norm())) quat.coeffs() /= quat.coeffs().cwiseAbs().maxCoeff();
       if (!(quat.norm() > 0.0f)) Fail(source_, Join(path, "quaternion"), "must not be zero");
       return quat.normalized().toRotationMatrix();
     }
@@ -143,7 +148,34 @@ std::set<std::string> With(std::set<std::string> keys) {
   return keys;
 }
 
-void ParseShape(const Reader& r, const json& s, const std::string& path, render::Scene* scene) {
+// Running totals of a scene against its limits (scene_json.h), and the meshes read so far (a file
+// listed again is shared, not read again).
+class SceneBudget {
+ public:
+  explicit SceneBudget(std::string source) : source_(std::move(source)) {}
+  std::map<std::string, std::shared_ptr<const render::TriangleMesh>> meshes;
+  void AddPoints(size_t n, const std::string& path) {
+    points_ += n;
+    if (points_ > kMaxScenePoints) {
+      Fail(source_, path,
+           "more than " + std::to_string(kMaxScenePoints) + " chain and line points (limit)");
+    }
+  }
+  void AddTriangles(size_t n, const std::string& path) {
+    triangles_ += n;
+    if (triangles_ > kMaxSceneTriangles) {
+      Fail(source_, path,
+           "more than " + std::to_string(kMaxSceneTriangles) + " mesh triangles (limit)");
+    }
+  }
+
+ private:
+  std::string source_;
+  size_t points_ = 0, triangles_ = 0;
+};
+
+void ParseShape(const Reader& r, const json& s, const std::string& path, render::Scene* scene,
+                SceneBudget* budget) {
   r.ExpectObject(s, path);
   const std::string type = r.String(r.Required(s, path, "type"), Reader::Join(path, "type"));
   auto key = [&](const std::string& k) { return Reader::Join(path, k); };
@@ -174,11 +206,14 @@ void ParseShape(const Reader& r, const json& s, const std::string& path, render:
     shape.kind = render::Shape::Kind::kMesh;
     shape.material = material;
     const std::string file = r.File(r.Required(s, path, "file"), key("file"));
+    std::shared_ptr<const render::TriangleMesh>& mesh = budget->meshes[file];
     try {
-      shape.mesh = ToRenderMesh(planning::LoadMesh(file));
+      if (!mesh) mesh = ToRenderMesh(planning::LoadMesh(file));
     } catch (const std::invalid_argument& e) {
       Fail(r.source(), key("file"), e.what());
     }
+    shape.mesh = mesh;
+    budget->AddTriangles(shape.mesh->indices.size() / 3, key("file"));
     if (s.contains("pose")) {
       const json& pose = s.at("pose");
       r.ExpectObject(pose, key("pose"));
@@ -207,13 +242,21 @@ void ParseShape(const Reader& r, const json& s, const std::string& path, render:
     if (s.contains("points")) {
       const json& pts = s.at("points");
       if (!pts.is_array()) Fail(r.source(), key("points"), "expected an array of [x, y, z]");
+      budget->AddPoints(pts.size(), key("points"));
       for (size_t i = 0; i < pts.size(); ++i) {
         tube.points.push_back(r.Vec3(pts[i], key("points") + "[" + std::to_string(i) + "]"));
       }
     } else {
-      const topology::Chain chain = topology::ReadChainCsv(r.File(s.at("file"), key("file")));
-      for (Eigen::Index i = 0; i < chain.cols(); ++i)
+      const std::string file = r.File(s.at("file"), key("file"));
+      const topology::Chain chain = topology::ReadChainCsv(file);
+      budget->AddPoints(static_cast<size_t>(chain.cols()), key("file"));
+      for (Eigen::Index i = 0; i < chain.cols(); ++i) {
+        if (!(chain.col(i).cwiseAbs().maxCoeff() <= std::numeric_limits<float>::max())) {
+          Fail(r.source(), key("file"),
+               file + ": point " + std::to_string(i + 1) + " is too large for single precision");
+        }
         tube.points.push_back(chain.col(i).cast<float>());
+      }
     }
     if (tube.points.size() < 2) Fail(r.source(), path, "a chain needs at least 2 points");
     tube.radius = static_cast<float>(r.Positive(r.Required(s, path, "radius"), key("radius")));
@@ -239,6 +282,7 @@ void ParseShape(const Reader& r, const json& s, const std::string& path, render:
     if (!pts.is_array() || pts.size() < 2) {
       Fail(r.source(), key("points"), "expected at least 2 points [x, y, z]");
     }
+    budget->AddPoints(pts.size(), key("points"));
     for (size_t i = 0; i < pts.size(); ++i) {
       lines.points.push_back(r.Vec3(pts[i], key("points") + "[" + std::to_string(i) + "]"));
     }
@@ -361,8 +405,14 @@ SceneDocument ParseSceneJson(const nlohmann::json& doc, const std::string& sourc
   if (doc.contains("shapes")) {
     const json& shapes = doc.at("shapes");
     if (!shapes.is_array()) Fail(source, "shapes", "expected an array");
+    if (shapes.size() > kMaxSceneShapes) {
+      Fail(source, "shapes",
+           std::to_string(shapes.size()) + " shapes, more than " + std::to_string(kMaxSceneShapes) +
+               " (limit)");
+    }
+    SceneBudget budget(source);
     for (size_t i = 0; i < shapes.size(); ++i) {
-      ParseShape(r, shapes[i], "shapes[" + std::to_string(i) + "]", &out.scene);
+      ParseShape(r, shapes[i], "shapes[" + std::to_string(i) + "]", &out.scene, &budget);
     }
   }
   return out;

@@ -6,12 +6,22 @@
 // path of the offending value, e.g. "scene.json: shapes[3].radius: expected a number".
 #pragma once
 
+#include <cstddef>
 #include <nlohmann/json.hpp>
 #include <string>
 
 #include "render/scene.h"
 
 namespace app {
+
+// Limits of a scene file, checked while it is parsed (before anything is drawn): entries in
+// "shapes" (1000 spheres take about 2 s and 80 MB to draw), points of all "chain" and "lines"
+// entries together (as many as one chain file, topology::kMaxChainPoints) and triangles of all
+// "mesh" entries together (as many as one mesh file, planning::kMaxMeshTriangles; a mesh listed
+// twice is read once but counts twice).
+inline constexpr std::size_t kMaxSceneShapes = 1000;
+inline constexpr std::size_t kMaxScenePoints = 100000;
+inline constexpr std::size_t kMaxSceneTriangles = 2'000'000;
 
 struct SceneDocument {
   render::Scene scene;
@@ -21,7 +31,8 @@ struct SceneDocument {
 };
 
 // Parses a scene document. `source` names the file in messages; relative "file" entries (meshes,
-// chain CSVs) are resolved against `base_dir`.
+// chain CSVs) are resolved against `base_dir`. Numbers must fit single precision (chain files
+// too); the limits above are checked.
 SceneDocument ParseSceneJson(const nlohmann::json& doc, const std::string& source,
                              const std::string& base_dir);
 

@@ -27,10 +27,18 @@ namespace app {
 namespace {
 
 // A JSON file with a "tasks" array is a planning scenario; anything else LoadRobotScene takes.
+// Read bounded like every reader: a file that cannot be read (missing, larger than
+// topology::kMaxInputFileBytes, `/dev/zero`) is not a scenario, and the robot-scene loader then
+// names the problem.
 bool IsPlanningScenario(const std::string& path) {
   if (path.size() < 5 || path.substr(path.size() - 5) != ".json") return false;
-  std::ifstream in(path);
-  const nlohmann::json j = nlohmann::json::parse(in, nullptr, /*allow_exceptions=*/false);
+  std::string text;
+  try {
+    text = topology::ReadFileBounded(path, "scenario");
+  } catch (const std::invalid_argument&) {
+    return false;
+  }
+  const nlohmann::json j = nlohmann::json::parse(text, nullptr, /*allow_exceptions=*/false);
   return j.is_object() && j.contains("tasks");
 }
 

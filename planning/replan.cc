@@ -344,7 +344,9 @@ ReplanResult RunReplanning(Scenario* s, const std::string& object, const ObjectP
   const int T = base.num_steps;
   const double tau_s = tau(base);
   const int n = static_cast<int>(base.q0.size());
-  out.period_slices = std::max(1, static_cast<int>(std::lround(options.replan_period_s / tau_s)));
+  // At most T slices (no re-plan within the plan): a period of 1e300 s must not overflow lround.
+  out.period_slices = std::max(1, static_cast<int>(std::lround(std::min(
+                                      options.replan_period_s / tau_s, static_cast<double>(T)))));
   out.period_s = out.period_slices * tau_s;
 
   struct Restore {  // puts the object, the task points and the targets back whatever happens

@@ -3,9 +3,9 @@
 // re-plan period AICO re-plans from the current state, warm-started with the previous solution.
 //
 // Time: plan time t in seconds, slices of τ = duration / T (scenario.h). Execution covers the
-// scenario's slices g = 0..T (t = g·τ). Let k = max(1, round(replan_period_s / τ)) slices. At
-// g = 0 the object is placed at path(0) and the full problem is solved (the scenario's AICO
-// options, cold start as configured). At g = k, 2k, ... < T:
+// scenario's slices g = 0..T (t = g·τ). Let k = max(1, round(min(replan_period_s / τ, T)))
+// slices. At g = 0 the object is placed at path(0) and the full problem is solved (the
+// scenario's AICO options, cold start as configured). At g = k, 2k, ... < T:
 //   1. the object is moved to path(g·τ) (MoveObject; it stays there until the next re-plan);
 //   2. the window problem is the scenario's problem shifted by g slices: same T and τ, start
 //      (q, q̇) = the executed state at g, targets and precisions y*'_j = y*_{min(g+j, T)},

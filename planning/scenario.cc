@@ -72,6 +72,18 @@ std::unique_ptr<Feature> BuildFeature(const Scenario& s, const FeatureSpec& f) {
   });
 }
 
+// A linear target y*_t = y*_0 + (t/T)(y*_T − y*_0) (task->target, T+1 columns) re-timed to reach
+// y*_T at t = reach_at·T and hold it after: y*_t = y*_0 + min(1, t/(reach_at·T))(y*_T − y*_0).
+void HoldFromReachAt(double reach_at, Task* task) {
+  if (reach_at >= 1.0) return;
+  const Eigen::Index T = task->target.cols() - 1;
+  const Eigen::VectorXd y0 = task->target.col(0), yT = task->target.col(T);
+  for (Eigen::Index t = 0; t <= T; ++t) {
+    const double s = std::min(1.0, static_cast<double>(t) / (reach_at * static_cast<double>(T)));
+    task->target.col(t) = (1.0 - s) * y0 + s * yT;
+  }
+}
+
 // Task from its spec; target resolution needs q0 (and q̂_T for "final_pose").
 Task BuildTask(const Scenario& s, const TaskSpec& spec, const Eigen::VectorXd& q0,
                const Eigen::VectorXd* q_final) {
@@ -102,6 +114,7 @@ Task BuildTask(const Scenario& s, const TaskSpec& spec, const Eigen::VectorXd& q
       break;
     case TargetKind::kInterpolate:
       SetInterpolatedTarget(&task, FeatureValue(s.robot, *task.feature, q0), value(), mid, fin, T);
+      HoldFromReachAt(target.reach_at, &task);
       break;
     case TargetKind::kFinalPose:
       if (q_final == nullptr) {
@@ -111,6 +124,7 @@ Task BuildTask(const Scenario& s, const TaskSpec& spec, const Eigen::VectorXd& q
       }
       SetInterpolatedTarget(&task, FeatureValue(s.robot, *task.feature, q0),
                             FeatureValue(s.robot, *task.feature, *q_final), mid, fin, T);
+      HoldFromReachAt(target.reach_at, &task);
       break;
     case TargetKind::kUnwinding:
       if (s.unwinding.cols() != T + 1) {
@@ -123,6 +137,11 @@ Task BuildTask(const Scenario& s, const TaskSpec& spec, const Eigen::VectorXd& q
       }
       break;
   }
+  if (spec.final_steps > T) {
+    throw std::invalid_argument(spec.final_steps_where + ": " + std::to_string(spec.final_steps) +
+                                " final steps, but the problem has T = " + std::to_string(T));
+  }
+  task.precision.tail(spec.final_steps).setConstant(fin);
   return task;
 }
 

@@ -208,7 +208,7 @@ FeatureSpec ReadFeature(const JsonNode& n) {
 
 TaskSpec ReadTask(const JsonNode& n) {
   n.CheckKeys({"name", "feature", "order", "between", "max_jump", "target", "precision",
-               "final_precision"});
+               "final_precision", "final_steps"});
   TaskSpec t;
   t.where = n.Where();
   t.name = n.String("name", t.name);
@@ -221,12 +221,21 @@ TaskSpec ReadTask(const JsonNode& n) {
   t.precision = n.Number("precision", 0.0, 0.0, kMaxWeight);
   t.final_precision = n.Number("final_precision", t.precision, 0.0, kMaxWeight);
   if (t.precision < 0 || t.final_precision < 0) n.Fail("precisions must be >= 0");
+  if (n.Has("final_steps")) {
+    t.final_steps = static_cast<int>(n.At("final_steps").Integer(1, 10000));
+    t.final_steps_where = n.Where() + ".final_steps";
+  }
   t.target.where = n.Where() + ".target";
   if (n.Has("target")) {
     const JsonNode tn = n.At("target");
-    tn.CheckKeys({"type", "value"});
+    tn.CheckKeys({"type", "value", "reach_at"});
     t.target.kind =
         tn.Has("type") ? Parse<TargetKind>(tn.At("type"), "target type") : TargetKind::kValue;
+    if (tn.Has("reach_at")) {
+      if (t.target.kind != TargetKind::kInterpolate && t.target.kind != TargetKind::kFinalPose)
+        tn.Fail("\"reach_at\" needs an \"interpolate\" or \"final_pose\" target");
+      t.target.reach_at = tn.At("reach_at").Number(1e-6, 1.0);
+    }
     if (t.target.kind == TargetKind::kValue || t.target.kind == TargetKind::kInterpolate) {
       const JsonNode vn = tn.At("value");
       t.target.value_where = vn.Where();

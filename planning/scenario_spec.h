@@ -54,9 +54,13 @@
 //                            the unwinding path: the coil continued from q0 to writhe 0, resampled
 //                            at equal joint-space arc length over t = 0..T; needs a coil start);
 //                            value: number (every component) or [dim] (for "value" and
-//                            "interpolate")
+//                            "interpolate"); reach_at: number in (0, 1], default 1 (for
+//                            "interpolate" and "final_pose"): the target moves linearly from
+//                            y(q0) to its end value until t = reach_at·T and holds it after
 //     precision     number   ρ for t < T, >= 0, default 0
 //     final_precision number ρ at t = T, >= 0, default = precision
+//     final_steps   integer  K in 1..T, default 1: final_precision on the last K slices
+//                            t = T − K + 1..T (a settling phase at the end of the motion)
 //     between       integer  K in 0..64, default 0 (order-0 tasks): AICO also evaluates the task
 //                            at the K states interpolated between neighbouring slices (Task)
 //     max_jump      number   > 0 (order-0 tasks of dim 1): AICO rejects sweeps that add jumps of
@@ -232,6 +236,7 @@ struct TargetSpec {
   TargetKind kind = TargetKind::kZero;
   Eigen::VectorXd value;  // kValue / kInterpolate
   bool scalar = false;    // value was one number: every component
+  double reach_at = 1.0;  // kInterpolate / kFinalPose: fraction of T at which y_T is reached
   std::string where;      // of "target"
   std::string value_where;
 };
@@ -244,6 +249,8 @@ struct TaskSpec {
   double max_jump = 0.0;
   double precision = 0.0;
   double final_precision = 0.0;
+  int final_steps = 1;  // final_precision on the last final_steps slices (<= T, checked at set-up)
+  std::string final_steps_where;  // of "final_steps" (empty: not given)
   TargetSpec target;
   std::string where;
 };

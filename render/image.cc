@@ -14,6 +14,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "render/internal/file_read.h"
+
 namespace render {
 namespace {
 
@@ -135,16 +137,10 @@ Image DecodePng(const std::string& bytes, const std::string& source_name) {
 }
 
 Image ReadPng(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in || std::filesystem::is_directory(path)) {
-    throw std::invalid_argument(path + ": cannot open (missing file?)");
-  }
-  // Bounded read (render/ cannot use topology's reader): stops one chunk past the limit.
+  // Bounded: DecodePng refuses more than kMaxPngFileBytes.
   std::string bytes;
-  char chunk[1 << 16];
-  while (in && bytes.size() <= kMaxPngFileBytes) {
-    in.read(chunk, sizeof(chunk));
-    bytes.append(chunk, static_cast<size_t>(in.gcount()));
+  if (!internal::ReadFileUpTo(path, kMaxPngFileBytes, &bytes)) {
+    throw std::invalid_argument(path + ": cannot open (missing file?)");
   }
   return DecodePng(bytes, path);
 }

@@ -112,10 +112,13 @@ void Validate(const SimHand& hand, const SimObject& object, const SimOptions& o)
   for (size_t k = 0; k < object.shapes.size(); ++k) {
     CheckShape(object.shapes[k], "object shape " + std::to_string(k));
   }
-  if (!(o.dt > 0) || !(o.mu >= 0) || o.max_contacts_per_pair < 1 ||
+  if (!(o.contact_patch_radius >= 0) || !std::isfinite(o.contact_patch_radius)) {
+    throw std::invalid_argument("simulation options: contact_patch_radius must be finite and >= 0");
+  }
+  if (!(o.dt > 0) || !(o.mu >= 0) || !std::isfinite(o.mu) || o.max_contacts_per_pair < 1 ||
       o.max_contacts_per_pair > kMaxContactsPerPair || o.quickstep_iterations < 1) {
     throw std::invalid_argument(
-        "simulation options: need dt > 0, mu >= 0, 1 <= "
+        "simulation options: need dt > 0, finite mu >= 0, 1 <= "
         "max_contacts_per_pair <= 16, quickstep_iterations >= 1");
   }
 }
@@ -189,6 +192,13 @@ double AxisInertia(dBodyID body, const Eigen::Vector3d& anchor, const Eigen::Vec
 }
 
 }  // namespace
+
+double SoftFingerSpinArm(double mu, double patch_radius) {
+  if (!(mu >= 0) || !std::isfinite(mu) || !(patch_radius >= 0) || !std::isfinite(patch_radius)) {
+    throw std::invalid_argument("SoftFingerSpinArm: mu and the patch radius must be finite, >= 0");
+  }
+  return 3.0 * kPi / 16.0 * mu * patch_radius;
+}
 
 // --- Implementation state -----------------------------------------------------------------------
 
@@ -342,8 +352,11 @@ struct GraspSimulation::Impl {
     int num_touched_high = 0;
     std::vector<char> touched_high;
     int mode = dContactSoftERP | dContactSoftCFM;
-    if (options.friction_pyramid) mode |= dContactApprox1;
-    if (options.rolling_friction > 0) mode |= dContactRolling | dContactAxisDep;
+    if (options.friction_pyramid) mode |= dContactApprox1;  // includes dContactApprox1_N
+    // Soft finger: spinning friction only (rows for rolling about t1, t2 are dropped by passing
+    // a negative rho, rho2; with dContactAxisDep = dContactMu2 the second direction uses mu2).
+    const double spin_arm = SoftFingerSpinArm(options.mu, options.contact_patch_radius);
+    if (spin_arm > 0) mode |= dContactRolling | dContactAxisDep;
     for (size_t gi = 0; gi < hand_geom.size(); ++gi) {
       dReal ha[6];
       dGeomGetAABB(hand_geom[gi], ha);
@@ -378,9 +391,10 @@ struct GraspSimulation::Impl {
           c.surface.mu = options.mu;
           c.surface.soft_erp = options.contact_erp;
           c.surface.soft_cfm = options.contact_cfm;
-          c.surface.rho = 0.0;
-          c.surface.rho2 = 0.0;
-          c.surface.rhoN = options.rolling_friction;
+          c.surface.mu2 = options.mu;
+          c.surface.rho = -1.0;
+          c.surface.rho2 = -1.0;
+          c.surface.rhoN = spin_arm;
           c.surface.bounce = 0.0;
           dJointID j = dJointCreateContact(world, contact_group, &c);
           dJointAttach(j, link_body[link], object_body);

@@ -58,6 +58,11 @@ GraspTrial PrepareTrial(const TransferSetup& setup, TransferMethod method) {
     const GraspEncoding enc = EncodeGrasp(setup.human, kin, setup.human_chains, setup.reference);
     t.human_winding = t.target_winding = t.robot_winding = enc.finger;
     t.human_phalanx_winding = t.robot_phalanx_winding = enc.phalanx;
+    // The demonstration's own opposition pairs about the extra curves: target = achieved.
+    if (!setup.extra_references.empty()) {
+      t.target_extra_winding = t.robot_extra_winding =
+          WindingTarget(setup).tail(2 * setup.extra_references.size());
+    }
     t.min_clearance = HandClearance(setup.human, kin, SampleHandSpheres(setup.human, {}, 0.002),
                                     setup.object, setup.grasp.world_from_object);
     t.solver = "demonstration";
@@ -99,6 +104,9 @@ std::uint64_t NameHash(const std::string& name) {
 void CheckTrialsOptions(const GraspTrialsOptions& o) {
   if (!(o.mu >= 0) || !std::isfinite(o.mu)) {
     throw std::invalid_argument("grasp trials: mu must be a finite number >= 0");
+  }
+  if (!(o.contact_patch_radius >= 0) || !std::isfinite(o.contact_patch_radius)) {
+    throw std::invalid_argument("grasp trials: contact_patch_radius must be a finite number >= 0");
   }
   if (o.perturb < 0 || o.perturb > 1000) {
     throw std::invalid_argument("grasp trials: perturb must be in [0, 1000]");
@@ -231,6 +239,7 @@ GraspTrialsResult RunGraspTrials(const OdeRuntime& runtime, const Robot& human_h
   GraspTrialsResult result;
   result.methods = methods;
   result.stability.sim.mu = options.mu;
+  result.stability.sim.contact_patch_radius = options.contact_patch_radius;
   result.perturb = options.perturb;
   result.seed = options.seed;
   result.perturb_translation = options.perturb_translation;

@@ -92,6 +92,9 @@ struct GraspMethodSummary {
 // Options of RunGraspTrials beyond the grasps and methods.
 struct GraspTrialsOptions {
   double mu = 1.0;  // Coulomb friction of the protocol (StabilityOptions::sim.mu)
+  // Soft-finger contact patch radius of the protocol [m] (SimOptions::contact_patch_radius, the
+  // same for every method and the human hand); 0 = point contacts.
+  double contact_patch_radius = SimOptions{}.contact_patch_radius;
   // Robustness: every grasp × method is repeated `perturb` times (0: none, at most 1000) with the
   // object moved by up to perturb_translation along each world axis (uniform in [−a, a]) and
   // turned about its origin by an angle uniform in [−b, b] (b = perturb_rotation_deg) about a
@@ -118,9 +121,9 @@ Eigen::Isometry3d PerturbedObjectPose(const Eigen::Isometry3d& world_from_object
                                       const GraspTrialsOptions& options);
 
 struct GraspTrialsResult {
-  std::vector<HumanGrasp> grasps;               // as given (stopped: the finished ones)
-  std::vector<TransferMethod> methods;          // as given (output order)
-  StabilityOptions stability;                   // the protocol used (stability.sim.mu = mu)
+  std::vector<HumanGrasp> grasps;       // as given (stopped: the finished ones)
+  std::vector<TransferMethod> methods;  // as given (output order)
+  StabilityOptions stability;           // the protocol used (sim.mu = mu, sim.contact_patch_radius)
   std::vector<std::vector<GraspTrial>> trials;  // trials[grasp][method]
   std::vector<GraspMethodSummary> summary;      // one per method, in `methods` order
   bool all_stable = true;                       // every trial stable
@@ -136,8 +139,8 @@ struct GraspTrialsResult {
 // each (see GraspTrialsOptions; on_start/on_done run for the nominal trial only). Each grasp's
 // object is looked up by name in `objects`; `human_hand` and `sdh_source` are the robots
 // MakeTransferSetup takes. Throws std::invalid_argument for an unknown object or bad grasp (as
-// MakeTransferSetup), for mu < 0 or non-finite, perturb outside [0, 1000], threads < 1 or
-// non-finite/negative perturbation sizes.
+// MakeTransferSetup), for mu or contact_patch_radius < 0 or non-finite, perturb outside
+// [0, 1000], threads < 1 or non-finite/negative perturbation sizes.
 GraspTrialsResult RunGraspTrials(const OdeRuntime& runtime, const Robot& human_hand,
                                  const Robot& sdh_source, const std::vector<GraspObject>& objects,
                                  const std::vector<HumanGrasp>& grasps,

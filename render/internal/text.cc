@@ -6,10 +6,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
-#include <iterator>
 
 #include "render/internal/canvas.h"
+#include "render/internal/file_read.h"
 #include "render/offscreen_context.h"
 
 namespace render::internal {
@@ -68,13 +67,18 @@ std::vector<int> DecodeUtf8(std::string_view text) {
 }
 
 Font::Font(const std::string& path) : data_(std::make_unique<Data>()) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
+  std::string bytes;
+  if (!ReadFileUpTo(path, kMaxFontFileBytes, &bytes)) {
     throw EnvironmentError(path +
                            ": font not found (install the Debian package fonts-dejavu-core)");
   }
-  data_->bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-  const int offset = stbtt_GetFontOffsetForIndex(data_->bytes.data(), 0);
+  if (bytes.size() > kMaxFontFileBytes) {
+    throw EnvironmentError(path + ": font file is larger than " +
+                           std::to_string(kMaxFontFileBytes) + " bytes (limit)");
+  }
+  data_->bytes.assign(bytes.begin(), bytes.end());
+  // stb_truetype reads the 12-byte header without checking the length.
+  const int offset = bytes.size() < 12 ? -1 : stbtt_GetFontOffsetForIndex(data_->bytes.data(), 0);
   if (offset < 0 || !stbtt_InitFont(&data_->info, data_->bytes.data(), offset)) {
     throw EnvironmentError(path + ": not a TrueType font");
   }

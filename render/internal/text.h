@@ -4,6 +4,7 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -16,10 +17,13 @@ namespace render::internal {
 
 enum class Align { kLeft, kCenter, kRight };
 
+// Largest font file read (bytes): 32 MiB (DejaVuSans.ttf is 0.7 MB).
+inline constexpr std::size_t kMaxFontFileBytes = std::size_t{32} << 20;
+
 class Font {
  public:
-  // Loads a TrueType file. Throws render::EnvironmentError naming the path when it is missing or
-  // not a font.
+  // Loads a TrueType file. Throws render::EnvironmentError naming the path when it is missing,
+  // larger than kMaxFontFileBytes (`/dev/zero` is refused after that many bytes) or not a font.
   explicit Font(const std::string& path);
   ~Font();
   Font(const Font&) = delete;

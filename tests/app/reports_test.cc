@@ -229,6 +229,40 @@ TEST(ReportsTest, GraspTableMatchesReportJson) {
   EXPECT_EQ(md.find("perturbed"), std::string::npos) << md;  // no --perturb: no perturbed row
 }
 
+TEST(ReportsTest, GraspReportCarriesTheExtraCurveWindings) {
+  // One grasp on an object with one extra reference curve (the plate's rim), one without.
+  namespace phys = planning::physics;
+  phys::GraspTrialsResult result;
+  result.methods = {planning::TransferMethod::kWinding, planning::TransferMethod::kHuman};
+  for (int g = 0; g < 2; ++g) {
+    planning::HumanGrasp grasp;
+    grasp.name = g == 0 ? "lateral_pinch_box" : "power_bottle";
+    grasp.source = "/x/" + grasp.name + ".json";
+    result.grasps.push_back(grasp);
+    std::vector<phys::GraspTrial>& row = result.trials.emplace_back();
+    for (int m = 0; m < 2; ++m) {
+      phys::GraspTrial t;
+      t.transfer.method = result.methods[m];
+      if (g == 0) {
+        t.transfer.target_extra_winding = Eigen::Vector2d(0.21, -0.34);
+        t.transfer.robot_extra_winding =
+            m == 0 ? Eigen::Vector2d(0.2134567, -0.19) : Eigen::Vector2d(0.21, -0.34);
+      }
+      row.push_back(t);
+    }
+  }
+  const nlohmann::json report = GraspReportJson(result);
+  const nlohmann::json& pinch = report["grasps"][0]["methods"];
+  EXPECT_EQ(pinch["winding"]["target_extra_winding"], nlohmann::json({0.21, -0.34}));
+  EXPECT_EQ(pinch["winding"]["robot_extra_winding"], nlohmann::json({0.213457, -0.19}));
+  EXPECT_EQ(pinch["human"]["robot_extra_winding"], pinch["human"]["target_extra_winding"]);
+  // Without extra curves: present and empty.
+  const nlohmann::json& bottle = report["grasps"][1]["methods"]["winding"];
+  ASSERT_TRUE(bottle.contains("target_extra_winding"));
+  EXPECT_TRUE(bottle["target_extra_winding"].empty());
+  EXPECT_TRUE(bottle["robot_extra_winding"].empty());
+}
+
 // --- OMPL benchmark logs (app/ompl_log.h) --------------------------------------------------------
 
 std::vector<std::string> Lines(const std::string& text) {

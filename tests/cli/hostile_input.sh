@@ -9,6 +9,7 @@
 #           mesh_scene (a render scene's "mesh" shape of the file; planning::LoadMesh)
 #           robot_json (`check` of the file as a robot scene .json)
 #           chain      (`writhe` of the file as a chain CSV)
+#           view_json  (`view` of the file as a scenario or scene .json, headless)
 set -u
 kind=$1 reader=$2 topoplan=$3
 dir=$(mktemp -d)
@@ -16,7 +17,7 @@ trap 'rm -rf "$dir"' EXIT
 
 case "$reader" in
   mesh_urdf | mesh_scene) name=hostile.stl ;;
-  robot_json) name=hostile.json ;;
+  robot_json | view_json) name=hostile.json ;;
   chain) name=hostile.csv ;;
   *) echo "unknown reader $reader"; exit 1 ;;
 esac
@@ -43,6 +44,7 @@ EOF
     echo "{\"shapes\": [{\"type\": \"mesh\", \"file\": \"$name\"}]}" >"$dir/scene.json"
     cmd=("$topoplan" render "$dir/scene.json" -o "$dir/out.png") ;;
   robot_json) cmd=("$topoplan" check "$file") ;;
+  view_json) cmd=("$topoplan" view "$file" --screenshot "$dir/out.png") ;;
   chain)
     printf '0,0,0\n1,0,0\n1,1,0\n' >"$dir/b.csv"
     cmd=("$topoplan" writhe "$file" "$dir/b.csv") ;;

@@ -191,5 +191,97 @@ TEST_F(PhysicsTest, BadDescriptionsThrowWithTheirName) {
                std::invalid_argument);
 }
 
+// A plate (80 × 40 × 4 mm, 50 g, centred at the origin, normal +z) pinched near one end by two
+// opposing fingertips: spheres (radius 8 mm) on 5 cm levers hinged to the palm, whose motors
+// (0.5 N m) press each tip on the plate with about 10 N. Both contacts lie on the line
+// x = −0.03, y = 0 along the plate normal, 3 cm from the plate's centre of mass.
+SimHand PinchingLevers() {
+  SimHand hand;
+  SimHandLink palm;
+  palm.name = "palm";
+  palm.mass = 0.2;
+  SimShape box;
+  box.kind = SimShape::Kind::kBox;
+  box.size = Eigen::Vector3d(0.02, 0.02, 0.02);
+  box.body_from_shape.translation() = Eigen::Vector3d(-0.2, 0, 0);
+  palm.shapes.push_back(box);
+  hand.links.push_back(palm);
+  for (double side : {1.0, -1.0}) {
+    SimHandLink l;
+    l.name = side > 0 ? "upper" : "lower";
+    l.parent = 0;
+    l.world_from_link.translation() = Eigen::Vector3d(-0.08, 0, side * 0.010);
+    l.joint_anchor = l.world_from_link.translation();
+    l.joint_axis = Eigen::Vector3d::UnitY() * side;  // positive angles turn the tip to the plate
+    l.q_target = 0.3;
+    l.lower = -0.5;
+    l.upper = 1.0;
+    l.max_torque = 0.5;
+    l.mass = 0.02;
+    SimShape tip;
+    tip.kind = SimShape::Kind::kSphere;
+    tip.size = Eigen::Vector3d(0.008, 0, 0);
+    tip.body_from_shape.translation() = Eigen::Vector3d(0.05, 0, 0);  // touches the plate face
+    l.shapes.push_back(tip);
+    hand.links.push_back(l);
+  }
+  return hand;
+}
+
+SimObject Plate() {
+  SimObject o;
+  SimShape s;
+  s.kind = SimShape::Kind::kBox;
+  s.size = Eigen::Vector3d(0.08, 0.04, 0.004);
+  o.shapes.push_back(s);
+  o.mass = 0.05;
+  return o;
+}
+
+// Closes for 0.3 s without gravity (dWorldStep), then applies gravity along −y (in the plate's
+// plane, a torque m g · 3 cm ≈ 0.015 N m about the contact line) for 1 s; returns how far the plate
+// turned [deg] and how far its centre moved [m].
+void PinchedPlateUnderGravity(const OdeRuntime& runtime, double patch_radius, double* turn_deg,
+                              double* moved_m) {
+  SimOptions o;
+  o.contact_patch_radius = patch_radius;
+  // The exact LCP solver: this checks the contact model, not the convergence of QuickStep's
+  // iterations (with 60 of them the torsional rows are far from converged here: the plate turns
+  // ≈ 49° with a 5 mm patch; 400 iterations: < 1°).
+  o.stepper = Stepper::kWorldStep;
+  GraspSimulation sim(runtime, PinchingLevers(), Plate(), o);
+  for (int k = 0; k < 300; ++k) sim.Step();
+  ASSERT_EQ(sim.state().num_contact_links, 2);
+  const Eigen::Isometry3d closed = sim.state().world_from_object;
+  sim.SetGravity(Eigen::Vector3d(0, -9.81, 0));
+  for (int k = 0; k < 1000; ++k) sim.Step();
+  ASSERT_FALSE(sim.state().blown_up) << sim.state().blowup_reason;
+  const Eigen::Isometry3d end = sim.state().world_from_object;
+  *turn_deg = Eigen::AngleAxisd(end.linear() * closed.linear().transpose()).angle() * 180 / M_PI;
+  *moved_m = (end.translation() - closed.translation()).norm();
+}
+
+TEST_F(PhysicsTest, SoftFingerContactsResistATorqueAboutTheContactLine) {
+  // Torsional friction limit per newton of normal force: (3π/16) mu a.
+  EXPECT_NEAR(SoftFingerSpinArm(1.0, 0.005), 3 * M_PI / 16 * 0.005, 1e-15);
+  EXPECT_NEAR(SoftFingerSpinArm(0.5, 0.004), 3 * M_PI / 16 * 0.002, 1e-15);
+  EXPECT_EQ(SoftFingerSpinArm(1.0, 0.0), 0.0);
+  EXPECT_THROW(SoftFingerSpinArm(1.0, -0.001), std::invalid_argument);
+  EXPECT_THROW(SoftFingerSpinArm(std::nan(""), 0.005), std::invalid_argument);
+  // Point contacts (a = 0, rhoN = 0): both contacts lie on one line, nothing resists the torque
+  // about it, and the plate swings about the line like a pendulum.
+  double turn = 0, moved = 0;
+  PinchedPlateUnderGravity(*runtime_, 0.0, &turn, &moved);
+  EXPECT_GT(turn, 20.0);
+  // A 5 mm patch (rhoN = 2.9 mm at mu 1): 2 × 10 N × 2.9 mm ≈ 0.06 N m > 0.015 N m; held.
+  PinchedPlateUnderGravity(*runtime_, 0.005, &turn, &moved);
+  EXPECT_LT(turn, 2.0);
+  EXPECT_LT(moved, 0.002);
+  // The radius is checked like every other option.
+  SimOptions bad;
+  bad.contact_patch_radius = -0.001;
+  EXPECT_THROW(GraspSimulation(*runtime_, PinchingLevers(), Plate(), bad), std::invalid_argument);
+}
+
 }  // namespace
 }  // namespace planning::physics

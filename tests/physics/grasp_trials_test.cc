@@ -115,5 +115,25 @@ TEST(GraspTrialsTest, PerturbedRepetitionsAreCountedAndIndependentOfThreads) {
                std::invalid_argument);
 }
 
+TEST(GraspTrialsTest, HumanTrialReportsItsOwnExtraCurveWindings) {
+  // The plate lists its rim as an extra reference: the demonstration's opposition pair about it
+  // is both the target and what the human hand reaches (one finger on each face: max > 0 > min).
+  const Robot human = LoadRobot(kAssets + "robots/human_hand.urdf");
+  const Robot lwr = LoadRobot(kAssets + "robots/lwr4_sdh.urdf");
+  const std::vector<GraspObject> objects = LoadGraspObjects(kAssets + "grasps/objects.json");
+  const HumanGrasp grasp = LoadHumanGrasp(kAssets + "grasps/lateral_pinch_box.json");
+  const TransferSetup setup =
+      MakeTransferSetup(human, lwr, FindGraspObject(objects, grasp.object), grasp);
+  ASSERT_EQ(setup.extra_references.size(), 1u);
+  OdeRuntime runtime;
+  const GraspTrial trial = RunHumanTrial(runtime, setup, StabilityOptions{});
+  const TransferResult& t = trial.transfer;
+  ASSERT_EQ(t.target_extra_winding.size(), 2);
+  EXPECT_TRUE(t.robot_extra_winding == t.target_extra_winding);
+  EXPECT_TRUE(t.target_extra_winding.isApprox(WindingTarget(setup).tail(2), 1e-12));
+  EXPECT_GT(t.target_extra_winding[0], 0.1);
+  EXPECT_LT(t.target_extra_winding[1], -0.1);
+}
+
 }  // namespace
 }  // namespace planning::physics

@@ -117,6 +117,47 @@ TEST(ScenarioLoader, NumbersOutOfRangeNameFileAndPath) {
                   "aico.max_iterations: integer 4294967297 out of range");
 }
 
+// "reach_at" re-times an interpolated target to reach its end value early and hold it;
+// "final_steps" puts final_precision on the last K slices.
+TEST(ScenarioLoader, TargetReachAtAndFinalStepsScheduleTargetAndPrecision) {
+  const auto s = LoadScenario(WriteTemp(
+      "reach_at.json", MiniScenario(R"({"name": "x", "feature": {"type": "joint_position"},
+                       "target": {"type": "interpolate", "value": 1, "reach_at": 0.6},
+                       "precision": 2, "final_precision": 7, "final_steps": 3})")));
+  const Task& task = s->problem.tasks[0];
+  ASSERT_EQ(task.target.cols(), 6);  // T = 5; the target is reached at t = 0.6 * 5 = 3
+  const double expected[] = {0.0, 1.0 / 3.0, 2.0 / 3.0, 1.0, 1.0, 1.0};
+  for (int t = 0; t <= 5; ++t) {
+    EXPECT_NEAR(task.target(0, t), expected[t], 1e-12) << "t = " << t;
+    EXPECT_NEAR(task.target(13, t), expected[t], 1e-12) << "t = " << t;
+  }
+  EXPECT_EQ(task.precision, (Eigen::VectorXd(6) << 2, 2, 2, 7, 7, 7).finished());
+  // Defaults: linear to t = T, final_precision at t = T only.
+  const auto d = LoadScenario(WriteTemp(
+      "reach_at_default.json", MiniScenario(R"({"name": "x", "feature": {"type": "joint_position"},
+                       "target": {"type": "interpolate", "value": 1},
+                       "precision": 2, "final_precision": 7})")));
+  EXPECT_NEAR(d->problem.tasks[0].target(0, 3), 0.6, 1e-12);
+  EXPECT_EQ(d->problem.tasks[0].precision, (Eigen::VectorXd(6) << 2, 2, 2, 2, 2, 7).finished());
+
+  ExpectLoadError("reach_at_value.json",
+                  MiniScenario(R"({"name": "x", "feature": {"type": "joint_position"},
+                                   "target": {"type": "value", "value": 1, "reach_at": 0.5}})"),
+                  "tasks[0].target");
+  ExpectLoadError("reach_at_range.json",
+                  MiniScenario(R"({"name": "x", "feature": {"type": "joint_position"},
+                                   "target": {"type": "interpolate", "value": 1, "reach_at": 0}})"),
+                  "tasks[0].target.reach_at");
+  ExpectLoadError("final_steps_range.json",
+                  MiniScenario(R"({"name": "x", "feature": {"type": "joint_position"},
+                                   "final_steps": 0})"),
+                  "tasks[0].final_steps");
+  ExpectLoadError("final_steps_beyond_T.json",
+                  MiniScenario(R"({"name": "x", "feature": {"type": "joint_position"},
+                                   "final_steps": 6})"),
+                  "tasks[0].final_steps: 6 final steps, but the problem has T = 5");
+}
+
 TEST(JsonReader, TypedReadsRejectWithoutTruncating) {
   const nlohmann::json doc = ParseJsonText(R"({"big": 4294967297, "neg": -3, "x": 1.5})", "f.json");
   const JsonNode root(doc, "f.json");
