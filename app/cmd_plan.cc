@@ -429,7 +429,7 @@ void AddPlanCommands(CLI::App* root, CommandList* commands) {
       "--ompl-log FILE: FILE with _<angle>deg before its extension per angle, in OMPL's\n"
       "benchmark log format (one planner per topoplan planner, one run per seed).");
   commands->push_back(
-      {unwrap, [ba]() {
+      {unwrap, [ba, unwrap]() {
          planning::UnwrapBenchmarkOptions options;
          options.angles_deg = ParseRange(ba->angles, "--angles");
          options.planners = ParsePlanners(ba->planners);
@@ -444,7 +444,7 @@ void AddPlanCommands(CLI::App* root, CommandList* commands) {
          OutputDir out(ba->output, "-o");  // checked before any work
          std::unique_ptr<OutputDir> log_dir;
          OmplLogInfo log_info;
-         if (!ba->ompl_log.empty()) {
+         if (unwrap->count("--ompl-log") > 0) {  // "" is refused, not ignored
            CheckOutputFile(ba->ompl_log, "--ompl-log");
            const fs::path folder = fs::path(ba->ompl_log).parent_path();
            log_dir =

@@ -4,6 +4,7 @@
 
 #include "app/command.h"
 #include "app/figures.h"
+#include "app/io.h"
 #include "app/ui/viewer.h"
 
 namespace app {
@@ -43,7 +44,11 @@ void AddViewCommand(CLI::App* root, CommandList* commands) {
       "(seconds); joint sliders move the robot; the grasp panel's Step and Step phase advance the "
       "live ODE test by 20 ms or to the end of its current phase. The 3-D scene is rendered "
       "again only when it changes (at most every --preview-interval ms while the worker runs).");
-  commands->push_back({view, [o, size]() {
+  commands->push_back({view, [o, size, view]() {
+                         // Checked before the window opens ("" is refused, not "no screenshot").
+                         if (view->count("--screenshot") > 0) {
+                           CheckOutputFile(o->screenshot, "--screenshot");
+                         }
                          ParseImageSize(*size, "--size", &o->width, &o->height);
                          if (o->width < 64 || o->height < 64) {
                            throw std::invalid_argument(
