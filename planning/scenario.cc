@@ -505,8 +505,33 @@ AicoOptions AttemptOptions(const Scenario& s, int k) {
   return o;
 }
 
+ResolvedPoses ResolvedPosesOf(const Scenario& s) { return {s.problem.q0, s.unwinding, s.goal_q}; }
+
+namespace {
+
+void CheckResolved(const ResolvedPoses& r, const Scenario& s) {
+  const Eigen::Index n = num_dofs(s.robot);
+  const auto check = [](bool ok, const std::string& what) {
+    if (!ok) throw std::invalid_argument("resolved poses: " + what);
+  };
+  check(r.q0.size() == n && r.q0.allFinite(),
+        "q0: expected " + std::to_string(n) + " finite numbers");
+  check(r.goal_q.size() == n && r.goal_q.allFinite(),
+        "goal_q: expected " + std::to_string(n) + " finite numbers");
+  const bool wants = UsesUnwinding(s.spec) && s.spec.start.kind == StartKind::kCoil;
+  const Eigen::Index cols = s.spec.problem.num_steps + 1;
+  check(wants ? (r.unwinding.rows() == n && r.unwinding.cols() == cols && r.unwinding.allFinite())
+              : r.unwinding.size() == 0,
+        wants ? "unwinding: expected " + std::to_string(n) + " x " + std::to_string(cols) +
+                    " finite numbers"
+              : "unwinding: expected none (the scenario has no unwinding target)");
+}
+
+}  // namespace
+
 std::unique_ptr<Scenario> SetUpScenario(ScenarioSpec spec,
-                                        const std::optional<double>& start_wrap_deg) {
+                                        const std::optional<double>& start_wrap_deg,
+                                        const ResolvedPoses* resolved) {
   auto s = std::make_unique<Scenario>();
   s->spec = std::move(spec);
   const ScenarioSpec& sp = s->spec;
@@ -541,11 +566,18 @@ std::unique_ptr<Scenario> SetUpScenario(ScenarioSpec spec,
         ObjectChain(*s, sp.writhe_report->object, sp.writhe_report->object_chain);
   }
 
-  const StartPose start = ResolveStart(*s, start_wrap_deg);
+  StartPose start;
+  if (resolved != nullptr) {
+    CheckResolved(*resolved, *s);
+    start.q0 = resolved->q0;
+    s->unwinding = resolved->unwinding;
+  } else {
+    start = ResolveStart(*s, start_wrap_deg);
+    if (!start.unwinding.empty())
+      s->unwinding = ResampleByArcLength(start.unwinding, sp.problem.num_steps + 1);
+  }
   s->problem.q0 = start.q0;
   s->start_wrap_deg = 360.0 * std::abs(ReportWritheTotal(*s, start.q0));
-  if (!start.unwinding.empty())
-    s->unwinding = ResampleByArcLength(start.unwinding, sp.problem.num_steps + 1);
 
   s->aico = sp.aico;
   s->rrt = sp.rrt;
@@ -573,7 +605,7 @@ std::unique_ptr<Scenario> SetUpScenario(ScenarioSpec spec,
   // The goal's end conditions read the position/box targets of a problem built with goal q0.
   s->goal_q = start.q0;
   s->problem = AttemptProblem(*s, 0);
-  s->goal_q = EstimateGoal(*s, start);
+  s->goal_q = resolved != nullptr ? resolved->goal_q : EstimateGoal(*s, start);
   s->problem = AttemptProblem(*s, 0);
   return s;
 }

@@ -109,10 +109,25 @@ struct EndState {
 };
 EndState CheckEndState(const Scenario& scenario, const Eigen::VectorXd& q, bool state_checks);
 
+// The expensive part of a set-up, computed from the spec alone: the start q0 (n), the unwinding
+// path (n × (T+1), or empty) and the goal q̂_T (n). ResolvedPosesOf(scenario) reads them back; a
+// later SetUpScenario of the same spec given them skips the start-coil continuation and the
+// final-pose estimate and builds a scenario equal to the first (e.g. set up once, then shipped to
+// other processes of a sweep).
+struct ResolvedPoses {
+  Eigen::VectorXd q0;
+  Eigen::MatrixXd unwinding;
+  Eigen::VectorXd goal_q;
+};
+ResolvedPoses ResolvedPosesOf(const Scenario& scenario);
+
 // Sets up a parsed scenario (loads the robot and objects, runs the start-coil continuation and
-// the final-pose estimate). Name errors (unknown links, chains, objects, tasks) name the JSON path.
+// the final-pose estimate, or takes both from `resolved` when given: then start_wrap_deg is not
+// used). Name errors (unknown links, chains, objects, tasks) name the JSON path; `resolved` of
+// the wrong sizes or with non-finite values throws std::invalid_argument.
 std::unique_ptr<Scenario> SetUpScenario(ScenarioSpec spec,
-                                        const std::optional<double>& start_wrap_deg = {});
+                                        const std::optional<double>& start_wrap_deg = {},
+                                        const ResolvedPoses* resolved = nullptr);
 
 // ParseScenarioSpec(path, overrides.search_roots) + SetUpScenario.
 std::unique_ptr<Scenario> LoadScenario(const std::string& path,

@@ -646,6 +646,20 @@ PYBIND11_MODULE(_core, m) {
           "start_wrap_deg", [](const PyScenario& s) { return s.scenario->start_wrap_deg; },
           "360 deg x |writhe| of the report pair at q0.")
       .def(
+          "resolved_poses",
+          [](const PyScenario& s) {
+            const planning::ResolvedPoses r = planning::ResolvedPosesOf(*s.scenario);
+            py::dict d;
+            d["q0"] = r.q0;
+            d["unwinding"] = r.unwinding;
+            d["goal_q"] = r.goal_q;
+            return d;
+          },
+          "The expensive part of the set-up: dict with 'q0' (n,), 'unwinding' (n x (T+1), or\n"
+          "0 x 0) and 'goal_q' (n,). load_scenario(..., resolved=d) with the same file and moves\n"
+          "skips the start-coil continuation and the final-pose estimate and sets up an equal\n"
+          "scenario (plans are bit-identical); picklable, so one process can set up for many.")
+      .def(
           "writhe_total",
           [](const PyScenario& s, const py::handle& q) {
             return planning::ReportWritheTotal(
@@ -663,7 +677,7 @@ PYBIND11_MODULE(_core, m) {
   m.def(
       "load_scenario",
       [](const fs::path& arg_path, std::optional<double> start_wrap, long rrt_budget,
-         const std::map<std::string, py::object>& move_objects) {
+         const std::map<std::string, py::object>& move_objects, const py::object& resolved) {
         const std::string arg = arg_path.string();
         if (start_wrap && !std::isfinite(*start_wrap)) ThrowValue("start_wrap: must be finite");
         const std::string path = Named(
@@ -684,20 +698,46 @@ PYBIND11_MODULE(_core, m) {
           }
           it->xyz += offset;
         }
+        std::optional<planning::ResolvedPoses> given;
+        if (!resolved.is_none()) {
+          if (!py::isinstance<py::dict>(resolved)) {
+            ThrowValue("resolved: expected a dict from Scenario.resolved_poses()");
+          }
+          const py::dict d = resolved.cast<py::dict>();
+          for (const char* key : {"q0", "unwinding", "goal_q"}) {
+            if (!d.contains(key)) ThrowValue(std::string("resolved: no key '") + key + "'");
+          }
+          given.emplace();
+          given->q0 = ToVector(d["q0"], "resolved['q0']", -1);
+          given->goal_q = ToVector(d["goal_q"], "resolved['goal_q']", -1);
+          const Array u = ToArray(d["unwinding"], "resolved['unwinding']");
+          if (u.ndim() != 2) ThrowValue("resolved['unwinding']: expected a 2-D array");
+          if (u.size() > 0) given->unwinding = ToMatrix(d["unwinding"], "resolved['unwinding']");
+        }
         PyScenario s;
         {
           py::gil_scoped_release release;
-          s.scenario = planning::SetUpScenario(std::move(spec), start_wrap);
+          try {
+            s.scenario =
+                planning::SetUpScenario(std::move(spec), start_wrap, given ? &*given : nullptr);
+          } catch (const std::invalid_argument& e) {
+            const std::string what = e.what();
+            if (what.rfind("resolved poses: ", 0) != 0) throw;
+            py::gil_scoped_acquire acquire;
+            ThrowValue("resolved: " + what.substr(16));
+          }
         }
         if (rrt_budget > 0) s.scenario->rrt.max_checks = rrt_budget;
         return s;
       },
       py::arg("path_or_name"), py::arg("start_wrap") = py::none(), py::arg("rrt_budget") = -1,
       py::arg("move_objects") = std::map<std::string, py::object>{},
+      py::arg("resolved") = py::none(),
       "Loads a scenario file, or a name in the shipped assets/scenarios (e.g. 'unwrap'), and\n"
       "sets it up (start coil, final-pose estimate). start_wrap overrides the coil's angle to\n"
       "unwrap [deg]; rrt_budget > 0 replaces the RRTs' collision-check budget; move_objects\n"
-      "{name: (3,) offset [m]} moves objects of the scenario before it is set up.");
+      "{name: (3,) offset [m]} moves objects of the scenario before it is set up; resolved (a\n"
+      "dict from Scenario.resolved_poses() of the same set-up) skips the expensive part.");
   m.def(
       "unwrap_perturbation",
       [](const fs::path& arg_path, int seeds, double perturb) {

@@ -18,6 +18,7 @@ is written to DIR then), 1 when a run raised.
 """
 
 import argparse
+import collections
 import functools
 import os
 import sys
@@ -77,27 +78,50 @@ def pole_offset(seed, seeds, perturb):
     return p["object"], p["offsets"][seed]
 
 
-@functools.lru_cache(maxsize=4)
-def _scenario(angle, budget, seed=0, seeds=1, perturb=0.0):
+_SCENARIOS = collections.OrderedDict()  # per worker process: the last few set-up scenarios
+_CACHE_SIZE = 4
+
+
+def _scenario(angle, budget, seed=0, seeds=1, perturb=0.0, resolved=None):
+    """The unwrap scenario of `angle` (with perturb > 0: the pole moved by seed's offset), set up
+    once per worker process and reused, as ``bench unwrap`` reuses it for every planner of an
+    angle and seed. With `resolved` (Scenario.resolved_poses() of the same set-up, computed by
+    another process) the expensive start-coil continuation and final-pose estimate are skipped;
+    the scenario, and every plan from it, are the same."""
     import topoplan
 
+    if perturb <= 0:
+        seed, seeds = 0, 1
+    key = (angle, budget, seed, seeds, perturb)
+    scenario = _SCENARIOS.get(key)
+    if scenario is not None:
+        _SCENARIOS.move_to_end(key)
+        return scenario
     moves = {}
     if perturb > 0:
         name, offset = pole_offset(seed, seeds, perturb)
         moves = {name: offset}
-    return topoplan.load_scenario("unwrap", start_wrap=angle, rrt_budget=budget, move_objects=moves)
+    scenario = topoplan.load_scenario(
+        "unwrap", start_wrap=angle, rrt_budget=budget, move_objects=moves, resolved=resolved
+    )
+    _SCENARIOS[key] = scenario
+    if len(_SCENARIOS) > _CACHE_SIZE:
+        _SCENARIOS.popitem(last=False)
+    return scenario
 
 
-def run_unwrap(angle, planner, seed, budget=-1, seeds=1, perturb=0.0):
+def unwrap_setup(angle, budget=-1, seed=0, seeds=1, perturb=0.0):
+    """The set-up task of one angle (and, with perturb > 0, seed): sets the scenario up (on a
+    worker) and returns its resolved poses, which the run tasks of that angle and seed depend on,
+    so the set-up is done once per sweep instead of once per worker."""
+    return _scenario(angle, budget, seed, seeds, perturb).resolved_poses()
+
+
+def run_unwrap(angle, planner, seed, budget=-1, seeds=1, perturb=0.0, resolved=None):
     """One run of the unwrap benchmark (on a worker): a dict with the unwrap.csv columns.
 
-    The scenario of each angle (and, with perturb > 0, seed: the pole moved by that seed's
-    offset) is set up once per worker process and reused, as ``bench unwrap`` reuses it for
-    every planner of an angle and seed."""
-    if perturb > 0:
-        scenario = _scenario(angle, budget, seed, seeds, perturb)
-    else:
-        scenario = _scenario(angle, budget)
+    `resolved`: the result of unwrap_setup for this angle and seed (None: set up here)."""
+    scenario = _scenario(angle, budget, seed, seeds, perturb, resolved)
     _, report = scenario.plan(planner, seed)
     return {
         "angle_deg": angle,
@@ -289,12 +313,22 @@ def sweep_unwrap(args):
                 f"(seed {row['seed']}: offset {fmt_number(row['pole_offset_m'])} m); use another -o"
             )
 
-    def submit(client, run):
-        # By reference (topoplan.sweep.run_unwrap), also when this file runs as __main__.
-        from topoplan.sweep import run_unwrap as task
+    setups = {}  # (angle, seed or 0) -> future of unwrap_setup
 
+    def submit(client, run):
+        # By reference (topoplan.sweep.*), also when this file runs as __main__.
+        from topoplan.sweep import run_unwrap as task
+        from topoplan.sweep import unwrap_setup
+
+        angle, seed = float(run[0]), run[2]
+        key = (angle, seed if args.perturb > 0 else 0)
+        if key not in setups:
+            setups[key] = client.submit(
+                unwrap_setup, angle, args.budget, key[1], args.seeds, args.perturb,
+                pure=False, retries=1,
+            )
         return client.submit(
-            task, float(run[0]), run[1], run[2], args.budget, args.seeds, args.perturb,
+            task, angle, run[1], seed, args.budget, args.seeds, args.perturb, setups[key],
             pure=False, retries=1,
         )
 

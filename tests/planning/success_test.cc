@@ -180,6 +180,22 @@ TEST(UnwindingTarget, FollowsACollisionFreePathWithoutTunnelling) {
   EXPECT_LT(v.max_winding_jump_turns, 0.1);
   EXPECT_NE(v.reason, FailureReason::kTunnelled);
   EXPECT_NE(v.reason, FailureReason::kCollision);
+  // Set up again from the resolved poses (no continuation, no final-pose estimate): the same
+  // start, unwinding targets and goal, so the same AICO problem and plan.
+  const ResolvedPoses poses = ResolvedPosesOf(*s);
+  const auto again =
+      SetUpScenario(ParseScenarioSpec(WriteTemp("unwinding.json", text)), {}, &poses);
+  EXPECT_EQ(again->problem.q0, s->problem.q0);
+  EXPECT_EQ(again->goal_q, s->goal_q);
+  EXPECT_EQ(again->unwinding, s->unwinding);
+  ASSERT_EQ(again->problem.tasks.size(), s->problem.tasks.size());
+  for (size_t i = 0; i < s->problem.tasks.size(); ++i)
+    EXPECT_EQ(again->problem.tasks[i].target, s->problem.tasks[i].target) << i;
+  // Wrong sizes are refused.
+  ResolvedPoses bad = poses;
+  bad.unwinding.resize(0, 0);
+  EXPECT_THROW(SetUpScenario(ParseScenarioSpec(WriteTemp("unwinding.json", text)), {}, &bad),
+               std::invalid_argument);
   // Without a coil start there is no unwinding path.
   try {
     LoadScenario(WriteTemp("unwinding_q.json", R"({"robot": ")" + kAssets +

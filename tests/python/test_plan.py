@@ -68,3 +68,39 @@ def test_callback_exception_propagates(unwrap360):
 
     with pytest.raises(KeyError, match="from the callback"):
         unwrap360.plan("aico", callback=boom)
+
+
+def test_resolved_poses_skip_the_set_up_and_plan_the_same(unwrap360):
+    poses = unwrap360.resolved_poses()
+    assert set(poses) == {"q0", "unwinding", "goal_q"}
+    n = len(unwrap360.joint_names)
+    assert poses["q0"].shape == (n,) and poses["goal_q"].shape == (n,)
+    # A pickled round trip, as a Dask set-up task ships them to another worker.
+    import pickle
+
+    again = topoplan.load_scenario("unwrap", start_wrap=360, resolved=pickle.loads(pickle.dumps(poses)))
+    assert np.array_equal(again.q0, unwrap360.q0)
+    assert np.array_equal(again.goal_q, unwrap360.goal_q)
+    assert again.start_wrap_deg == unwrap360.start_wrap_deg
+    for planner in ("aico", "birrt"):
+        t1, r1 = unwrap360.plan(planner, seed=1)
+        t2, r2 = again.plan(planner, seed=1)
+        assert np.array_equal(t1, t2), planner
+        for key in r1:
+            if key != "time_s":
+                assert r1[key] == r2[key], (planner, key)
+
+
+def test_resolved_poses_are_checked(unwrap360):
+    poses = unwrap360.resolved_poses()
+    n = len(unwrap360.joint_names)
+    with pytest.raises(ValueError, match="resolved: q0: expected %d finite numbers" % n):
+        topoplan.load_scenario("unwrap", resolved={**poses, "q0": np.zeros(n + 1)})
+    with pytest.raises(ValueError, match=r"resolved\['goal_q'\]: non-finite"):
+        topoplan.load_scenario("unwrap", resolved={**poses, "goal_q": np.full(n, np.nan)})
+    with pytest.raises(ValueError, match="resolved: no key 'goal_q'"):
+        topoplan.load_scenario("unwrap", resolved={"q0": poses["q0"], "unwinding": poses["unwinding"]})
+    with pytest.raises(ValueError, match="resolved: expected a dict"):
+        topoplan.load_scenario("unwrap", resolved=[1, 2])
+    with pytest.raises(ValueError, match="resolved: unwinding: expected none"):
+        topoplan.load_scenario("unwrap", resolved={**poses, "unwinding": np.zeros((n, 51))})
