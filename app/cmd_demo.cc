@@ -286,10 +286,10 @@ class Demo {
                         planning::Planner::kBiRrt};
     options.seeds = args_.full ? 3 : 1;
     options.progress = [this](int done, int total, const planning::UnwrapRun& run) {
-      std::fprintf(stderr, "\r  %d/%d runs (%s @ %.0f deg seed %d)   ", done, total,
-                   planning::PlannerName(run.planner), run.angle_deg, run.seed);
+      Progress("  %d/%d runs (%s @ %.0f deg seed %d)", done, total,
+               planning::PlannerName(run.planner), run.angle_deg, run.seed);
       stop_->Poll();  // a stopped benchmark stage ends (as a failed stage) at a run boundary
-      if (done == total) std::fprintf(stderr, "\n");
+      if (done == total) EndProgress();
     };
     const planning::UnwrapBenchmarkResult result = planning::RunUnwrapBenchmark(options);
     WriteFileAtomic((dir / "unwrap.csv").string(), UnwrapCsv(result));

@@ -135,9 +135,9 @@ OmplLogInfo BenchLogInfo(const planning::UnwrapBenchmarkOptions& options) {
 void ProgressBar(int done, int total, const std::string& what) {
   const int width = 30;
   const int filled = total > 0 ? done * width / total : width;
-  std::fprintf(stderr, "\r[%s%s] %d/%d %s   ", std::string(filled, '#').c_str(),
-               std::string(width - filled, '.').c_str(), done, total, what.c_str());
-  if (done == total) std::fprintf(stderr, "\n");
+  Progress("[%s%s] %d/%d %s", std::string(filled, '#').c_str(),
+           std::string(width - filled, '.').c_str(), done, total, what.c_str());
+  if (done == total) EndProgress();
 }
 
 // "step,time_s,x,y,z": the moving object's position at every executed slice.
@@ -211,8 +211,7 @@ ExitCode RunMovingObjectPlan(const PlanArgs& pa, const planning::ScenarioOverrid
   options.replan_period_s = pa.replan_period;
   options.sweeps = pa.replan_sweeps;
   options.on_replan = [&stop](const planning::ReplanStep& step) {
-    std::fprintf(stderr, "\rre-plan at t = %.3f s: %d sweeps, %.1f ms", step.time_s, step.sweeps,
-                 step.wall_ms);
+    Progress("re-plan at t = %.3f s: %d sweeps, %.1f ms", step.time_s, step.sweeps, step.wall_ms);
     stop.Poll();
   };
   planning::ReplanResult r;
@@ -228,7 +227,7 @@ ExitCode RunMovingObjectPlan(const PlanArgs& pa, const planning::ScenarioOverrid
     if (pa.json) std::printf("%s\n", report.dump(2).c_str());
     return e.timeout ? kExitFailed : kExitInterrupted;
   }
-  std::fprintf(stderr, "\n");
+  EndProgress();
   const planning::PlanReport rep = ReplanPlanReport(r);
   nlohmann::json report = PlanReportJson(*scenario, rep, pa.seed);
   nlohmann::json replans = nlohmann::json::array();
@@ -358,8 +357,8 @@ void AddPlanCommands(CLI::App* root, CommandList* commands) {
            result = planning::RunPlanner(
                *scenario, planner, pa->seed,
                [&stop](int sweep, double cost, bool accepted, const planning::Trajectory&) {
-                 std::fprintf(stderr, "\rsweep %3d  cost %-12.6g %s", sweep, cost,
-                              accepted ? "accepted" : "rejected");
+                 Progress("sweep %3d  cost %-12.6g %s", sweep, cost,
+                          accepted ? "accepted" : "rejected");
                  stop.Poll();
                },
                [&stop] { stop.Poll(); });
@@ -375,7 +374,7 @@ void AddPlanCommands(CLI::App* root, CommandList* commands) {
            if (pa->json) std::printf("%s\n", report.dump(2).c_str());
            return e.timeout ? kExitFailed : kExitInterrupted;
          }
-         if (planner == planning::Planner::kAico) std::fprintf(stderr, "\n");
+         if (planner == planning::Planner::kAico) EndProgress();
          const nlohmann::json report = WritePlanOutputs(*scenario, result, pa->seed, out.staging());
          if (pa->frames && result.trajectory.num_points() > 0) {
            WritePlanFrames(

@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 #include <csignal>
+#include <cstdarg>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -13,6 +15,24 @@
 #include "topology/input_limits.h"
 
 namespace app {
+
+void Progress(const char* format, ...) {
+  static const bool tty = isatty(STDERR_FILENO) == 1;
+  char line[512];
+  va_list args;
+  va_start(args, format);
+  std::vsnprintf(line, sizeof line, format, args);
+  va_end(args);
+  if (tty) {
+    std::fprintf(stderr, "\r%s   ", line);
+  } else {
+    std::fprintf(stderr, "%s\n", line);
+  }
+}
+
+void EndProgress() {
+  if (isatty(STDERR_FILENO) == 1) std::fputc('\n', stderr);
+}
 
 void WriteFileAtomic(const std::string& path, const std::string& contents) {
   namespace fs = std::filesystem;

@@ -12,6 +12,12 @@
 
 namespace app {
 
+// A progress line on stderr (printf format): on a terminal it overwrites the previous one ("\r"),
+// in a log file or pipe it is a line of its own. EndProgress() ends a terminal's progress line
+// (prints nothing otherwise).
+void Progress(const char* format, ...) __attribute__((format(printf, 1, 2)));
+void EndProgress();
+
 // Writes `contents` to `path` atomically: a temporary file in the same folder, then rename, so a
 // failure never leaves a half-written output. Creates missing parent folders. Throws
 // std::runtime_error naming the path on failure.

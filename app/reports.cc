@@ -279,9 +279,9 @@ PlanFrames WritePlanFrames(
       WriteVectorFormats(heatmap_writer.Add(*heatmap, out.labels[t]), figure, frame_opts.formats);
     }
     if (on_frame) on_frame(frame, heatmap ? &*heatmap : nullptr);
-    std::fprintf(stderr, "\rframes %d/%d", t + 1, frames.num_points());
+    Progress("frames %d/%d", t + 1, frames.num_points());
   }
-  std::fprintf(stderr, "\n");
+  EndProgress();
   out.frames = frame_writer.Finish();
   out.heatmaps = heatmap_writer.Finish();
   if (!out.frames.video.empty()) std::fprintf(stderr, "wrote %s\n", out.frames.video.c_str());
