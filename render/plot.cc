@@ -259,13 +259,18 @@ void DrawLegend(const LegendEntries& e, LegendPosition where, const TextScale& t
            symbol_numbers.data(), e.symbols.data());
 }
 
-// Room (normalised page width) a legend outside on the right needs.
-double OutsideLegendWidth(const std::vector<std::string>& labels, const TextScale& ts, int width) {
+// Room (normalised page width) a legend outside on the right needs when the axes would otherwise
+// span `span` (normalised page width). pllegend places it 0.02 viewport widths right of the axes
+// and gives its symbols 0.08 viewport widths, so with the viewport span − room wide the room r
+// solves r = 0.10·(span − r) + text + margins.
+double OutsideLegendWidth(const std::vector<std::string>& labels, const TextScale& ts, int width,
+                          double span) {
   float widest = 0.0f;
   for (const std::string& l : labels) {
     widest = std::max(widest, internal::Font::Regular().Width(l, static_cast<float>(1.3 * ts.px)));
   }
-  return (widest + 6.0 * ts.px) / width;
+  const double text = (widest + 5.0 * ts.px) / width;
+  return (0.10 * span + text) / 1.10;
 }
 
 // Frame, grid, tick labels, axis labels and panel title in viewport `vp` with window `axes`.
@@ -475,12 +480,13 @@ void DrawPlot(const std::vector<PlotSeries>& series, const PlotOptions& o, Figur
         const TextScale ts = TextScaleFor(o.width, o.height);
         plschr(0.0, ts.scale);
         double right = 1.0 - 1.6 * ts.px / o.width;
+        const double left = 6.4 * ts.px / o.width;
         if (o.legend == LegendPosition::kOutsideRight) {
           std::vector<std::string> labels;
           for (const PlotSeries& s : series) labels.push_back(s.label);
-          right -= OutsideLegendWidth(labels, ts, o.width);
+          right -= OutsideLegendWidth(labels, ts, o.width, right - left);
         }
-        const Box vp{6.4 * ts.px / o.width, right, 4.6 * ts.px / o.height,
+        const Box vp{left, right, 4.6 * ts.px / o.height,
                      1.0 - (o.title.empty() ? 1.2 : 2.6) * ts.px / o.height};
         DrawSeriesPanel(series, o, vp, ts, o.width, o.height, kFirstSeriesSlot,
                         kFirstSeriesSlot + n);
@@ -536,7 +542,7 @@ void DrawPanels(const std::vector<PlotPanel>& panels, const PanelLayout& L, Figu
           if (o.legend == LegendPosition::kOutsideRight) {
             std::vector<std::string> labels;
             for (const PlotSeries& s : panels[k].series) labels.push_back(s.label);
-            right -= OutsideLegendWidth(labels, ts, L.width);
+            right -= OutsideLegendWidth(labels, ts, L.width, right - x0 - 6.4 * ts.px / L.width);
           }
           const Box vp{x0 + 6.4 * ts.px / L.width, right, y1 - cell_h + 4.6 * ts.px / L.height,
                        y1 - (o.title.empty() ? 1.2 : 2.6) * ts.px / L.height};
@@ -587,12 +593,12 @@ void DrawBars(const BarChart& chart, const PlotOptions& o, FigureFormat format, 
           widest = std::max(widest, font.Width(c, static_cast<float>(1.3 * ts.px)));
         }
         double right = 1.0 - 1.6 * ts.px / o.width;
+        const double left = 6.4 * ts.px / o.width;
         if (o.legend == LegendPosition::kOutsideRight) {
           std::vector<std::string> labels;
           for (const BarSeries& b : chart.series) labels.push_back(b.label);
-          right -= OutsideLegendWidth(labels, ts, o.width);
+          right -= OutsideLegendWidth(labels, ts, o.width, right - left);
         }
-        const double left = 6.4 * ts.px / o.width;
         const bool upright = widest > 0.9 * (right - left) * o.width / static_cast<double>(nc);
         const double label_h = upright ? widest + 1.5 * ts.px : 1.6 * ts.px;
         const Box vp{left, right, (label_h + 3.4 * ts.px) / o.height,
