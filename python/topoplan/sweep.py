@@ -322,14 +322,17 @@ def sweep_unwrap(args):
 
         angle, seed = float(run[0]), run[2]
         key = (angle, seed if args.perturb > 0 else 0)
+        # Larger angles first: their runs take longest (the RRTs use up their budget), so the
+        # sweep ends with short runs and no worker waits long for the last one.
+        priority = int(angle * 100)
         if key not in setups:
             setups[key] = client.submit(
                 unwrap_setup, angle, args.budget, key[1], args.seeds, args.perturb,
-                pure=False, retries=1,
+                pure=False, retries=1, priority=priority + 1,
             )
         return client.submit(
             task, angle, run[1], seed, args.budget, args.seeds, args.perturb, setups[key],
-            pure=False, retries=1,
+            pure=False, retries=1, priority=priority,
         )
 
     def label(row):
