@@ -78,8 +78,9 @@ struct CollisionOptions {
   bool exact_meshes = false;
   // Capsule–capsule distance queries: true in closed form (segment–segment distance minus the
   // radii, exact also when penetrating, where FCL's EPA depth can be several cm too deep; one
-  // narrow-phase call, ≈ 20× cheaper), false (default for now: the shipped unwrap results were
-  // tuned on FCL's answers) through FCL's GJK/EPA. Boolean checks (InCollision) always use FCL.
+  // narrow-phase call, ≈ 20× cheaper), false (default, so results of existing set-ups do not
+  // change; the scenario key collision.analytic_capsules sets it, unwrap.json does) through FCL's
+  // GJK/EPA. Boolean checks (InCollision) always use FCL.
   bool analytic_capsules = false;
 };
 

@@ -358,6 +358,7 @@ void LoadObjects(Scenario* s) {
 void SetUpCollision(Scenario* s) {
   const CollisionSpec& c = s->spec.collision;
   s->collision.self_collision = c.self;
+  s->collision.analytic_capsules = c.analytic_capsules;
   s->collision.disabled_pairs = c.disabled_pairs;
   // Every pair of links whose names start with prefixes of the same group is not checked.
   for (const std::vector<std::string>& prefixes : c.disabled_groups) {

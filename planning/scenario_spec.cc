@@ -73,10 +73,11 @@ ObjectSpec ReadObject(const JsonNode& n, const std::string& dir,
 }
 
 CollisionSpec ReadCollision(const JsonNode& n) {
-  n.CheckKeys({"self", "disabled_pairs", "disabled_groups"});
+  n.CheckKeys({"self", "disabled_pairs", "disabled_groups", "analytic_capsules"});
   CollisionSpec c;
   c.where = n.Where();
   c.self = n.Bool("self", true);
+  c.analytic_capsules = n.Bool("analytic_capsules", false);
   if (n.Has("disabled_pairs")) {
     const JsonNode dp = n.At("disabled_pairs");
     for (size_t i = 0; i < dp.Size(); ++i) {

@@ -30,7 +30,9 @@
 //   robot_chains    array    extra robot chains appended to the URDF's (format: chain_json.h)
 //   collision       object   self: bool (default true); disabled_pairs: [[link_a, link_b], ...];
 //                            disabled_groups: [[prefix, ...], ...] (no self-collision checks
-//                            between any two links whose names start with prefixes of one group)
+//                            between any two links whose names start with prefixes of one group);
+//                            analytic_capsules: bool (default false): capsule–capsule distances
+//                            in closed form (CollisionOptions::analytic_capsules)
 //   writhe_report   object   the writhe report pair: {chain: robot chain, object: object name,
 //                            object_chain: chain of that object} (all strings, required)
 //   start           object   required; exactly one of
@@ -154,7 +156,8 @@ struct CollisionSpec {
   bool self = true;
   std::vector<std::pair<std::string, std::string>> disabled_pairs;
   std::vector<std::vector<std::string>> disabled_groups;  // link-name prefixes
-  std::string where;                                      // empty: no "collision" key
+  bool analytic_capsules = false;
+  std::string where;  // empty: no "collision" key
 };
 
 struct WritheReportSpec {
