@@ -16,8 +16,15 @@
 
 namespace app {
 
-void Progress(const char* format, ...) {
+namespace {
+bool StderrIsTerminal() {
   static const bool tty = isatty(STDERR_FILENO) == 1;
+  return tty;
+}
+}  // namespace
+
+void Progress(const char* format, ...) {
+  const bool tty = StderrIsTerminal();
   char line[512];
   va_list args;
   va_start(args, format);
@@ -31,7 +38,7 @@ void Progress(const char* format, ...) {
 }
 
 void EndProgress() {
-  if (isatty(STDERR_FILENO) == 1) std::fputc('\n', stderr);
+  if (StderrIsTerminal()) std::fputc('\n', stderr);
 }
 
 void WriteFileAtomic(const std::string& path, const std::string& contents) {

@@ -513,7 +513,7 @@ namespace {
 void CheckResolved(const ResolvedPoses& r, const Scenario& s) {
   const Eigen::Index n = num_dofs(s.robot);
   const auto check = [](bool ok, const std::string& what) {
-    if (!ok) throw std::invalid_argument("resolved poses: " + what);
+    if (!ok) throw std::invalid_argument("resolved: " + what);
   };
   check(r.q0.size() == n && r.q0.allFinite(),
         "q0: expected " + std::to_string(n) + " finite numbers");

@@ -717,15 +717,9 @@ PYBIND11_MODULE(_core, m) {
         PyScenario s;
         {
           py::gil_scoped_release release;
-          try {
-            s.scenario =
-                planning::SetUpScenario(std::move(spec), start_wrap, given ? &*given : nullptr);
-          } catch (const std::invalid_argument& e) {
-            const std::string what = e.what();
-            if (what.rfind("resolved poses: ", 0) != 0) throw;
-            py::gil_scoped_acquire acquire;
-            ThrowValue("resolved: " + what.substr(16));
-          }
+          // Bad resolved poses throw std::invalid_argument "resolved: ..." (a ValueError).
+          s.scenario =
+              planning::SetUpScenario(std::move(spec), start_wrap, given ? &*given : nullptr);
         }
         if (rrt_budget > 0) s.scenario->rrt.max_checks = rrt_budget;
         return s;
