@@ -480,6 +480,13 @@ nlohmann::json GraspReportJson(const phys::GraspTrialsResult& result) {
                         {"max_slip_m", stab.max_slip},
                         {"max_rotation_deg", stab.max_rotation_deg},
                         {"min_contact_links", stab.min_contact_links}};
+  // ODE's constraint solver, the same for every hand and method.
+  if (stab.sim.stepper == phys::Stepper::kWorldStep) {
+    report["protocol"]["stepper"] = "world_step";
+  } else {
+    report["protocol"]["stepper"] = "quick_step";
+    report["protocol"]["quickstep_iterations"] = stab.sim.quickstep_iterations;
+  }
   report["grasps"] = nlohmann::json::array();
   for (size_t gi = 0; gi < result.grasps.size(); ++gi) {
     const planning::HumanGrasp& g = result.grasps[gi];
