@@ -217,9 +217,16 @@ def connect(scheduler, workers, timeout):
             return Client(scheduler, timeout=timeout), None
         except (OSError, TimeoutError) as e:
             raise UsageError(f"--scheduler: cannot reach {scheduler} within {timeout} s ({e})")
-    cluster = LocalCluster(
-        n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=None
-    )
+    # Without Dask's statistical profiler in the workers: it samples the running task's stack
+    # every 10 ms on the worker's event loop, and with two workers on two cores each run then took
+    # 1.6x longer than in `topoplan bench unwrap` (README, "Running sweeps").
+    # The nannies hand this process's configuration to the worker processes they start.
+    import dask
+
+    with dask.config.set({"distributed.worker.profile.enabled": False}):
+        cluster = LocalCluster(
+            n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=None
+        )
     return Client(cluster), cluster
 
 

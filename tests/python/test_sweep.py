@@ -116,3 +116,19 @@ def test_perturbed_sweep_equals_bench_unwrap(cli, tmp_path):
     r = run_sweep(*args[:-1], "0.01", "-o", out)
     assert r.returncode == 2 and "--perturb" in r.stderr
     assert (out / "unwrap.csv").read_text() == before
+
+
+def test_local_cluster_workers_run_without_the_profiler():
+    """The local cluster's workers have Dask's statistical profiler off (it slowed every run)."""
+    import dask
+    from topoplan.sweep import connect
+
+    client, cluster = connect(None, 1, 30)
+    try:
+        flags = client.run(lambda: dask.config.get("distributed.worker.profile.enabled"))
+        assert flags and all(v is False for v in flags.values()), flags
+    finally:
+        client.close()
+        cluster.close()
+    # Only the cluster's workers: this process keeps its own configuration.
+    assert dask.config.get("distributed.worker.profile.enabled") is True
