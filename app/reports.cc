@@ -481,10 +481,8 @@ nlohmann::json GraspReportJson(const phys::GraspTrialsResult& result) {
                         {"max_rotation_deg", stab.max_rotation_deg},
                         {"min_contact_links", stab.min_contact_links}};
   // ODE's constraint solver, the same for every hand and method.
-  if (stab.sim.stepper == phys::Stepper::kWorldStep) {
-    report["protocol"]["stepper"] = "world_step";
-  } else {
-    report["protocol"]["stepper"] = "quick_step";
+  report["protocol"]["stepper"] = planning::ToName(stab.sim.stepper);
+  if (stab.sim.stepper == phys::Stepper::kQuickStep) {
     report["protocol"]["quickstep_iterations"] = stab.sim.quickstep_iterations;
   }
   report["grasps"] = nlohmann::json::array();

@@ -121,8 +121,10 @@ def test_perturbed_sweep_equals_bench_unwrap(cli, tmp_path):
 def test_local_cluster_workers_run_without_the_profiler():
     """The local cluster's workers have Dask's statistical profiler off (it slowed every run)."""
     import dask
+    import distributed  # noqa: F401  (loads the distributed.* configuration)
     from topoplan.sweep import connect
 
+    before = dask.config.get("distributed.worker.profile.enabled")
     client, cluster = connect(None, 1, 30)
     try:
         flags = client.run(lambda: dask.config.get("distributed.worker.profile.enabled"))
@@ -131,4 +133,4 @@ def test_local_cluster_workers_run_without_the_profiler():
         client.close()
         cluster.close()
     # Only the cluster's workers: this process keeps its own configuration.
-    assert dask.config.get("distributed.worker.profile.enabled") is True
+    assert dask.config.get("distributed.worker.profile.enabled") == before
