@@ -85,7 +85,7 @@ class Aico {
   void UpdateForward(int t);
   void UpdateBackward(int t);
   void UpdateBelief(int t);
-  bool Relocate(int t, bool force);
+  bool Relocate(int t, bool force, double fraction);
   double ControlCost(const AicoState& s) const;
   double EvaluateAll();
   void Sweep(int sweep);
@@ -109,6 +109,11 @@ class Aico {
   long evals0_ = 0, coll0_ = 0, narrow0_ = 0;
   Eigen::VectorXd metric_;
   std::vector<Eigen::VectorXd> err_;  // per task residual buffer, allocated once per run
+  Eigen::MatrixXd gram_rows_;         // max task dim × n: AddGram's non-zero rows of J
+  Eigen::MatrixXd linv_;              // d × d: InvertSpd's L⁻¹
+  // R += w·JᵀJ (lower triangle only; TaskMessage mirrors R at its end) over the non-zero rows of J:
+  // collision, clearance and limit features are zero on most rows away from contact.
+  void AddGram(const Eigen::MatrixXd& J, double w, Eigen::Ref<Eigen::MatrixXd> R);
 };
 
 void Aico::SetUpProcess() {
@@ -140,10 +145,24 @@ void Aico::SetUpProcess() {
   w.Winv = w.Qbar;
 }
 
+// M = L Lᵀ, M⁻¹ = L⁻ᵀ L⁻¹: one triangular solve for L⁻¹ and a symmetric product (about 2/3 of the
+// flops of solving M X = I with both triangular factors).
 void Aico::InvertSpd(const Eigen::MatrixXd& m, Eigen::MatrixXd* out) {
   ws_->llt.compute(m);
-  out->setIdentity();
-  ws_->llt.solveInPlace(*out);
+  linv_.setIdentity();
+  ws_->llt.matrixL().solveInPlace(linv_);
+  out->setZero();
+  out->selfadjointView<Eigen::Lower>().rankUpdate(linv_.transpose());
+  out->triangularView<Eigen::StrictlyUpper>() = out->transpose();
+}
+
+void Aico::AddGram(const Eigen::MatrixXd& J, double w, Eigen::Ref<Eigen::MatrixXd> R) {
+  Eigen::Index k = 0;
+  for (Eigen::Index i = 0; i < J.rows(); ++i) {
+    if (J.row(i).isZero(0.0)) continue;
+    gram_rows_.row(k++) = J.row(i);
+  }
+  if (k > 0) R.selfadjointView<Eigen::Lower>().rankUpdate(gram_rows_.topRows(k).transpose(), w);
 }
 
 // R_t, r_t, r̂_t and the task cost at x (the linearisation point).
@@ -167,12 +186,12 @@ void Aico::TaskMessage(int t, const Eigen::VectorXd& x) {
       e = task.target.col(t) - w.tasks.y[i];
       cost += rho * e.squaredNorm();
       e.noalias() += J * w.q;
-      R.topLeftCorner(n_, n_).noalias() += rho * J.transpose() * J;
+      AddGram(J, rho, R.topLeftCorner(n_, n_));
       r.head(n_).noalias() += rho * J.transpose() * e;
       rhat += rho * e.squaredNorm();
     } else if (p_.dynamic) {
       e = task.target.col(t);
-      R.bottomRightCorner(n_, n_).noalias() += rho * J.transpose() * J;
+      AddGram(J, rho, R.bottomRightCorner(n_, n_));
       r.tail(n_).noalias() += rho * J.transpose() * e;
       e.noalias() -= J * w.qdot;
       cost += rho * e.squaredNorm();
@@ -180,6 +199,7 @@ void Aico::TaskMessage(int t, const Eigen::VectorXd& x) {
   }
   st().rhat[t] = rhat;
   st().task_cost[t] = cost + BetweenMessage(t);
+  R.triangularView<Eigen::StrictlyUpper>() = R.transpose();
 }
 
 // Tasks with `between` > 0 (task.h): the states between slice t and each neighbour k = t ± 1,
@@ -210,7 +230,7 @@ double Aico::BetweenMessage(int t) {
         e = task.target.col(step) - w.tasks.y[i];
         cost += 0.5 * rho * e.squaredNorm();
         e.noalias() += c * (J * w.q);
-        R.topLeftCorner(n_, n_).noalias() += (rho * c * c) * J.transpose() * J;
+        AddGram(J, rho * c * c, R.topLeftCorner(n_, n_));
         r.head(n_).noalias() += (rho * c) * J.transpose() * e;
       }
     }
@@ -280,17 +300,18 @@ void Aico::UpdateBelief(int t) {
   w.llt.solveInPlace(s.b[t]);
 }
 
-bool Aico::Relocate(int t, bool force) {
+// The move, its threshold and its cap look at q only: x̂_t's velocity half enters no task message
+// (order-1 tasks are linear in q̇ with Jacobians that depend on q), so it simply follows b_t.
+bool Aico::Relocate(int t, bool force, double fraction) {
   AicoState& s = st();
   AicoWorkspace& w = *ws_;
   w.vtmp = s.b[t] - s.xhat[t];
+  if (p_.dynamic) w.vtmp.tail(n_).setZero();
   if (!force && w.vtmp.lpNorm<Eigen::Infinity>() <= o_.tolerance) return false;
   const double step = w.vtmp.norm();
-  if (step > o_.max_step) {
-    s.xhat[t].noalias() += (o_.max_step / step) * w.vtmp;
-  } else {
-    s.xhat[t] = s.b[t];
-  }
+  const double scale = step > o_.max_step ? o_.max_step / step : 1.0;
+  s.xhat[t].noalias() += (std::min(scale, fraction)) * w.vtmp;
+  if (p_.dynamic) s.xhat[t].tail(n_) = s.b[t].tail(n_);
   TaskMessage(t, s.xhat[t]);
   UpdateBelief(t);
   return true;
@@ -436,14 +457,14 @@ void Aico::Sweep(int sweep) {
     UpdateForward(t);
     UpdateBelief(t);
     for (int k = 0; k < fwd_reloc; ++k) {
-      if (!Relocate(t, sweep == 0 && k == 0)) break;
+      if (!Relocate(t, sweep == 0 && k == 0, k == 0 ? 1.0 : o_.relocation_damping)) break;
     }
   }
   for (int t = T_; t >= 1; --t) {
     UpdateBackward(t);
     UpdateBelief(t);
     for (int k = 0; k < bwd_reloc; ++k) {
-      if (!Relocate(t, false)) break;
+      if (!Relocate(t, false, k == 0 ? 1.0 : o_.relocation_damping)) break;
     }
   }
 }
@@ -469,7 +490,13 @@ void Aico::Start(const Trajectory* init) {
   coll0_ = CollisionQueries(p_, ws_->tasks);
   narrow0_ = NarrowPhaseCalls(p_, ws_->tasks);
   err_.clear();
-  for (const Task& task : p_.tasks) err_.emplace_back(Eigen::VectorXd::Zero(task.feature->dim()));
+  Eigen::Index max_dim = 1;
+  for (const Task& task : p_.tasks) {
+    err_.emplace_back(Eigen::VectorXd::Zero(task.feature->dim()));
+    max_dim = std::max<Eigen::Index>(max_dim, task.feature->dim());
+  }
+  gram_rows_.resize(max_dim, n_);
+  linv_.resize(d_, d_);
   Trajectory rollout;
   if (init == nullptr && o_.rollout_init) {
     rollout = Rollout();
@@ -533,7 +560,10 @@ AicoStep Aico::Step() {
     result_.cost_history.push_back(cost);
   }
   last_ = AicoStep{SolveStatus::kMaxIterations, sweep, cost, accepted, false};
-  if (accepted && b_step < o_.tolerance) {
+  // A rejected sweep that moved the beliefs by less than the tolerance leaves the accepted state
+  // converged: at a stationary point the cost of such sweeps differs only by rounding, and
+  // rejecting them until max_backtracks would report a solved problem as diverged.
+  if (b_step < o_.tolerance) {
     Finish(SolveStatus::kConverged);
   } else if (backtracks_ > o_.max_backtracks) {
     Finish(SolveStatus::kDiverged);
@@ -554,6 +584,10 @@ void CheckInput(const MotionProblem& problem, const AicoOptions& options, const 
         "SolveAico: init trajectory is " + std::to_string(init->num_dofs()) + "x" +
         std::to_string(init->num_points()) + ", expected " + std::to_string(problem.q0.size()) +
         "x" + std::to_string(problem.num_steps + 1));
+  }
+  if (!(options.relocation_damping > 0.0 && options.relocation_damping <= 1.0)) {
+    throw std::invalid_argument("SolveAico: need relocation_damping in (0, 1], got " +
+                                std::to_string(options.relocation_damping));
   }
   if (!(options.tolerance > 0.0) || !(options.damping >= 0.0) || !(options.max_step > 0.0) ||
       options.max_iterations < 0) {

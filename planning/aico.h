@@ -18,10 +18,13 @@
 //   belief    B_t⁻¹ = S_t⁻¹ + V_t⁻¹ + R_t + λI, b_t = B_t (S_t⁻¹ s_t + V_t⁻¹ v_t + r_t + λ
 //   b_ref,t).
 // Relocation: when |b_t − x̂_t|∞ > tolerance, x̂_t ← b_t (moved at most max_step), task message and
-// belief recomputed. After each sweep the true cost (task.h) is evaluated at the beliefs; a sweep
+// belief recomputed (dynamic problems: threshold, move and cap on the q half only; the q̇ half
+// enters no task message); repeated relocations of one step move x̂_t by relocation_damping·(b_t −
+// x̂_t). After each sweep the true cost (task.h) is evaluated at the beliefs; a sweep
 // that raises it is rejected (state restored, λ ← 10λ), otherwise λ ← λ/5; so is a sweep whose
 // beliefs have more jumps of the tasks with max_jump > 0 (task.h CountJumps) than before it.
-// Converged when an accepted sweep moves the beliefs by less than `tolerance` (max norm).
+// Converged when a sweep moves the beliefs by less than `tolerance` (max norm); if that sweep is
+// rejected, the accepted state before it is the result.
 #pragma once
 
 #include <Eigen/Cholesky>
@@ -38,7 +41,8 @@ namespace planning {
 enum class SweepMode {
   kForwardly,         // relocate once per step in the forward pass (forced in the first sweep)
   kSymmetric,         // relocate once per step in both passes
-  kLocalGaussNewton,  // up to 5 relocations per step in both passes after the first sweep
+  kLocalGaussNewton,  // up to 5 relocations per step in both passes after the first sweep, the
+                      // 2nd..5th damped (relocation_damping)
 };
 
 struct AicoOptions {
@@ -46,7 +50,11 @@ struct AicoOptions {
   double tolerance = 1e-2;  // belief-step convergence and relocation threshold (max norm)
   double damping = 1.0;     // initial λ
   SweepMode sweep_mode = SweepMode::kForwardly;
-  double max_step = 1.0;    // cap on one relocation move |x̂_new − x̂| (2-norm)
+  double max_step = 1.0;  // cap on one relocation move |x̂_new − x̂| (2-norm)
+  // Fraction of b_t − x̂_t by which the 2nd..5th relocation of one step moves x̂_t (local
+  // Gauss–Newton sweeps; the first moves all the way). In (0, 1]; 1 = undamped, which on the unwrap
+  // problem keeps moving 0.03–0.1 rad per relocation instead of settling.
+  double relocation_damping = 0.3;
   int max_backtracks = 10;  // consecutive rejected sweeps before giving up (kDiverged)
   // Accept the first sweep whatever its cost (Toussaint's implementation's rule: the initial
   // trajectory is only a linearisation point). If false, the first sweep must beat the cost of

@@ -91,6 +91,24 @@ void SetCapsule(const Geometry& g, const CollisionOptions& options, FclShape* sh
   shape->capsule_half_length = 0.5 * g.size[1];
 }
 
+// The capsule along local z that contains a sphere, cylinder or capsule (FCL's shapes are centred
+// and their axis is local z; a cylinder of radius r and height h lies inside the capsule of radius
+// r around its axis segment of length h).
+void SetBound(const Geometry& g, FclShape* shape) {
+  switch (g.kind) {
+    case Geometry::Kind::kSphere:
+      shape->bound_radius = g.size[0];
+      break;
+    case Geometry::Kind::kCylinder:
+    case Geometry::Kind::kCapsule:
+      shape->bound_radius = g.size[0];
+      shape->bound_half_length = 0.5 * g.size[1];
+      break;
+    default:
+      break;
+  }
+}
+
 // Shape pointer stored as FCL user data.
 const FclShape* ShapeOf(const fcl::CollisionObjectd* o) {
   return static_cast<const FclShape*>(o->getUserData());
@@ -111,13 +129,30 @@ bool Skip(const FclScene& s, const FclShape& a, const FclShape& b) {
   return !s.environment;
 }
 
+void ClosestSegmentPoints(const Eigen::Vector3d& a0, const Eigen::Vector3d& u,
+                          const Eigen::Vector3d& b0, const Eigen::Vector3d& v, Eigen::Vector3d* p,
+                          Eigen::Vector3d* q);
+
+// Distance between the bounding capsules of a and b (≤ their true distance); 0 when either has
+// none.
+double BoundGap(const FclShape& a, const FclShape& b) {
+  if (a.bound_radius <= 0.0 || b.bound_radius <= 0.0) return 0.0;
+  const Eigen::Vector3d ua = a.obj->getRotation().col(2), ub = b.obj->getRotation().col(2);
+  Eigen::Vector3d p, q;
+  ClosestSegmentPoints(
+      a.obj->getTranslation() - a.bound_half_length * ua, 2.0 * a.bound_half_length * ua,
+      b.obj->getTranslation() - b.bound_half_length * ub, 2.0 * b.bound_half_length * ub, &p, &q);
+  return (p - q).norm() - a.bound_radius - b.bound_radius;
+}
+
 // Broadphase callback: filter, count, narrow phase; returns true (stop) at the first hit.
 bool CollideCallback(fcl::CollisionObjectd* o1, fcl::CollisionObjectd* o2, void* data) {
   auto* q = static_cast<BroadphaseQuery*>(data);
   const FclShape* a = ShapeOf(o1);
   const FclShape* b = ShapeOf(o2);
   if (Skip(*q->scene, *a, *b)) return false;
-  if (a->object >= 0) std::swap(a, b);  // robot shape first
+  if (a->object >= 0) std::swap(a, b);       // robot shape first
+  if (BoundGap(*a, *b) > 0.0) return false;  // bounding capsules apart: no contact
   ++q->coll->narrow_phase_calls;
   bool hit = false;
   try {
@@ -299,6 +334,10 @@ void ForEachClosePair(const Robot& robot, const KinematicsData& kin, double marg
     const FclShape& a = s.robot[p.a];
     const FclShape& b = p.env_pair ? s.env[p.b] : s.robot[p.b];
     if (AabbGap(*a.obj, *b.obj) >= margin) continue;
+    // Closed-form capsule pairs are as cheap as their bound; others skip the narrow phase when
+    // their bounding capsules are margin apart.
+    const bool closed_form = a.capsule_radius > 0.0 && b.capsule_radius > 0.0;
+    if (!closed_form && BoundGap(a, b) >= margin) continue;
     ProximityPair pair;
     pair.link_a = a.link;
     pair.link_b = p.env_pair ? -1 : b.link;
@@ -395,6 +434,7 @@ CollisionData::CollisionData(const Robot& robot, const Environment& env,
           MakeGeometry(robot, g, options.exact_meshes ? nullptr : &hulls));
       shape.obj->setUserData(&shape);
       SetCapsule(g, options, &shape);
+      SetBound(g, &shape);
     }
   }
   // Environment shapes at their fixed world poses.
@@ -421,6 +461,7 @@ CollisionData::CollisionData(const Robot& robot, const Environment& env,
         shape.obj->computeAABB();
         shape.obj->setUserData(&shape);
         SetCapsule(g, options, &shape);
+        SetBound(g, &shape);
       }
     }
   }
@@ -529,7 +570,9 @@ double MinDistance(const Robot& robot, const KinematicsData& kin, CollisionData*
   double best = std::numeric_limits<double>::infinity();
   int best_index = -1;
   for (const auto& [gap, i] : order) {
-    if (gap > best) break;
+    // A pair's distance is at least its gap, and penetration (< 0) only happens at gap 0: while
+    // the best is negative every overlapping pair is still a candidate for the deepest.
+    if (gap > std::max(best, 0.0)) break;
     const FclPair& p = s.pairs[i];
     const FclShape& a = s.robot[p.a];
     const FclShape& b = p.env_pair ? s.env[p.b] : s.robot[p.b];

@@ -95,9 +95,10 @@ struct CollisionData {
   CollisionData(const CollisionData&) = delete;
   CollisionData& operator=(const CollisionData&) = delete;
 
-  // THE counter of narrow-phase calls: incremented once per FCL collide() or distance() call on a
-  // shape pair that survived the broadphase and the adjacency filter. Planners and benchmarks read
-  // it (and may reset it to 0).
+  // THE counter of narrow-phase calls: incremented once per FCL collide() or distance() call (or
+  // closed-form capsule distance) on a shape pair that survived the broadphase, the adjacency
+  // filter and, for spheres, cylinders and capsules, the bounding-capsule test. Planners and
+  // benchmarks read it (and may reset it to 0).
   std::int64_t narrow_phase_calls = 0;
   // Configuration-level queries: one per InCollision / ComputeProximity / MinDistance call.
   std::int64_t queries = 0;
@@ -131,15 +132,17 @@ bool InCollision(const Robot& robot, const KinematicsData& kin, CollisionData* c
 // Every checked link pair (per link pair, the closest of their shapes) whose distance is below
 // `margin` [m], with signed distance, witness points and normal. `out` is cleared and refilled
 // (capacity is reused). Pairs are ordered by (object, link_a, link_b), deterministic. Counts one
-// query plus the narrow-phase calls (pairs whose bounding boxes are farther than margin apart are
-// skipped without a narrow-phase call).
+// query plus the narrow-phase calls (pairs whose bounding boxes, or bounding capsules, are
+// farther than margin apart are skipped without a narrow-phase call).
 void ComputeProximity(const Robot& robot, const KinematicsData& kin, double margin,
                       CollisionData* coll, std::vector<ProximityPair>* out);
 
 // Minimum signed distance over all checked pairs (+∞ if there are none); if `closest` is not null
 // it receives the closest pair (the first in checked-pair order among equal distances). Pairs are
 // visited by increasing bounding-box gap and the search stops when that gap exceeds the best
-// distance found, so far-apart pairs cost no narrow-phase call.
+// distance found (or, while it is negative, exceeds 0: every overlapping pair is visited, so a
+// colliding configuration reports its deepest penetration), so far-apart pairs cost no
+// narrow-phase call.
 double MinDistance(const Robot& robot, const KinematicsData& kin, CollisionData* coll,
                    ProximityPair* closest = nullptr);
 

@@ -10,12 +10,11 @@ namespace {
 
 struct CollisionFeatureData : FeatureData {
   CollisionFeatureData(const Robot& robot, const Environment& env, const CollisionOptions& options)
-      : coll(robot, env, options), jac_a(3, num_dofs(robot)), jac_b(3, num_dofs(robot)) {
+      : coll(robot, env, options) {
     pairs.reserve(64);
   }
   CollisionData coll;
   std::vector<ProximityPair> pairs;
-  Eigen::MatrixXd jac_a, jac_b;
 };
 
 class CollisionFeature : public Feature {
@@ -62,13 +61,9 @@ class CollisionFeature : public Feature {
       } else {
         n = p.normal;
       }
-      PointJacobian(robot, kin, p.link_a, kin.world_from_link[p.link_a].inverse() * p.point_a,
-                    d->jac_a);
-      J->row(p.link_a).noalias() -= (1.0 / margin_) * n.transpose() * d->jac_a;
+      AddPointJacobianAlong(robot, kin, p.link_a, p.point_a, n, -1.0 / margin_, J->row(p.link_a));
       if (p.link_b >= 0) {
-        PointJacobian(robot, kin, p.link_b, kin.world_from_link[p.link_b].inverse() * p.point_b,
-                      d->jac_b);
-        J->row(p.link_a).noalias() += (1.0 / margin_) * n.transpose() * d->jac_b;
+        AddPointJacobianAlong(robot, kin, p.link_b, p.point_b, n, 1.0 / margin_, J->row(p.link_a));
       }
     }
   }

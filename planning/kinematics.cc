@@ -112,6 +112,31 @@ void PointJacobian(const Robot& robot, const KinematicsData& kin, int link,
   AccumulateJacobian(robot, kin, link, p, J, static_cast<Eigen::Ref<Eigen::MatrixXd>*>(nullptr));
 }
 
+void AddPointJacobianAlong(const Robot& robot, const KinematicsData& kin, int link,
+                           const Eigen::Vector3d& p_world, const Eigen::Vector3d& u, double scale,
+                           Eigen::Ref<Eigen::RowVectorXd, 0, Eigen::InnerStride<>> row) {
+  CheckLink(robot, link, "AddPointJacobianAlong");
+  if (row.size() != num_dofs(robot)) {
+    throw std::invalid_argument("AddPointJacobianAlong: row has " + std::to_string(row.size()) +
+                                " entries, expected " + std::to_string(num_dofs(robot)));
+  }
+  for (int l = link; l >= 0;) {
+    const int j = robot.links[l].parent_joint;
+    if (j < 0) break;
+    const Joint& joint = robot.joints[j];
+    if (joint.dof >= 0) {
+      const double m = scale * (joint.is_mimic ? joint.mimic_multiplier : 1.0);
+      const Eigen::Vector3d& a = kin.joint_axis_world[j];
+      if (joint.type == JointType::kPrismatic) {
+        row[joint.dof] += m * a.dot(u);
+      } else {
+        row[joint.dof] += m * a.dot((p_world - kin.joint_origin_world[j]).cross(u));
+      }
+    }
+    l = joint.parent_link;
+  }
+}
+
 void FrameJacobian(const Robot& robot, const KinematicsData& kin, int link,
                    Eigen::Ref<Eigen::MatrixXd> J) {
   CheckLink(robot, link, "FrameJacobian");

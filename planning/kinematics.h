@@ -46,6 +46,15 @@ void ForwardKinematics(const Robot& robot, const Eigen::VectorXd& q, KinematicsD
 void PointJacobian(const Robot& robot, const KinematicsData& kin, int link,
                    const Eigen::Vector3d& p_link, Eigen::Ref<Eigen::MatrixXd> J);
 
+// Directional derivative of a world point moving with `link`: row += scale · uᵀ ∂p_world/∂q
+// (1 × n, any stride: e.g. a row of a Jacobian), without forming the 3 × n Jacobian; column k gets
+// m·a·((p_world − o) × u) for revolute joints and m·a·u for prismatic ones (PointJacobian's
+// notation). Requires ForwardKinematics first. Throws std::invalid_argument if row is not 1 × n or
+// link is out of range. O(depth).
+void AddPointJacobianAlong(const Robot& robot, const KinematicsData& kin, int link,
+                           const Eigen::Vector3d& p_world, const Eigen::Vector3d& u, double scale,
+                           Eigen::Ref<Eigen::RowVectorXd, 0, Eigen::InnerStride<>> row);
+
 // Geometric frame Jacobian of `link` (6 × n, world frame): rows 0–2 = ∂(link origin)/∂q (linear
 // velocity of the origin per unit q̇), rows 3–5 = angular velocity ω per unit q̇ (a for revolute
 // joints, 0 for prismatic). Requires ForwardKinematics first. Throws std::invalid_argument if J

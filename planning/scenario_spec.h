@@ -86,7 +86,8 @@
 //                            no coil slipping off its end) and ends below final_below in modulus
 //   aico            object   max_iterations: integer >= 1, default 20; tolerance: default 0.01;
 //                            damping: default 1; sweep_mode: "forwardly" (default) | "symmetric"
-//                            | "local_gauss_newton"; max_step: rad, default 1; rollout_init:
+//                            | "local_gauss_newton"; max_step: rad, default 1;
+//                            relocation_damping: in [1e-6, 1], default 0.3; rollout_init:
 //                            bool, default false; rollout_prior: default 100;
 //                            rollout_iterations: integer >= 1, default 10 (see aico.h);
 //     retry         object   a second attempt when the first fails validation or the success

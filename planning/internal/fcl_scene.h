@@ -22,6 +22,11 @@ struct FclShape {
   // length of the core segment along the shape's local z; radius 0 = not a capsule / use FCL.
   double capsule_radius = 0.0;
   double capsule_half_length = 0.0;
+  // A capsule along the shape's local z that contains it (spheres, cylinders, capsules; radius 0
+  // for other shapes): a lower bound on pair distances that spares the narrow phase of pairs whose
+  // bounding capsules are already `margin` apart.
+  double bound_radius = 0.0;
+  double bound_half_length = 0.0;
 };
 
 // A candidate pair for distance queries: shape indices (b into env if env_pair) and the AABB test

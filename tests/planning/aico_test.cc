@@ -220,6 +220,34 @@ TEST(Aico, InvalidProblemThrows) {
   velocity.tasks[0].order = 1;
   velocity.tasks[0].between = 2;  // only order-0 tasks are seen between slices
   EXPECT_THROW(ValidateProblem(velocity), std::invalid_argument);
+  const MotionProblem ok = ReachProblem(robot, true, Eigen::Vector3d(0.4, 1.2, 0));
+  AicoWorkspace ws_ok(ok);
+  for (double bad : {0.0, -0.5, 1.5, std::nan("")}) {
+    AicoOptions o;
+    o.relocation_damping = bad;
+    EXPECT_THROW(SolveAico(ok, o, &ws_ok), std::invalid_argument) << bad;
+  }
+}
+
+// Damped repeated relocations still solve the local problem: every relocation_damping in (0, 1]
+// reaches the same optimum of the 2-link reach (local Gauss–Newton sweeps).
+TEST(Aico, RelocationDampingKeepsTheOptimum) {
+  const Robot robot = ParseRobot(kPlanar2Link, "planar2", ".");
+  const MotionProblem problem = ReachProblem(robot, true, Eigen::Vector3d(0.4, 1.2, 0));
+  AicoWorkspace ws(problem);
+  Eigen::VectorXd reference;
+  for (double damping : {1.0, 0.5, 0.3, 0.1}) {
+    AicoOptions o;
+    o.sweep_mode = SweepMode::kLocalGaussNewton;
+    o.relocation_damping = damping;
+    o.max_iterations = 200;
+    o.tolerance = 1e-3;
+    const AicoResult r = SolveAico(problem, o, &ws);
+    EXPECT_EQ(r.status, SolveStatus::kConverged) << damping << ": " << StatusName(r.status);
+    const Eigen::VectorXd q_end = r.trajectory.q.col(problem.num_steps);
+    if (reference.size() == 0) reference = q_end;
+    EXPECT_LT((q_end - reference).cwiseAbs().maxCoeff(), 1e-3) << damping;
+  }
 }
 
 }  // namespace

@@ -75,15 +75,25 @@ TEST(Collision, CounterCountsQueriesAndNarrowPhaseCalls) {
   ForwardKinematics(robot, q, &kin);
   for (int i = 0; i < 3; ++i) EXPECT_FALSE(InCollision(robot, kin, &coll));
   EXPECT_EQ(coll.queries, 8);
-  EXPECT_EQ(coll.narrow_phase_calls, 3);
+  // The spheres' bounding capsules (the spheres themselves) are 0.0121 m apart: no contact is
+  // possible, so the boolean check never reaches the narrow phase.
+  EXPECT_EQ(coll.narrow_phase_calls, 0);
   std::vector<ProximityPair> pairs;
   ComputeProximity(robot, kin, 0.1, &coll, &pairs);
   ASSERT_EQ(pairs.size(), 1u);
   EXPECT_NEAR(pairs[0].distance, std::sqrt(2.0) * 0.15 - 0.2, 1e-6);
-  EXPECT_EQ(coll.narrow_phase_calls, 4);
+  EXPECT_EQ(coll.narrow_phase_calls, 1);
+  // Margin 0.01 < the bound gap: pruned before the narrow phase.
   ComputeProximity(robot, kin, 0.01, &coll, &pairs);
   EXPECT_TRUE(pairs.empty());
+  EXPECT_EQ(coll.narrow_phase_calls, 1);
   EXPECT_EQ(coll.queries, 10);
+  // Overlapping spheres reach the narrow phase.
+  q << 1.0;
+  const Environment touching = SphereAt(Eigen::Vector3d(1, 0.1, 0.1));
+  CollisionData coll2(robot, touching);
+  EXPECT_TRUE(InCollision(robot, kin, &coll2));
+  EXPECT_EQ(coll2.narrow_phase_calls, 1);
 }
 
 // A few LWR4 + SDH configurations with known answers.
@@ -223,16 +233,21 @@ TEST(Collision, DistanceGradientMatchesFiniteDifferences) {
   EXPECT_GE(checked, 3);
 }
 
+// The pole (rope) along world y at x = −0.1, z = 1.85, centred at y = `y`.
+Environment RopeAlongY(double y) {
+  Environment env;
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  pose.translate(Eigen::Vector3d(-0.1, y, 1.85));
+  pose.rotate(Eigen::AngleAxisd(-M_PI / 2, Eigen::Vector3d::UnitX()));
+  AddObject(LoadRobot(AssetFile("objects/pole.urdf")), pose, "rope", &env);
+  return env;
+}
+
 TEST(Collision, Arm20CoilIsFreeAroundTheRope) {
   const Robot robot = LoadRobot(AssetFile("robots/arm20_sdh.urdf"));
-  const Robot pole = LoadRobot(AssetFile("objects/pole.urdf"));
-  Environment env;
   // The rope of thesis §4.3.1: along world y, x = −0.1, z = 1.85, from y = −3 to 0. Its end
   // at y = 0 would pierce the stem (r 0.1 about the z axis), so it is shifted 0.2 m along −y here.
-  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
-  pose.translate(Eigen::Vector3d(-0.1, -1.7, 1.85));
-  pose.rotate(Eigen::AngleAxisd(-M_PI / 2, Eigen::Vector3d::UnitX()));
-  AddObject(pole, pose, "rope", &env);
+  const Environment env = RopeAlongY(-1.7);
   KinematicsData kin(robot);
   CollisionData coll(robot, env);
   ForwardKinematics(robot, Eigen::VectorXd::Zero(num_dofs(robot)), &kin);
@@ -244,6 +259,47 @@ TEST(Collision, Arm20CoilIsFreeAroundTheRope) {
   const Eigen::Matrix3Xd axis = ObjectChainPoints(env, 0, 0);
   EXPECT_TRUE(axis.col(0).isApprox(Eigen::Vector3d(-0.1, -3.2, 1.85), 1e-12));
   EXPECT_TRUE(axis.col(1).isApprox(Eigen::Vector3d(-0.1, -0.2, 1.85), 1e-12));
+}
+
+// The bounding-capsule pre-check (cylinders and capsules of the arm, the SDH and the pole) only
+// spares narrow-phase calls: on random poses the boolean check agrees with the sign of the exact
+// minimum distance (found without the pre-check) and ComputeProximity's closest pair equals it
+// whenever it is inside the margin (and MinDistance reports the deepest penetration: it stopped at
+// the first overlapping pair before).
+TEST(Collision, BoundPreCheckChangesNoAnswer) {
+  const Robot robot = LoadRobot(AssetFile("robots/arm20_sdh.urdf"));
+  const Environment env = RopeAlongY(-1.65);  // where unwrap.json places it
+  KinematicsData kin(robot);
+  CollisionData coll(robot, env), coll_min(robot, env);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-1.2, 1.2);
+  const double margin = 0.15;
+  int colliding = 0, close = 0;
+  long pruned = 0;
+  std::vector<ProximityPair> pairs;
+  for (int trial = 0; trial < 200; ++trial) {
+    Eigen::VectorXd q(num_dofs(robot));
+    for (Eigen::Index k = 0; k < q.size(); ++k) q[k] = u(rng);
+    ForwardKinematics(robot, q, &kin);
+    const double d = MinDistance(robot, kin, &coll_min);
+    if (std::abs(d) < 1e-6) continue;  // touching: either answer is within FCL's tolerance
+    const long before = coll.narrow_phase_calls;
+    EXPECT_EQ(InCollision(robot, kin, &coll), d < 0.0) << "trial " << trial << ", d " << d;
+    ComputeProximity(robot, kin, margin, &coll, &pairs);
+    pruned += coll.narrow_phase_calls - before;
+    double closest = std::numeric_limits<double>::infinity();
+    for (const ProximityPair& p : pairs) closest = std::min(closest, p.distance);
+    if (d < margin) {
+      EXPECT_NEAR(closest, d, 1e-9) << "trial " << trial;
+      ++close;
+    } else {
+      EXPECT_TRUE(pairs.empty()) << "trial " << trial;
+    }
+    colliding += d < 0.0;
+  }
+  EXPECT_GT(colliding, 10);
+  EXPECT_GT(close, 50);
+  EXPECT_GT(pruned, 0);
 }
 
 TEST(Collision, HumanHandRestPoseIsFree) {

@@ -134,6 +134,14 @@ TEST_P(JacobianFd, PointFrameAndChainJacobiansMatchFiniteDifferences) {
     }
     EXPECT_LT((J - J_fd).cwiseAbs().maxCoeff(), 1e-7) << robot.links[link].name;
     EXPECT_LT((F - F_fd).cwiseAbs().maxCoeff(), 1e-7) << robot.links[link].name;
+    // The directional form: row += s·uᵀ ∂p/∂q, added to a strided row of a matrix.
+    const Eigen::Vector3d u = Eigen::Vector3d(0.3, -0.8, 0.52).normalized();
+    Eigen::MatrixXd rows = Eigen::MatrixXd::Constant(4, n, 0.25);
+    AddPointJacobianAlong(robot, kin, link, kin.world_from_link[link] * p, u, -2.0, rows.row(2));
+    const Eigen::RowVectorXd expected =
+        Eigen::RowVectorXd::Constant(n, 0.25) - 2.0 * u.transpose() * J_fd;
+    EXPECT_LT((rows.row(2) - expected).cwiseAbs().maxCoeff(), 2e-7) << robot.links[link].name;
+    EXPECT_EQ(rows.row(1), Eigen::RowVectorXd::Constant(n, 0.25));
     for (int c = 0; c < static_cast<int>(robot.chains.size()); ++c) {
       const int size = ChainSize(robot, c);
       Eigen::MatrixXd dP(3 * size, n), dP_fd(3 * size, n);
@@ -172,6 +180,8 @@ TEST(Kinematics, PerStepPathDoesNotAllocate) {
     q[step] += 0.01;
     ForwardKinematics(robot, q, &kin);
     PointJacobian(robot, kin, 5, Eigen::Vector3d(0, 0, 0.1), J);
+    AddPointJacobianAlong(robot, kin, 5, Eigen::Vector3d(0, 0, 0.1), Eigen::Vector3d::UnitX(), 1.0,
+                          F.row(2));
     FrameJacobian(robot, kin, 7, F);
     ChainPoints(robot, kin, chain, &P);
     ChainJacobian(robot, kin, chain, dP);
@@ -190,6 +200,11 @@ TEST(Kinematics, SizeChecksThrow) {
   EXPECT_THROW(PointJacobian(robot, kin, 1, Eigen::Vector3d::Zero(), J), std::invalid_argument);
   Eigen::MatrixXd J3(3, num_dofs(robot));
   EXPECT_THROW(PointJacobian(robot, kin, 999, Eigen::Vector3d::Zero(), J3), std::invalid_argument);
+  const Eigen::Vector3d u = Eigen::Vector3d::UnitZ();
+  EXPECT_THROW(AddPointJacobianAlong(robot, kin, 1, Eigen::Vector3d::Zero(), u, 1.0, J.row(0)),
+               std::invalid_argument);
+  EXPECT_THROW(AddPointJacobianAlong(robot, kin, 999, Eigen::Vector3d::Zero(), u, 1.0, J3.row(0)),
+               std::invalid_argument);
 }
 
 TEST(Kinematics, ClosedChainRepeatsFirstPoint) {

@@ -115,6 +115,13 @@ TEST(ScenarioLoader, NumbersOutOfRangeNameFileAndPath) {
                   R"({"robot": ")" + kAssets + R"(robots/lwr4_sdh.urdf", "start": {"q": "zero"},
                       "tasks": [], "aico": {"max_iterations": 4294967297}})",
                   "aico.max_iterations: integer 4294967297 out of range");
+  for (const char* bad : {"0", "1.5", "-0.3"}) {
+    ExpectLoadError("relocation_damping.json",
+                    R"({"robot": ")" + kAssets + R"(robots/lwr4_sdh.urdf", "start": {"q": "zero"},
+                        "tasks": [], "aico": {"relocation_damping": )" +
+                        std::string(bad) + "}}",
+                    "aico.relocation_damping");
+  }
 }
 
 // "reach_at" re-times an interpolated target to reach its end value early and hold it;
@@ -315,21 +322,25 @@ TEST(UnwrapScenario, AicoUnwrapsFrom900Degrees) { CheckUnwrap(900.0); }
 // sweeps).
 TEST(UnwrapScenario, AicoUnwrapsFrom315Degrees) { CheckUnwrap(315.0); }
 TEST(UnwrapScenario, AicoUnwrapsFrom540Degrees) { CheckUnwrap(540.0); }
+// Regression: with undamped repeated relocations (relocation_damping 1) the local iteration of a
+// step kept moving 0.03-0.1 rad per relocation and 870° ended 0.109 m from the target.
+TEST(UnwrapScenario, AicoUnwrapsFrom870Degrees) { CheckUnwrap(870.0); }
 
 // The pole moved by up to 3 cm perpendicular to its axis (bench unwrap --perturb 0.03): AICO still
 // unwraps in one attempt (seed 0 of the benchmark's offsets, 2.2 cm; seed 1, 1.9 cm in another
-// direction, diverged at 450° before the local Gauss–Newton sweeps and is checked too).
+// direction, diverged at 450° before the local Gauss–Newton sweeps; 345° seed 0 ended in
+// collision with undamped repeated relocations).
 TEST(UnwrapScenario, AicoUnwrapsWithThePoleMoved) {
   UnwrapBenchmarkOptions o;
   o.scenario_path = kAssets + "scenarios/unwrap.json";
-  o.angles_deg = {450.0};
+  o.angles_deg = {345.0, 450.0};
   o.planners = {Planner::kAico};
   o.seeds = 2;
   o.perturb_m = 0.03;
   const UnwrapBenchmarkResult r = RunUnwrapBenchmark(o);
-  ASSERT_EQ(r.runs.size(), 2u);
+  ASSERT_EQ(r.runs.size(), 4u);
   for (const UnwrapRun& run : r.runs) {
-    SCOPED_TRACE("seed " + std::to_string(run.seed));
+    SCOPED_TRACE(std::to_string(run.angle_deg) + " deg, seed " + std::to_string(run.seed));
     EXPECT_GT(run.pole_offset.norm(), 0.0);
     EXPECT_LE(run.pole_offset.norm(), 0.03 + 1e-12);
     EXPECT_TRUE(run.report.success) << FailureReasonName(run.report.failure_reason);
