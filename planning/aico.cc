@@ -452,7 +452,9 @@ void Aico::Initialise(const Trajectory* init) {
 void Aico::Sweep(int sweep) {
   int fwd_reloc = 1, bwd_reloc = 0;
   if (o_.sweep_mode == SweepMode::kSymmetric && sweep > 0) bwd_reloc = 1;
-  if (o_.sweep_mode == SweepMode::kLocalGaussNewton && sweep > 0) fwd_reloc = bwd_reloc = 5;
+  if (o_.sweep_mode == SweepMode::kLocalGaussNewton && sweep > 0) {
+    fwd_reloc = bwd_reloc = o_.max_relocations;
+  }
   for (int t = 1; t <= T_; ++t) {
     UpdateForward(t);
     UpdateBelief(t);
@@ -584,6 +586,10 @@ void CheckInput(const MotionProblem& problem, const AicoOptions& options, const 
         "SolveAico: init trajectory is " + std::to_string(init->num_dofs()) + "x" +
         std::to_string(init->num_points()) + ", expected " + std::to_string(problem.q0.size()) +
         "x" + std::to_string(problem.num_steps + 1));
+  }
+  if (options.max_relocations < 1) {
+    throw std::invalid_argument("SolveAico: need max_relocations >= 1, got " +
+                                std::to_string(options.max_relocations));
   }
   if (!(options.relocation_damping > 0.0 && options.relocation_damping <= 1.0)) {
     throw std::invalid_argument("SolveAico: need relocation_damping in (0, 1], got " +

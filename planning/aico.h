@@ -41,8 +41,8 @@ namespace planning {
 enum class SweepMode {
   kForwardly,         // relocate once per step in the forward pass (forced in the first sweep)
   kSymmetric,         // relocate once per step in both passes
-  kLocalGaussNewton,  // up to 5 relocations per step in both passes after the first sweep, the
-                      // 2nd..5th damped (relocation_damping)
+  kLocalGaussNewton,  // up to max_relocations per step in both passes after the first sweep,
+                      // the 2nd and later damped (relocation_damping)
 };
 
 struct AicoOptions {
@@ -51,7 +51,9 @@ struct AicoOptions {
   double damping = 1.0;     // initial λ
   SweepMode sweep_mode = SweepMode::kForwardly;
   double max_step = 1.0;  // cap on one relocation move |x̂_new − x̂| (2-norm)
-  // Fraction of b_t − x̂_t by which the 2nd..5th relocation of one step moves x̂_t (local
+  // Local Gauss–Newton sweeps: at most this many relocations per step and pass (>= 1).
+  int max_relocations = 5;
+  // Fraction of b_t − x̂_t by which the 2nd and later relocations of one step move x̂_t (local
   // Gauss–Newton sweeps; the first moves all the way). In (0, 1]; 1 = undamped, which on the unwrap
   // problem keeps moving 0.03–0.1 rad per relocation instead of settling.
   double relocation_damping = 0.3;

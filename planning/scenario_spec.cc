@@ -293,8 +293,8 @@ SuccessSpec ReadSuccess(const JsonNode& n) {
 
 void ReadAico(const JsonNode& n, ScenarioSpec* spec) {
   n.CheckKeys({"max_iterations", "tolerance", "damping", "sweep_mode", "max_step",
-               "relocation_damping", "rollout_init", "rollout_prior", "rollout_iterations",
-               "retry"});
+               "max_relocations", "relocation_damping", "rollout_init", "rollout_prior",
+               "rollout_iterations", "retry"});
   AicoOptions& a = spec->aico;
   const int kMax = kMaxIterations;
   if (n.Has("max_iterations"))
@@ -303,6 +303,9 @@ void ReadAico(const JsonNode& n, ScenarioSpec* spec) {
   a.damping = n.Number("damping", a.damping, 0.0, kMaxWeight);
   if (n.Has("sweep_mode")) a.sweep_mode = Parse<SweepMode>(n.At("sweep_mode"), "sweep mode");
   a.max_step = n.Number("max_step", a.max_step, 1e-9, 1e3);
+  if (n.Has("max_relocations")) {
+    a.max_relocations = static_cast<int>(n.At("max_relocations").Integer(1, 100));
+  }
   a.relocation_damping = n.Number("relocation_damping", a.relocation_damping, 1e-6, 1.0);
   a.rollout_init = n.Bool("rollout_init", a.rollout_init);
   a.rollout_prior = n.Number("rollout_prior", a.rollout_prior, 0.0, kMaxWeight);

@@ -87,6 +87,7 @@
 //   aico            object   max_iterations: integer >= 1, default 20; tolerance: default 0.01;
 //                            damping: default 1; sweep_mode: "forwardly" (default) | "symmetric"
 //                            | "local_gauss_newton"; max_step: rad, default 1;
+//                            max_relocations: integer in [1, 100], default 5;
 //                            relocation_damping: in [1e-6, 1], default 0.3; rollout_init:
 //                            bool, default false; rollout_prior: default 100;
 //                            rollout_iterations: integer >= 1, default 10 (see aico.h);

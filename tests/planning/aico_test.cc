@@ -227,6 +227,9 @@ TEST(Aico, InvalidProblemThrows) {
     o.relocation_damping = bad;
     EXPECT_THROW(SolveAico(ok, o, &ws_ok), std::invalid_argument) << bad;
   }
+  AicoOptions none;
+  none.max_relocations = 0;
+  EXPECT_THROW(SolveAico(ok, none, &ws_ok), std::invalid_argument);
 }
 
 // Damped repeated relocations still solve the local problem: every relocation_damping in (0, 1]

@@ -115,12 +115,16 @@ TEST(ScenarioLoader, NumbersOutOfRangeNameFileAndPath) {
                   R"({"robot": ")" + kAssets + R"(robots/lwr4_sdh.urdf", "start": {"q": "zero"},
                       "tasks": [], "aico": {"max_iterations": 4294967297}})",
                   "aico.max_iterations: integer 4294967297 out of range");
-  for (const char* bad : {"0", "1.5", "-0.3"}) {
-    ExpectLoadError("relocation_damping.json",
+  // aico.KEY = VALUE outside its range: the message names the key.
+  const std::vector<std::pair<std::string, std::string>> bad_aico = {
+      {"max_relocations", "0"},    {"max_relocations", "101"},    {"max_relocations", "2.5"},
+      {"relocation_damping", "0"}, {"relocation_damping", "1.5"}, {"relocation_damping", "-0.3"}};
+  for (const auto& [key, value] : bad_aico) {
+    ExpectLoadError(key + ".json",
                     R"({"robot": ")" + kAssets + R"(robots/lwr4_sdh.urdf", "start": {"q": "zero"},
-                        "tasks": [], "aico": {"relocation_damping": )" +
-                        std::string(bad) + "}}",
-                    "aico.relocation_damping");
+                        "tasks": [], "aico": {")" +
+                        key + "\": " + value + "}}",
+                    "aico." + key);
   }
 }
 
