@@ -310,7 +310,7 @@ bool Aico::Relocate(int t, bool force, double fraction) {
   if (!force && w.vtmp.lpNorm<Eigen::Infinity>() <= o_.tolerance) return false;
   const double step = w.vtmp.norm();
   const double scale = step > o_.max_step ? o_.max_step / step : 1.0;
-  s.xhat[t].noalias() += (std::min(scale, fraction)) * w.vtmp;
+  s.xhat[t].noalias() += std::min(scale, fraction) * w.vtmp;
   if (p_.dynamic) s.xhat[t].tail(n_) = s.b[t].tail(n_);
   TaskMessage(t, s.xhat[t]);
   UpdateBelief(t);

@@ -129,9 +129,52 @@ bool Skip(const FclScene& s, const FclShape& a, const FclShape& b) {
   return !s.environment;
 }
 
+// Closest points P = a0 + s·u and Q = b0 + t·v (s, t ∈ [0, 1]) of the segments a0 + [0, 1]·u and
+// b0 + [0, 1]·v: minimises |P − Q|² = |w + s·u − t·v|² with w = a0 − b0, whose stationary point
+// solves [u·u, −u·v; −u·v, v·v] (s, t) = (−u·w, v·w); the clamped solution is found by fixing s,
+// clamping t, and re-solving s for the clamped t. Parallel segments (the 2 × 2 system is
+// singular) take the middle of their overlap, so the witness points move continuously with the
+// pose; point-like segments (length² ≤ 1e-24) are handled as points.
 void ClosestSegmentPoints(const Eigen::Vector3d& a0, const Eigen::Vector3d& u,
                           const Eigen::Vector3d& b0, const Eigen::Vector3d& v, Eigen::Vector3d* p,
-                          Eigen::Vector3d* q);
+                          Eigen::Vector3d* q) {
+  constexpr double kTiny = 1e-24;
+  const Eigen::Vector3d w = a0 - b0;
+  const double uu = u.squaredNorm(), vv = v.squaredNorm(), uv = u.dot(v);
+  const double uw = u.dot(w), vw = v.dot(w);
+  const auto clamp01 = [](double x) { return std::clamp(x, 0.0, 1.0); };
+  double s = 0.0, t = 0.0;
+  if (uu <= kTiny && vv <= kTiny) {
+    // Two points.
+  } else if (uu <= kTiny) {
+    t = clamp01(vw / vv);
+  } else if (vv <= kTiny) {
+    s = clamp01(-uw / uu);
+  } else {
+    const double det = uu * vv - uv * uv;  // = |u × v|² ≥ 0
+    if (det > 1e-12 * uu * vv) {
+      s = clamp01((uv * vw - vv * uw) / det);
+    } else {
+      // Parallel: b0 and b0 + v project to s0, s1 on a's line; take the middle of the overlap
+      // of [s0, s1] with [0, 1], or the nearer end of a when they do not overlap.
+      const double s0 = -uw / uu, s1 = (uv - uw) / uu;
+      const double lo = std::max(0.0, std::min(s0, s1)), hi = std::min(1.0, std::max(s0, s1));
+      s = lo <= hi ? 0.5 * (lo + hi) : (std::max(s0, s1) < 0.0 ? 0.0 : 1.0);
+    }
+    t = (uv * s + vw) / vv;
+    if (t < 0.0 || t > 1.0) {
+      t = clamp01(t);
+      s = clamp01((uv * t - uw) / uu);
+    }
+  }
+  *p = a0 + s * u;
+  *q = b0 + t * v;
+}
+
+// Both shapes are capsules answered in closed form (CollisionOptions::analytic_capsules).
+bool ClosedFormPair(const FclShape& a, const FclShape& b) {
+  return a.capsule_radius > 0.0 && b.capsule_radius > 0.0;
+}
 
 // Distance between the bounding capsules of a and b (≤ their true distance); 0 when either has
 // none.
@@ -181,48 +224,6 @@ void UpdateRobot(const KinematicsData& kin, FclScene* s, bool broadphase) {
   if (broadphase) s->robot_manager.update();
 }
 
-// Closest points P = a0 + s·u and Q = b0 + t·v (s, t ∈ [0, 1]) of the segments a0 + [0, 1]·u and
-// b0 + [0, 1]·v: minimises |P − Q|² = |w + s·u − t·v|² with w = a0 − b0, whose stationary point
-// solves [u·u, −u·v; −u·v, v·v] (s, t) = (−u·w, v·w); the clamped solution is found by fixing s,
-// clamping t, and re-solving s for the clamped t. Parallel segments (the 2 × 2 system is
-// singular) take the middle of their overlap, so the witness points move continuously with the
-// pose; point-like segments (length² ≤ 1e-24) are handled as points.
-void ClosestSegmentPoints(const Eigen::Vector3d& a0, const Eigen::Vector3d& u,
-                          const Eigen::Vector3d& b0, const Eigen::Vector3d& v, Eigen::Vector3d* p,
-                          Eigen::Vector3d* q) {
-  constexpr double kTiny = 1e-24;
-  const Eigen::Vector3d w = a0 - b0;
-  const double uu = u.squaredNorm(), vv = v.squaredNorm(), uv = u.dot(v);
-  const double uw = u.dot(w), vw = v.dot(w);
-  const auto clamp01 = [](double x) { return std::clamp(x, 0.0, 1.0); };
-  double s = 0.0, t = 0.0;
-  if (uu <= kTiny && vv <= kTiny) {
-    // Two points.
-  } else if (uu <= kTiny) {
-    t = clamp01(vw / vv);
-  } else if (vv <= kTiny) {
-    s = clamp01(-uw / uu);
-  } else {
-    const double det = uu * vv - uv * uv;  // = |u × v|² ≥ 0
-    if (det > 1e-12 * uu * vv) {
-      s = clamp01((uv * vw - vv * uw) / det);
-    } else {
-      // Parallel: b0 and b0 + v project to s0, s1 on a's line; take the middle of the overlap
-      // of [s0, s1] with [0, 1], or the nearer end of a when they do not overlap.
-      const double s0 = -uw / uu, s1 = (uv - uw) / uu;
-      const double lo = std::max(0.0, std::min(s0, s1)), hi = std::min(1.0, std::max(s0, s1));
-      s = lo <= hi ? 0.5 * (lo + hi) : (std::max(s0, s1) < 0.0 ? 0.0 : 1.0);
-    }
-    t = (uv * s + vw) / vv;
-    if (t < 0.0 || t > 1.0) {
-      t = clamp01(t);
-      s = clamp01((uv * t - uw) / uu);
-    }
-  }
-  *p = a0 + s * u;
-  *q = b0 + t * v;
-}
-
 // Signed distance of two capsules (core segments along their local z, FclShape radius and half
 // length) in closed form: |P − Q| − r_a − r_b with P, Q the closest points of the core segments.
 // The normal is (P − Q)/|P − Q| (from b to a); when the segments meet it is u × v, or a vector
@@ -256,7 +257,7 @@ void CapsuleDistance(const FclShape& a, const FclShape& b, ProximityPair* out) {
 // Signed distance between two shapes with witness points and the normal from b to a.
 void ShapeDistance(const FclShape& a, const FclShape& b, CollisionData* coll, ProximityPair* out) {
   ++coll->narrow_phase_calls;
-  if (a.capsule_radius > 0.0 && b.capsule_radius > 0.0) {
+  if (ClosedFormPair(a, b)) {
     CapsuleDistance(a, b, out);
     return;
   }
@@ -336,8 +337,7 @@ void ForEachClosePair(const Robot& robot, const KinematicsData& kin, double marg
     if (AabbGap(*a.obj, *b.obj) >= margin) continue;
     // Closed-form capsule pairs are as cheap as their bound; others skip the narrow phase when
     // their bounding capsules are margin apart.
-    const bool closed_form = a.capsule_radius > 0.0 && b.capsule_radius > 0.0;
-    if (!closed_form && BoundGap(a, b) >= margin) continue;
+    if (!ClosedFormPair(a, b) && BoundGap(a, b) >= margin) continue;
     ProximityPair pair;
     pair.link_a = a.link;
     pair.link_b = p.env_pair ? -1 : b.link;

@@ -25,27 +25,33 @@ void CheckSize(const Eigen::Ref<Eigen::MatrixXd>& m, Eigen::Index rows, Eigen::I
   }
 }
 
+// Calls visit(joint, j, m) for every movable joint j on the path link→root (m: its mimic
+// multiplier, or 1).
+template <typename Visit>
+void ForEachJointToRoot(const Robot& robot, int link, Visit&& visit) {
+  for (int l = link; l >= 0;) {
+    const int j = robot.links[l].parent_joint;
+    if (j < 0) break;
+    const Joint& joint = robot.joints[j];
+    if (joint.dof >= 0) visit(joint, j, joint.is_mimic ? joint.mimic_multiplier : 1.0);
+    l = joint.parent_link;
+  }
+}
+
 // Adds the contribution of every movable joint on the path root→link to the 3×n position
 // Jacobian of world point p (and, if J_ang is non-null, to the 3×n angular Jacobian).
 template <typename Lin, typename Ang>
 void AccumulateJacobian(const Robot& robot, const KinematicsData& kin, int link,
                         const Eigen::Vector3d& p, Lin&& J_lin, Ang* J_ang) {
-  for (int l = link; l >= 0;) {
-    const int j = robot.links[l].parent_joint;
-    if (j < 0) break;
-    const Joint& joint = robot.joints[j];
-    if (joint.dof >= 0) {
-      const double m = joint.is_mimic ? joint.mimic_multiplier : 1.0;
-      const Eigen::Vector3d& a = kin.joint_axis_world[j];
-      if (joint.type == JointType::kPrismatic) {
-        J_lin.col(joint.dof) += m * a;
-      } else {
-        J_lin.col(joint.dof) += m * a.cross(p - kin.joint_origin_world[j]);
-        if (J_ang) J_ang->col(joint.dof) += m * a;
-      }
+  ForEachJointToRoot(robot, link, [&](const Joint& joint, int j, double m) {
+    const Eigen::Vector3d& a = kin.joint_axis_world[j];
+    if (joint.type == JointType::kPrismatic) {
+      J_lin.col(joint.dof) += m * a;
+    } else {
+      J_lin.col(joint.dof) += m * a.cross(p - kin.joint_origin_world[j]);
+      if (J_ang) J_ang->col(joint.dof) += m * a;
     }
-    l = joint.parent_link;
-  }
+  });
 }
 
 }  // namespace
@@ -120,21 +126,15 @@ void AddPointJacobianAlong(const Robot& robot, const KinematicsData& kin, int li
     throw std::invalid_argument("AddPointJacobianAlong: row has " + std::to_string(row.size()) +
                                 " entries, expected " + std::to_string(num_dofs(robot)));
   }
-  for (int l = link; l >= 0;) {
-    const int j = robot.links[l].parent_joint;
-    if (j < 0) break;
-    const Joint& joint = robot.joints[j];
-    if (joint.dof >= 0) {
-      const double m = scale * (joint.is_mimic ? joint.mimic_multiplier : 1.0);
-      const Eigen::Vector3d& a = kin.joint_axis_world[j];
-      if (joint.type == JointType::kPrismatic) {
-        row[joint.dof] += m * a.dot(u);
-      } else {
-        row[joint.dof] += m * a.dot((p_world - kin.joint_origin_world[j]).cross(u));
-      }
+  ForEachJointToRoot(robot, link, [&](const Joint& joint, int j, double mimic) {
+    const double m = scale * mimic;
+    const Eigen::Vector3d& a = kin.joint_axis_world[j];
+    if (joint.type == JointType::kPrismatic) {
+      row[joint.dof] += m * a.dot(u);
+    } else {
+      row[joint.dof] += m * a.dot((p_world - kin.joint_origin_world[j]).cross(u));
     }
-    l = joint.parent_link;
-  }
+  });
 }
 
 void FrameJacobian(const Robot& robot, const KinematicsData& kin, int link,
