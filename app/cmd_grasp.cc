@@ -72,6 +72,7 @@ struct TransferArgs {
   std::string method = "all";
   double mu = 1.0;
   double contact_patch_mm = planning::physics::SimOptions{}.contact_patch_radius * 1e3;
+  double close_by = planning::physics::HandBuildOptions{}.close_by;
   std::string out_dir;
   double timeout = 0.0;
   bool frames = false;
@@ -88,6 +89,9 @@ int RunTransfer(const TransferArgs& a) {
   }
   if (!(a.contact_patch_mm >= 0 && a.contact_patch_mm <= 50)) {
     throw std::invalid_argument("--contact-patch: must be a number of mm in [0, 50]");
+  }
+  if (!(a.close_by >= 0 && a.close_by <= 0.5)) {
+    throw std::invalid_argument("--close-by: must be a number of radians in [0, 0.5]");
   }
   std::vector<planning::TransferMethod> methods;
   if (a.method == "all") {
@@ -108,6 +112,7 @@ int RunTransfer(const TransferArgs& a) {
   phys::GraspTrialsOptions options;
   options.mu = a.mu;
   options.contact_patch_radius = a.contact_patch_mm * 1e-3;
+  options.close_by = a.close_by;
   options.perturb = a.perturb;
   options.seed = a.seed;
   options.threads = a.threads;
@@ -181,6 +186,11 @@ void AddGraspCommands(CLI::App* root, CommandList* commands) {
                    "soft-finger contact patch radius in mm, the same for every method and the "
                    "human hand: torsional friction up to (3 pi/16) mu a times the normal force; "
                    "0 = point contacts")
+      ->capture_default_str();
+  transfer
+      ->add_option("--close-by", ta->close_by,
+                   "grip: the fingers' flexion joints are driven to their grasp value + RAD, the "
+                   "same for every method and the human hand (in [0, 0.5])")
       ->capture_default_str();
   transfer->add_option("-o,--output", ta->out_dir, "output folder")->required();
   AddTimeoutFlag(transfer, &ta->timeout);

@@ -477,6 +477,7 @@ nlohmann::json GraspReportJson(const phys::GraspTrialsResult& result) {
                         {"trial_time_s", stab.trial_time},
                         {"dt_s", stab.sim.dt},
                         {"contact_patch_radius_m", stab.sim.contact_patch_radius},
+                        {"close_by_rad", result.close_by},
                         {"max_slip_m", stab.max_slip},
                         {"max_rotation_deg", stab.max_rotation_deg},
                         {"min_contact_links", stab.min_contact_links}};
@@ -569,7 +570,7 @@ std::string GraspSummaryMarkdown(const phys::GraspTrialsResult& result) {
   std::ostringstream md;
   md << "# Grasp transfer to the SDH: ODE stability (mu = " << result.stability.sim.mu
      << ", soft-finger contact patch " << result.stability.sim.contact_patch_radius * 1e3
-     << " mm)\n\n"
+     << " mm, flexion set-points " << result.close_by << " rad past the grasp)\n\n"
      << "Directions passed out of 6 (gravity along +-x, +-y, +-z of the palm, 2 s each at 1 kHz); "
         "a grasp is stable when it passes all 6. eps: Ferrari-Canny epsilon of the contacts at "
         "the end of closing.\n\n| grasp |";
@@ -617,7 +618,11 @@ std::string GraspSummaryMarkdown(const phys::GraspTrialsResult& result) {
 
 GraspSummaryData GraspSummaryDataOf(const phys::GraspTrialsResult& result) {
   GraspSummaryData d;
-  const std::string mu = render::FormatNumber(result.stability.sim.mu, 2);
+  // The grip travel is named only when it is not the protocol's.
+  std::string mu = render::FormatNumber(result.stability.sim.mu, 2);
+  if (result.close_by != phys::HandBuildOptions{}.close_by) {
+    mu += ", grip \u03b4 = " + render::FormatNumber(result.close_by, 2) + " rad";
+  }
   const bool perturbed = result.perturb > 0;
   if (perturbed) {
     d.title = "SDH grasp transfer: stable under " + std::to_string(result.perturb) +

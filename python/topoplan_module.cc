@@ -822,9 +822,10 @@ PYBIND11_MODULE(_core, m) {
   m.def(
       "grasp_transfer",
       [](const fs::path& grasp_path, const std::string& method, double mu, int perturb,
-         std::uint32_t seed) {
+         std::uint32_t seed, double close_by) {
         const std::string grasp = grasp_path.string();
         if (!(mu >= 0.0) || !std::isfinite(mu)) ThrowValue("mu: must be finite and >= 0");
+        if (!(close_by >= 0.0 && close_by <= 0.5)) ThrowValue("close_by: must be in [0, 0.5] rad");
         if (perturb < 0 || perturb > 1000) ThrowValue("perturb: must be in 0..1000");
         const planning::TransferMethod tm =
             Named("method", [&] { return planning::ParseTransferMethod(method); });
@@ -840,6 +841,7 @@ PYBIND11_MODULE(_core, m) {
           options.mu = mu;
           options.perturb = perturb;
           options.seed = seed;
+          options.close_by = close_by;
           const auto result = planning::physics::RunGraspTrials(
               ode, in.human, in.lwr_sdh, in.objects, in.grasps, {tm}, options);
           report = app::GraspReportJson(result);
@@ -847,12 +849,13 @@ PYBIND11_MODULE(_core, m) {
         return JsonToPython(report["grasps"][0]);
       },
       py::arg("grasp"), py::arg("method") = "winding", py::arg("mu") = 1.0, py::arg("perturb") = 0,
-      py::arg("seed") = 0,
+      py::arg("seed") = 0, py::arg("close_by") = planning::physics::HandBuildOptions{}.close_by,
       "Transfers one human grasp (a name in assets/grasps or a file) to the SDH with method\n"
       "(winding, winding_only, contact_only, fingertip, joint, human), tests it in ODE with\n"
       "friction mu and returns its entry of `topoplan grasp transfer`'s report.json. perturb = N\n"
       "> 0 repeats the test N times with the object moved (<= 5 mm) and turned (<= 5 deg), seeded\n"
-      "by seed as `grasp transfer --perturb N --seed S` (methods[...]['perturbed']).");
+      "by seed as `grasp transfer --perturb N --seed S` (methods[...]['perturbed']). close_by:\n"
+      "the grip, flexion set-points this many rad past the grasp (`--close-by`, in [0, 0.5]).");
   m.def(
       "available_grasps",
       [] {

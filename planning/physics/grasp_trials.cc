@@ -41,13 +41,16 @@ void Simulate(const OdeRuntime& runtime, const TransferSetup& setup,
 }
 
 // The trial up to its simulation: the transfer (or the demonstration), the hand at its
-// configuration and the object at the grasp's pose.
-GraspTrial PrepareTrial(const TransferSetup& setup, TransferMethod method) {
+// configuration (flexion joints driven to their grasp value + close_by) and the object at the
+// grasp's pose.
+GraspTrial PrepareTrial(const TransferSetup& setup, TransferMethod method, double close_by) {
   GraspTrial trial;
   if (method != TransferMethod::kHuman) {
     trial.transfer = TransferGrasp(setup, method);
     trial.winding_error = (trial.transfer.robot_winding - trial.transfer.target_winding).norm();
-    trial.hand = BuildSimHand(setup.sdh, trial.transfer.q, "sdh_palm");
+    HandBuildOptions build;
+    build.close_by = close_by;
+    trial.hand = BuildSimHand(setup.sdh, trial.transfer.q, "sdh_palm", build);
   } else {
     trial.human = true;
     TransferResult& t = trial.transfer;
@@ -67,7 +70,9 @@ GraspTrial PrepareTrial(const TransferSetup& setup, TransferMethod method) {
                                     setup.object, setup.grasp.world_from_object);
     t.solver = "demonstration";
     t.iterations = 0;
-    trial.hand = BuildSimHand(setup.human, setup.human_q, "hand_palm", HumanHandBuildOptions());
+    HandBuildOptions build = HumanHandBuildOptions();
+    build.close_by = close_by;
+    trial.hand = BuildSimHand(setup.human, setup.human_q, "hand_palm", build);
   }
   trial.object = BuildSimObject(setup.object, setup.grasp.world_from_object);
   return trial;
@@ -108,6 +113,9 @@ void CheckTrialsOptions(const GraspTrialsOptions& o) {
   if (!(o.contact_patch_radius >= 0) || !std::isfinite(o.contact_patch_radius)) {
     throw std::invalid_argument("grasp trials: contact_patch_radius must be a finite number >= 0");
   }
+  if (!(o.close_by >= 0 && o.close_by <= 0.5)) {
+    throw std::invalid_argument("grasp trials: close_by must be in [0, 0.5] rad");
+  }
   if (o.perturb < 0 || o.perturb > 1000) {
     throw std::invalid_argument("grasp trials: perturb must be in [0, 1000]");
   }
@@ -123,8 +131,11 @@ void CheckTrialsOptions(const GraspTrialsOptions& o) {
 class TransferQueue {
  public:
   TransferQueue(const std::vector<TransferSetup>& setups,
-                const std::vector<TransferMethod>& methods, int workers)
-      : setups_(setups), methods_(methods), slots_(setups.size() * methods.size()) {
+                const std::vector<TransferMethod>& methods, double close_by, int workers)
+      : setups_(setups),
+        methods_(methods),
+        close_by_(close_by),
+        slots_(setups.size() * methods.size()) {
     for (int w = 0; w < workers; ++w) threads_.emplace_back([this] { Work(); });
   }
   ~TransferQueue() {
@@ -162,7 +173,8 @@ class TransferQueue {
   void Compute(size_t j) {
     Slot slot;
     try {
-      slot.trial = PrepareTrial(setups_[j / methods_.size()], methods_[j % methods_.size()]);
+      slot.trial =
+          PrepareTrial(setups_[j / methods_.size()], methods_[j % methods_.size()], close_by_);
     } catch (...) {
       slot.error = std::current_exception();
     }
@@ -186,6 +198,7 @@ class TransferQueue {
 
   const std::vector<TransferSetup>& setups_;
   const std::vector<TransferMethod>& methods_;
+  const double close_by_;
   std::vector<Slot> slots_;
   std::mutex mutex_;
   std::condition_variable done_;
@@ -220,7 +233,7 @@ Eigen::Isometry3d PerturbedObjectPose(const Eigen::Isometry3d& world_from_object
 GraspTrial RunGraspTrial(const OdeRuntime& runtime, const TransferSetup& setup,
                          TransferMethod method, const StabilityOptions& options,
                          const GraspTrialHooks& hooks) {
-  GraspTrial trial = PrepareTrial(setup, method);
+  GraspTrial trial = PrepareTrial(setup, method, HandBuildOptions{}.close_by);
   Simulate(runtime, setup, options, hooks, &trial);
   return trial;
 }
@@ -240,6 +253,7 @@ GraspTrialsResult RunGraspTrials(const OdeRuntime& runtime, const Robot& human_h
   result.methods = methods;
   result.stability.sim.mu = options.mu;
   result.stability.sim.contact_patch_radius = options.contact_patch_radius;
+  result.close_by = options.close_by;
   result.perturb = options.perturb;
   result.seed = options.seed;
   result.perturb_translation = options.perturb_translation;
@@ -251,7 +265,8 @@ GraspTrialsResult RunGraspTrials(const OdeRuntime& runtime, const Robot& human_h
         MakeTransferSetup(human_hand, sdh_source, FindGraspObject(objects, g.object), g));
   }
   {
-    TransferQueue queue(setups, methods, methods.empty() ? 0 : options.threads - 1);
+    TransferQueue queue(setups, methods, options.close_by,
+                        methods.empty() ? 0 : options.threads - 1);
     for (size_t gi = 0; gi < grasps.size() && result.complete; ++gi) {
       std::vector<GraspTrial> row;
       for (size_t mi = 0; mi < methods.size(); ++mi) {

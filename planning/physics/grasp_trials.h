@@ -60,7 +60,8 @@ struct GraspTrialHooks {
 };
 
 // Transfers setup.grasp to the SDH with `method` (TransferGrasp), builds the ODE hand at the
-// transferred q and the object at setup.grasp.world_from_object, and runs TestGraspStability.
+// transferred q (default grip, HandBuildOptions{}.close_by) and the object at
+// setup.grasp.world_from_object, and runs TestGraspStability.
 // method kHuman runs RunHumanTrial instead.
 GraspTrial RunGraspTrial(const OdeRuntime& runtime, const TransferSetup& setup,
                          TransferMethod method, const StabilityOptions& options,
@@ -95,6 +96,12 @@ struct GraspTrialsOptions {
   // Soft-finger contact patch radius of the protocol [m] (SimOptions::contact_patch_radius, the
   // same for every method and the human hand); 0 = point contacts.
   double contact_patch_radius = SimOptions{}.contact_patch_radius;
+  // Grip of the protocol [rad] (HandBuildOptions::close_by, the same for every method and the
+  // human hand): flexion joints are driven to their grasp value + close_by, in [0, 0.5]. Two
+  // opposed fingertips whose motors both saturate hold an object in neutral balance along the
+  // line between them, so gravity along that line moves it until the weaker side's finger reaches
+  // this set-point: the travel grows with close_by.
+  double close_by = HandBuildOptions{}.close_by;
   // Robustness: every grasp × method is repeated `perturb` times (0: none, at most 1000) with the
   // object moved by up to perturb_translation along each world axis (uniform in [−a, a]) and
   // turned about its origin by an angle uniform in [−b, b] (b = perturb_rotation_deg) about a
@@ -124,6 +131,7 @@ struct GraspTrialsResult {
   std::vector<HumanGrasp> grasps;       // as given (stopped: the finished ones)
   std::vector<TransferMethod> methods;  // as given (output order)
   StabilityOptions stability;           // the protocol used (sim.mu = mu, sim.contact_patch_radius)
+  double close_by = 0.0;                // GraspTrialsOptions::close_by [rad]
   std::vector<std::vector<GraspTrial>> trials;  // trials[grasp][method]
   std::vector<GraspMethodSummary> summary;      // one per method, in `methods` order
   bool all_stable = true;                       // every trial stable
@@ -139,7 +147,8 @@ struct GraspTrialsResult {
 // each (see GraspTrialsOptions; on_start/on_done run for the nominal trial only). Each grasp's
 // object is looked up by name in `objects`; `human_hand` and `sdh_source` are the robots
 // MakeTransferSetup takes. Throws std::invalid_argument for an unknown object or bad grasp (as
-// MakeTransferSetup), for mu or contact_patch_radius < 0 or non-finite, perturb outside
+// MakeTransferSetup), for mu or contact_patch_radius < 0 or non-finite, close_by outside
+// [0, 0.5], perturb outside
 // [0, 1000], threads < 1 or non-finite/negative perturbation sizes.
 GraspTrialsResult RunGraspTrials(const OdeRuntime& runtime, const Robot& human_hand,
                                  const Robot& sdh_source, const std::vector<GraspObject>& objects,

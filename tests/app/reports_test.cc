@@ -227,6 +227,16 @@ TEST(ReportsTest, GraspTableMatchesReportJson) {
             std::string::npos)
       << md;
   EXPECT_EQ(md.find("perturbed"), std::string::npos) << md;  // no --perturb: no perturbed row
+  // The grip travel: in the protocol, and in the figure's title only when not the default.
+  result.close_by = phys::HandBuildOptions{}.close_by;
+  EXPECT_EQ(GraspReportJson(result)["protocol"]["close_by_rad"].get<double>(), 0.15);
+  EXPECT_EQ(GraspSummaryDataOf(result).title.find("grip"), std::string::npos);
+  result.close_by = 0.05;
+  EXPECT_EQ(GraspReportJson(result)["protocol"]["close_by_rad"].get<double>(), 0.05);
+  EXPECT_NE(GraspSummaryDataOf(result).title.find("grip \u03b4 = 0.05 rad"), std::string::npos)
+      << GraspSummaryDataOf(result).title;
+  EXPECT_NE(GraspSummaryMarkdown(result).find("flexion set-points 0.05 rad past the grasp"),
+            std::string::npos);
 }
 
 TEST(ReportsTest, GraspReportCarriesTheExtraCurveWindings) {

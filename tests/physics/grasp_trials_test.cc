@@ -135,5 +135,53 @@ TEST(GraspTrialsTest, HumanTrialReportsItsOwnExtraCurveWindings) {
   EXPECT_LT(t.target_extra_winding[1], -0.1);
 }
 
+// Why the winding pinch is not stable: the SDH holds the plate between two opposed fingertips
+// (fingers 1 and 2, which face each other along the palm's y axis at the pinch's spread). Both
+// motors saturate, so the plate sits in neutral balance along that line and gravity along ±y moves
+// it until the weaker side's finger reaches its set-point, close_by past the grasp. The slip along
+// ±y therefore shrinks with the grip travel, while the other four directions do not depend on it.
+TEST(GraspTrialsTest, TwoFingerPinchDriftsByTheGripTravel) {
+  const Robot human = LoadRobot(kAssets + "robots/human_hand.urdf");
+  const Robot lwr = LoadRobot(kAssets + "robots/lwr4_sdh.urdf");
+  const std::vector<GraspObject> objects = LoadGraspObjects(kAssets + "grasps/objects.json");
+  const std::vector<HumanGrasp> grasps = {
+      LoadHumanGrasp(kAssets + "grasps/lateral_pinch_box.json")};
+  const std::vector<TransferMethod> methods = {TransferMethod::kWinding};
+  OdeRuntime runtime;
+  GraspTrialsOptions o;
+  o.threads = 1;
+  ASSERT_EQ(o.close_by, 0.15);
+  const GraspTrialsResult wide = RunGraspTrials(runtime, human, lwr, objects, grasps, methods, o);
+  o.close_by = 0.05;
+  const GraspTrialsResult tight = RunGraspTrials(runtime, human, lwr, objects, grasps, methods, o);
+  EXPECT_EQ(wide.close_by, 0.15);
+  EXPECT_EQ(tight.close_by, 0.05);
+  const GraspTrial& a = wide.trials[0][0];
+  const GraspTrial& b = tight.trials[0][0];
+  EXPECT_TRUE(a.transfer.q == b.transfer.q);  // the grip is part of the test, not the transfer
+  ASSERT_EQ(a.stability.directions.size(), 6u);
+  ASSERT_EQ(b.stability.directions.size(), 6u);
+  EXPECT_EQ(a.stability.closure_contact_links, 2);
+  for (size_t d = 0; d < 6; ++d) {
+    const DirectionResult& da = a.stability.directions[d];
+    const DirectionResult& db = b.stability.directions[d];
+    ASSERT_EQ(da.label, db.label);
+    if (da.label == "+y" || da.label == "-y") {
+      EXPECT_GT(da.slip_m, 0.02) << da.label;             // fails the 2 cm criterion
+      EXPECT_LT(db.slip_m, 0.5 * da.slip_m) << da.label;  // a third of the travel: half the slip
+    } else {
+      EXPECT_NEAR(da.slip_m, db.slip_m, 0.003) << da.label;
+      EXPECT_TRUE(da.passed && db.passed) << da.label;
+    }
+  }
+  // Bad grip values.
+  GraspTrialsOptions bad;
+  for (double v : {-0.01, 0.51, std::nan("")}) {
+    bad.close_by = v;
+    EXPECT_THROW(RunGraspTrials(runtime, human, lwr, objects, grasps, methods, bad),
+                 std::invalid_argument);
+  }
+}
+
 }  // namespace
 }  // namespace planning::physics

@@ -105,6 +105,9 @@ def test_grasp_errors():
         topoplan.grasp_transfer("power_bottle", "magic")
     with pytest.raises(ValueError, match="mu"):
         topoplan.grasp_transfer("power_bottle", "winding", mu=-1)
+    for bad in (-0.1, 0.6, float("nan")):
+        with pytest.raises(ValueError, match="close_by"):
+            topoplan.grasp_transfer("power_bottle", "winding", close_by=bad)
     with pytest.raises(FileNotFoundError, match="grasp"):
         topoplan.grasp_transfer("no_such_grasp", "winding")
 
