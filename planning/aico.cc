@@ -105,6 +105,7 @@ class Aico {
   int backtracks_ = 0;
   bool guarded_ = false;  // some task has max_jump > 0
   int jumps_ = 0;         // CountJumps of the accepted beliefs
+  int max_between_ = 0;   // largest Task::between
   Eigen::MatrixXd qguard_;
   long evals0_ = 0, coll0_ = 0, narrow0_ = 0;
   Eigen::VectorXd metric_;
@@ -215,23 +216,31 @@ double Aico::BetweenMessage(int t) {
   for (int k = t - 1; k <= t + 1; k += 2) {
     if (k < 0 || k > T_) continue;
     const int step = std::max(t, k);
-    for (size_t i = 0; i < p_.tasks.size(); ++i) {
-      const Task& task = p_.tasks[i];
-      const double rho = task.precision[step];
-      if (task.between <= 0 || rho <= 0.0) continue;
-      for (int j = 1; j <= task.between; ++j) {
-        const double alpha = static_cast<double>(j) / (task.between + 1);  // along t−1 → t
-        const double c = k < t ? alpha : 1.0 - alpha;                      // weight of q_t
+    // Tasks with the same `between` count share their states: one kinematics pass per state.
+    for (int count = 1; count <= max_between_; ++count) {
+      bool any = false;
+      for (const Task& task : p_.tasks) {
+        any = any || (task.between == count && task.precision[step] > 0.0);
+      }
+      if (!any) continue;
+      for (int j = 1; j <= count; ++j) {
+        const double alpha = static_cast<double>(j) / (count + 1);  // along t−1 → t
+        const double c = k < t ? alpha : 1.0 - alpha;               // weight of q_t
         w.qbetween = c * w.q;
         w.qbetween.noalias() += (1.0 - c) * st().xhat[k].head(n_);
-        EvaluateTask(p_, static_cast<int>(i), w.qbetween, true, &w.tasks);
-        const Eigen::MatrixXd& J = w.tasks.J[i];
-        Eigen::VectorXd& e = err_[i];
-        e = task.target.col(step) - w.tasks.y[i];
-        cost += 0.5 * rho * e.squaredNorm();
-        e.noalias() += c * (J * w.q);
-        AddGram(J, rho * c * c, R.topLeftCorner(n_, n_));
-        r.head(n_).noalias() += (rho * c) * J.transpose() * e;
+        EvaluateBetweenTasks(p_, step, count, w.qbetween, true, &w.tasks);
+        for (size_t i = 0; i < p_.tasks.size(); ++i) {
+          const Task& task = p_.tasks[i];
+          const double rho = task.precision[step];
+          if (task.between != count || rho <= 0.0) continue;
+          const Eigen::MatrixXd& J = w.tasks.J[i];
+          Eigen::VectorXd& e = err_[i];
+          e = task.target.col(step) - w.tasks.y[i];
+          cost += 0.5 * rho * e.squaredNorm();
+          e.noalias() += c * (J * w.q);
+          AddGram(J, rho * c * c, R.topLeftCorner(n_, n_));
+          r.head(n_).noalias() += (rho * c) * J.transpose() * e;
+        }
       }
     }
   }
@@ -496,6 +505,7 @@ void Aico::Start(const Trajectory* init) {
   for (const Task& task : p_.tasks) {
     err_.emplace_back(Eigen::VectorXd::Zero(task.feature->dim()));
     max_dim = std::max<Eigen::Index>(max_dim, task.feature->dim());
+    max_between_ = std::max(max_between_, task.between);
   }
   gram_rows_.resize(max_dim, n_);
   linv_.resize(d_, d_);
@@ -546,10 +556,11 @@ AicoStep Aico::Step() {
   }
   const double cost = EvaluateAll();
   ++result_.iterations;
-  const int jumps = guarded_ ? Jumps() : 0;
-  const bool accepted = std::isfinite(cost) &&
-                        (cost <= ws_->backup.cost || (sweep == 0 && o_.accept_first_sweep)) &&
-                        jumps <= jumps_;
+  const bool cost_ok =
+      std::isfinite(cost) && (cost <= ws_->backup.cost || (sweep == 0 && o_.accept_first_sweep));
+  // The jumps decide only between sweeps the cost accepts (a rejected sweep's count is not kept).
+  const int jumps = guarded_ && cost_ok ? Jumps() : 0;
+  const bool accepted = cost_ok && jumps <= jumps_;
   if (!accepted) {
     std::swap(ws_->state, ws_->backup);
     lambda_ *= 10.0;

@@ -101,6 +101,18 @@ void EvaluateTask(const MotionProblem& problem, int i, const Eigen::VectorXd& q,
                      jacobians ? &ws->J[i] : nullptr);
 }
 
+void EvaluateBetweenTasks(const MotionProblem& problem, int t, int between,
+                          const Eigen::VectorXd& q, bool jacobians, TaskWorkspace* ws) {
+  ForwardKinematics(*problem.robot, q, &ws->kin);
+  ++ws->evaluations;
+  for (size_t i = 0; i < problem.tasks.size(); ++i) {
+    const Task& task = problem.tasks[i];
+    if (task.between != between || task.precision[t] <= 0.0) continue;
+    task.feature->Eval(*problem.robot, ws->kin, ws->data[i].get(), ws->y[i],
+                       jacobians ? &ws->J[i] : nullptr);
+  }
+}
+
 double BetweenCost(const MotionProblem& problem, int t, const Eigen::VectorXd& q_prev,
                    const Eigen::VectorXd& q, TaskWorkspace* ws) {
   double cost = 0.0;

@@ -88,6 +88,12 @@ void EvaluateTasks(const MotionProblem& problem, int t, const Eigen::VectorXd& q
 void EvaluateTask(const MotionProblem& problem, int i, const Eigen::VectorXd& q, bool jacobians,
                   TaskWorkspace* ws);
 
+// ForwardKinematics at q, then every task i with Task::between == `between` (> 0) that is active
+// at step t (ρ_{i,t} > 0) into ws->y[i] (and ws->J[i]): the tasks that share the states between
+// two slices share one kinematics pass. No allocation.
+void EvaluateBetweenTasks(const MotionProblem& problem, int t, int between,
+                          const Eigen::VectorXd& q, bool jacobians, TaskWorkspace* ws);
+
 // The between-slice part of the cost of step t (1 <= t <= T) from slice t − 1 at q_prev to slice
 // t at q: Σ_i Σ_k ρ_{i,t} ||y*_{i,t} − φ_i(q_t(α_k))||² over the tasks with between > 0 (see
 // Task). Evaluates through `ws` (overwrites its kinematics and those tasks' y and J).
