@@ -357,7 +357,7 @@ def sweep_unwrap(args):
 
 
 GRASP_HEADER = (
-    "grasp,method,seed,mu,stable,directions_passed,epsilon_quality,perturbed_trials,"
+    "grasp,method,seed,mu,close_by,stable,directions_passed,epsilon_quality,perturbed_trials,"
     "perturbed_stable"
 )
 GRASP_SUMMARY_HEADER = "grasp,method,trials,stable,rate,ci95_lo,ci95_hi"
@@ -376,12 +376,15 @@ def parse_names(text, available, flag):
     return names
 
 
-def run_grasp(grasp, method, seed, mu, perturb):
+def run_grasp(grasp, method, seed, mu, perturb, close_by=0.15):
     """One (grasp, method, seed) run of the grasp transfer experiment (on a worker): a dict with
-    the grasp.csv columns (the method's entry of `grasp transfer --perturb N --seed S`)."""
+    the grasp.csv columns (the method's entry of `grasp transfer --perturb N --seed S
+    --close-by D`)."""
     import topoplan
 
-    entry = topoplan.grasp_transfer(grasp, method, mu=mu, perturb=perturb, seed=seed)
+    entry = topoplan.grasp_transfer(
+        grasp, method, mu=mu, perturb=perturb, seed=seed, close_by=close_by
+    )
     m = entry["methods"][method]
     perturbed = m.get("perturbed", {"trials": 0, "stable": 0})
     return {
@@ -389,6 +392,7 @@ def run_grasp(grasp, method, seed, mu, perturb):
         "method": method,
         "seed": seed,
         "mu": mu,
+        "close_by": close_by,
         "stable": 1 if m["stable"] else 0,
         "directions_passed": int(m["directions_passed"]),
         "epsilon_quality": float(m.get("epsilon_quality", 0.0)),
@@ -404,6 +408,7 @@ def grasp_line(row):
             row["method"],
             str(row["seed"]),
             fmt_number(row["mu"]),
+            fmt_number(row["close_by"]),
             str(row["stable"]),
             str(row["directions_passed"]),
             fmt_number(row["epsilon_quality"]),
@@ -414,23 +419,30 @@ def grasp_line(row):
 
 
 def parse_grasp_row(parts):
-    if len(parts) != 9:
+    if len(parts) != 10:
         raise ValueError("column count")
     return {
         "grasp": parts[0],
         "method": parts[1],
         "seed": int(parts[2]),
         "mu": float(parts[3]),
-        "stable": int(parts[4]),
-        "directions_passed": int(parts[5]),
-        "epsilon_quality": float(parts[6]),
-        "perturbed_trials": int(parts[7]),
-        "perturbed_stable": int(parts[8]),
+        "close_by": float(parts[4]),
+        "stable": int(parts[5]),
+        "directions_passed": int(parts[6]),
+        "epsilon_quality": float(parts[7]),
+        "perturbed_trials": int(parts[8]),
+        "perturbed_stable": int(parts[9]),
     }
 
 
 def grasp_key(row):
-    return (row["grasp"], row["method"], row["seed"], fmt_number(row["mu"]))
+    return (
+        row["grasp"],
+        row["method"],
+        row["seed"],
+        fmt_number(row["mu"]),
+        fmt_number(row["close_by"]),
+    )
 
 
 def grasp_summary(rows, perturb):
@@ -463,17 +475,27 @@ def sweep_grasp(args):
         raise UsageError("--mu: must be finite and >= 0")
     if not (0 <= args.perturb <= 1000):
         raise UsageError("--perturb: must be in 0..1000")
+    if not (0.0 <= args.close_by <= 0.5):
+        raise UsageError("--close-by: must be a number of radians in [0, 0.5]")
     check_common(args)
     csv_path = os.path.join(args.output, "grasp.csv")
     done = read_rows(csv_path, GRASP_HEADER, parse_grasp_row, grasp_key)
-    mu = fmt_number(args.mu)
-    runs = [(g, m, s, mu) for g in grasps for m in methods for s in range(args.seeds)]
+    mu, close_by = fmt_number(args.mu), fmt_number(args.close_by)
+    runs = [(g, m, s, mu, close_by) for g in grasps for m in methods for s in range(args.seeds)]
 
     def submit(client, run):
         from topoplan.sweep import run_grasp as task
 
         return client.submit(
-            task, run[0], run[1], run[2], args.mu, args.perturb, pure=False, retries=1
+            task,
+            run[0],
+            run[1],
+            run[2],
+            args.mu,
+            args.perturb,
+            args.close_by,
+            pure=False,
+            retries=1,
         )
 
     def label(row):
@@ -535,6 +557,12 @@ def build_parser():
     g.add_argument("--seeds", type=int, default=1, help="perturbation seeds 0..N-1 per run")
     g.add_argument("--perturb", type=int, default=0, help="perturbed repetitions per seed")
     g.add_argument("--mu", type=float, default=1.0, help="Coulomb friction of the protocol")
+    g.add_argument(
+        "--close-by",
+        type=float,
+        default=0.15,
+        help="grip of the protocol: flexion set-points RAD past the grasp, in [0, 0.5]",
+    )
     add_cluster_flags(g)
     return parser
 

@@ -30,6 +30,7 @@ def test_sweep_equals_grasp_transfer(cli, tmp_path):
     assert r.returncode == 0, r.stderr
     got = {(x["method"], int(x["seed"])): x for x in rows(out / "grasp.csv")}
     assert len(got) == 4
+    assert all(float(x["close_by"]) == 0.15 for x in got.values())  # the protocol's grip
     for method in ("joint", "human"):
         for seed in (0, 1):
             d = tmp_path / f"cli_{method}_{seed}"
@@ -76,6 +77,8 @@ def test_wilson_interval_known_values():
         (["--methods", "winding,magic"], "--methods: unknown name 'magic'"),
         (["--perturb", "1001"], "--perturb"),
         (["--mu", "nan"], "--mu"),
+        (["--close-by", "0.6"], "--close-by"),
+        (["--close-by", "nan"], "--close-by"),
         (["--seeds", "0"], "--seeds"),
     ],
 )
