@@ -90,7 +90,7 @@ int RunTransfer(const TransferArgs& a) {
   if (!(a.contact_patch_mm >= 0 && a.contact_patch_mm <= 50)) {
     throw std::invalid_argument("--contact-patch: must be a number of mm in [0, 50]");
   }
-  if (!(a.close_by >= 0 && a.close_by <= 0.5)) {
+  if (!(a.close_by >= 0 && a.close_by <= planning::physics::GraspTrialsOptions::kMaxCloseBy)) {
     throw std::invalid_argument("--close-by: must be a number of radians in [0, 0.5]");
   }
   std::vector<planning::TransferMethod> methods;

@@ -218,17 +218,12 @@ double Aico::BetweenMessage(int t) {
     const int step = std::max(t, k);
     // Tasks with the same `between` count share their states: one kinematics pass per state.
     for (int count = 1; count <= max_between_; ++count) {
-      bool any = false;
-      for (const Task& task : p_.tasks) {
-        any = any || (task.between == count && task.precision[step] > 0.0);
-      }
-      if (!any) continue;
       for (int j = 1; j <= count; ++j) {
         const double alpha = static_cast<double>(j) / (count + 1);  // along t−1 → t
         const double c = k < t ? alpha : 1.0 - alpha;               // weight of q_t
         w.qbetween = c * w.q;
         w.qbetween.noalias() += (1.0 - c) * st().xhat[k].head(n_);
-        EvaluateBetweenTasks(p_, step, count, w.qbetween, true, &w.tasks);
+        if (!EvaluateBetweenTasks(p_, step, count, w.qbetween, true, &w.tasks)) break;
         for (size_t i = 0; i < p_.tasks.size(); ++i) {
           const Task& task = p_.tasks[i];
           const double rho = task.precision[step];
@@ -505,8 +500,8 @@ void Aico::Start(const Trajectory* init) {
   for (const Task& task : p_.tasks) {
     err_.emplace_back(Eigen::VectorXd::Zero(task.feature->dim()));
     max_dim = std::max<Eigen::Index>(max_dim, task.feature->dim());
-    max_between_ = std::max(max_between_, task.between);
   }
+  max_between_ = MaxBetween(p_);
   gram_rows_.resize(max_dim, n_);
   linv_.resize(d_, d_);
   Trajectory rollout;

@@ -1,5 +1,6 @@
 #include "planning/task.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -101,28 +102,44 @@ void EvaluateTask(const MotionProblem& problem, int i, const Eigen::VectorXd& q,
                      jacobians ? &ws->J[i] : nullptr);
 }
 
-void EvaluateBetweenTasks(const MotionProblem& problem, int t, int between,
+bool EvaluateBetweenTasks(const MotionProblem& problem, int t, int between,
                           const Eigen::VectorXd& q, bool jacobians, TaskWorkspace* ws) {
+  auto active = [&](const Task& task) {
+    return task.between == between && task.precision[t] > 0.0;
+  };
+  if (std::none_of(problem.tasks.begin(), problem.tasks.end(), active)) return false;
   ForwardKinematics(*problem.robot, q, &ws->kin);
   ++ws->evaluations;
   for (size_t i = 0; i < problem.tasks.size(); ++i) {
     const Task& task = problem.tasks[i];
-    if (task.between != between || task.precision[t] <= 0.0) continue;
+    if (!active(task)) continue;
     task.feature->Eval(*problem.robot, ws->kin, ws->data[i].get(), ws->y[i],
                        jacobians ? &ws->J[i] : nullptr);
   }
+  return true;
+}
+
+int MaxBetween(const MotionProblem& problem) {
+  int max_between = 0;
+  for (const Task& task : problem.tasks) max_between = std::max(max_between, task.between);
+  return max_between;
 }
 
 double BetweenCost(const MotionProblem& problem, int t, const Eigen::VectorXd& q_prev,
                    const Eigen::VectorXd& q, TaskWorkspace* ws) {
   double cost = 0.0;
-  for (size_t i = 0; i < problem.tasks.size(); ++i) {
-    const Task& task = problem.tasks[i];
-    if (task.between <= 0 || task.precision[t] <= 0.0) continue;
-    for (int k = 1; k <= task.between; ++k) {
-      const double alpha = static_cast<double>(k) / (task.between + 1);
-      EvaluateTask(problem, static_cast<int>(i), (1.0 - alpha) * q_prev + alpha * q, false, ws);
-      cost += task.precision[t] * (task.target.col(t) - ws->y[i]).squaredNorm();
+  const int max_between = MaxBetween(problem);
+  for (int count = 1; count <= max_between; ++count) {
+    for (int k = 1; k <= count; ++k) {
+      const double alpha = static_cast<double>(k) / (count + 1);
+      if (!EvaluateBetweenTasks(problem, t, count, (1.0 - alpha) * q_prev + alpha * q, false, ws)) {
+        break;
+      }
+      for (size_t i = 0; i < problem.tasks.size(); ++i) {
+        const Task& task = problem.tasks[i];
+        if (task.between != count || task.precision[t] <= 0.0) continue;
+        cost += task.precision[t] * (task.target.col(t) - ws->y[i]).squaredNorm();
+      }
     }
   }
   return cost;

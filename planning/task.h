@@ -88,11 +88,15 @@ void EvaluateTasks(const MotionProblem& problem, int t, const Eigen::VectorXd& q
 void EvaluateTask(const MotionProblem& problem, int i, const Eigen::VectorXd& q, bool jacobians,
                   TaskWorkspace* ws);
 
-// ForwardKinematics at q, then every task i with Task::between == `between` (> 0) that is active
-// at step t (ρ_{i,t} > 0) into ws->y[i] (and ws->J[i]): the tasks that share the states between
-// two slices share one kinematics pass. No allocation.
-void EvaluateBetweenTasks(const MotionProblem& problem, int t, int between,
+// Every task i with Task::between == `between` (> 0) that is active at step t (ρ_{i,t} > 0) at q
+// into ws->y[i] (and ws->J[i]) after one ForwardKinematics: the tasks that share the states
+// between two slices share one kinematics pass. Returns false (and computes nothing) when no
+// such task is active. No allocation.
+bool EvaluateBetweenTasks(const MotionProblem& problem, int t, int between,
                           const Eigen::VectorXd& q, bool jacobians, TaskWorkspace* ws);
+
+// Largest Task::between of the problem's tasks (0 without between-slice tasks).
+int MaxBetween(const MotionProblem& problem);
 
 // The between-slice part of the cost of step t (1 <= t <= T) from slice t − 1 at q_prev to slice
 // t at q: Σ_i Σ_k ρ_{i,t} ||y*_{i,t} − φ_i(q_t(α_k))||² over the tasks with between > 0 (see

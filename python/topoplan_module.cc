@@ -825,7 +825,8 @@ PYBIND11_MODULE(_core, m) {
          std::uint32_t seed, double close_by) {
         const std::string grasp = grasp_path.string();
         if (!(mu >= 0.0) || !std::isfinite(mu)) ThrowValue("mu: must be finite and >= 0");
-        if (!(close_by >= 0.0 && close_by <= 0.5)) ThrowValue("close_by: must be in [0, 0.5] rad");
+        if (!(close_by >= 0.0 && close_by <= planning::physics::GraspTrialsOptions::kMaxCloseBy))
+          ThrowValue("close_by: must be in [0, 0.5] rad");
         if (perturb < 0 || perturb > 1000) ThrowValue("perturb: must be in 0..1000");
         const planning::TransferMethod tm =
             Named("method", [&] { return planning::ParseTransferMethod(method); });

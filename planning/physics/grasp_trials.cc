@@ -113,7 +113,7 @@ void CheckTrialsOptions(const GraspTrialsOptions& o) {
   if (!(o.contact_patch_radius >= 0) || !std::isfinite(o.contact_patch_radius)) {
     throw std::invalid_argument("grasp trials: contact_patch_radius must be a finite number >= 0");
   }
-  if (!(o.close_by >= 0 && o.close_by <= 0.5)) {
+  if (!(o.close_by >= 0 && o.close_by <= GraspTrialsOptions::kMaxCloseBy)) {
     throw std::invalid_argument("grasp trials: close_by must be in [0, 0.5] rad");
   }
   if (o.perturb < 0 || o.perturb > 1000) {

@@ -102,6 +102,7 @@ struct GraspTrialsOptions {
   // line between them, so gravity along that line moves it until the weaker side's finger reaches
   // this set-point: the travel grows with close_by.
   double close_by = HandBuildOptions{}.close_by;
+  static constexpr double kMaxCloseBy = 0.5;  // upper bound of close_by [rad]
   // Robustness: every grasp × method is repeated `perturb` times (0: none, at most 1000) with the
   // object moved by up to perturb_translation along each world axis (uniform in [−a, a]) and
   // turned about its origin by an angle uniform in [−b, b] (b = perturb_rotation_deg) about a
