@@ -10,6 +10,7 @@
 #include <limits>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <sstream>
 
 #include "app/assets.h"
@@ -35,6 +36,7 @@ struct PlanArgs {
   std::string scenario, planner = "aico", output;
   unsigned seed = 0;
   double start_wrap = std::numeric_limits<double>::quiet_NaN();  // NaN: not given
+  std::string aico_stop;  // --aico-stop solved|converged ("": the scenario's)
   double timeout = 0.0;
   bool frames = false, json = false;
   bool no_stamp = false;                      // --no-stamp: frames without scenario name and time
@@ -51,10 +53,24 @@ struct BenchArgs {
   int seeds = 3;
   long budget = -1;
   double perturb = 0.0;
+  std::string aico_stop;  // --aico-stop solved|converged ("": the scenario's)
   double timeout = 0.0;
   std::string ompl_log;  // --ompl-log FILE: OMPL benchmark logs, one per angle (app/ompl_log.h)
   std::vector<render::FigureFormat> formats;  // --formats
 };
+
+// --aico-stop: when AICO stops ("solved": at the first accepted sweep that is a success;
+// "converged": when the sweeps converge). Empty: the scenario's aico.stop_when_solved.
+constexpr const char* kAicoStopHelp =
+    "when AICO stops: 'solved' (the first accepted sweep whose trajectory passes the success "
+    "criteria, status \"solved\") or 'converged' (run the sweeps to convergence); default: the "
+    "scenario's aico.stop_when_solved";
+
+// The value of --aico-stop (checked by the flag: "solved" or "converged"; "" when not given).
+std::optional<bool> ParseAicoStop(const std::string& text) {
+  if (text.empty()) return std::nullopt;
+  return text == "solved";
+}
 
 // Largest number of angles in --angles.
 constexpr int kMaxAngles = 10000;
@@ -305,6 +321,8 @@ void AddPlanCommands(CLI::App* root, CommandList* commands) {
   plan->add_option("--start-wrap", pa->start_wrap,
                    "start coil of a coil-start scenario (unwrap): angle to unwrap in degrees")
       ->check(FiniteIn(0.0, 2000.0));
+  plan->add_option("--aico-stop", pa->aico_stop, kAicoStopHelp)
+      ->check(CLI::IsMember({"solved", "converged"}));
   AddTimeoutFlag(plan, &pa->timeout);
   plan->add_option("-o,--output", pa->output, "output folder")->required();
   AddRobotInputFlags(plan, &pa->robot_input, nullptr);
@@ -342,6 +360,7 @@ void AddPlanCommands(CLI::App* root, CommandList* commands) {
       {plan, [pa]() {
          planning::ScenarioOverrides overrides;
          if (!std::isnan(pa->start_wrap)) overrides.start_wrap_deg = pa->start_wrap;
+         overrides.stop_when_solved = ParseAicoStop(pa->aico_stop);
          const planning::Planner planner =
              ParseFlag("--planner", [&] { return planning::ParsePlanner(pa->planner); });
          overrides.package_paths = PackagePaths(pa->robot_input.package_paths);
@@ -411,6 +430,8 @@ void AddPlanCommands(CLI::App* root, CommandList* commands) {
   unwrap->add_option("--perturb", ba->perturb,
                      "move the pole of each seed by a random offset of at most M metres "
                      "perpendicular to its axis (seeded, reproducible; default 0)");
+  unwrap->add_option("--aico-stop", ba->aico_stop, kAicoStopHelp)
+      ->check(CLI::IsMember({"solved", "converged"}));
   AddTimeoutFlag(unwrap, &ba->timeout);
   unwrap->add_option("--ompl-log", ba->ompl_log,
                      "also write OMPL benchmark logs (ompl_benchmark_statistics.py, Planner "
@@ -440,6 +461,7 @@ void AddPlanCommands(CLI::App* root, CommandList* commands) {
            throw std::invalid_argument("--perturb: expected a finite distance >= 0 in metres");
          }
          options.perturb_m = ba->perturb;
+         options.aico_stop_when_solved = ParseAicoStop(ba->aico_stop);
          OutputDir out(ba->output, "-o");  // checked before any work
          std::unique_ptr<OutputDir> log_dir;
          OmplLogInfo log_info;

@@ -149,25 +149,13 @@ void RunRecordingEnd(Output* out, Fn&& job) {
 
 namespace {
 
-// RunPlanner's AICO attempts (planning/planner.h), each an AicoSolver driven one Step() at a time
-// on the worker: `on_sweep(solver, step)` after every sweep (records it, then waits at the
-// worker's checkpoint while the step budget is used up). The trajectory equals RunPlanner's bit
-// for bit (AicoSolver stepping equals SolveAico).
-planning::PlanResult RunSteppedAico(
-    const planning::Scenario& s,
-    const std::function<void(const planning::AicoSolver&, const planning::AicoStep&)>& on_sweep) {
-  planning::PlanResult out;
-  out.report.planner = planning::PlannerName(planning::Planner::kAico);
-  out.report.attempts = 0;
+// RunPlanner's AICO (planning::RunAicoAttempts) on the worker: `on_sweep(solver, step)` after every
+// sweep (records it, then waits at the worker's checkpoint while the step budget is used up). The
+// result equals RunPlanner's bit for bit (time excepted).
+planning::PlanResult RunSteppedAico(const planning::Scenario& s,
+                                    const planning::AicoSweepFn& on_sweep) {
   const auto t0 = std::chrono::steady_clock::now();
-  for (int k = 0; k < static_cast<int>(s.aico_attempts.size()); ++k) {
-    const planning::MotionProblem later =
-        k > 0 ? planning::AttemptProblem(s, k) : planning::MotionProblem{};
-    ++out.report.attempts;
-    planning::AicoSolver solver(k > 0 ? later : s.problem, planning::AttemptOptions(s, k));
-    while (!solver.done()) on_sweep(solver, solver.Step());
-    if (planning::AddAicoAttempt(s, solver.result(), &out)) break;
-  }
+  planning::PlanResult out = planning::RunAicoAttempts(s, on_sweep);
   planning::NameFailure(&out.report);
   out.report.start_writhe_total = planning::ReportWritheTotal(s, s.problem.q0);
   out.report.time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

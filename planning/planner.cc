@@ -179,21 +179,15 @@ PlanResult RunPlanner(const Scenario& s, Planner planner, unsigned seed,
   bool found = false;
   bool judged = false;  // AICO: the report holds the last attempt's verdict
   if (planner == Planner::kAico) {
-    // Attempt k: solve, then validate the path at the edge resolution (counted: a plan is only
-    // usable once checked) and test the success criteria; the next attempt only on failure.
-    for (int k = 0; k < static_cast<int>(s.aico_attempts.size()) && !found; ++k) {
-      MotionProblem later;
-      if (k > 0) {
-        later = AttemptProblem(s, k);
-        ++rep.attempts;
-      }
-      const MotionProblem& problem = k == 0 ? s.problem : later;
-      AicoWorkspace ws(problem);
-      const AicoResult r = SolveAico(problem, AttemptOptions(s, k), &ws, callback);
-      found = AddAicoAttempt(s, r, &out);
-      judged = true;
+    AicoSweepFn on_sweep;
+    if (callback) {
+      on_sweep = [&callback](const AicoSolver& solver, const AicoStep& step) {
+        callback(step.sweep, step.cost, step.accepted, solver.trajectory());
+      };
     }
-    found = found || out.trajectory.num_points() > 0;
+    out = RunAicoAttempts(s, on_sweep);
+    judged = true;
+    found = out.trajectory.num_points() > 0;
   } else {
     const RrtProblem rp = ScenarioRrtProblem(s);
     RrtResult r;
@@ -266,26 +260,91 @@ void ApplyVerdict(const PlanVerdict& v, PlanReport* rep) {
   rep->writhe_peak_value = v.writhe_peak_value;
 }
 
-bool AddAicoAttempt(const Scenario& s, const AicoResult& r, PlanResult* out) {
+namespace {
+
+// The test of an AICO trajectory as a finished plan: the counted validation at check_resolution
+// (a plan is only usable once checked), then, if `judge_invalid` or the path is valid, JudgePlan.
+struct AicoPathCheck {
+  bool valid = false;
+  bool judged = false;
+  PlanVerdict verdict;
+  long queries = 0, narrow_phase_calls = 0;
+  bool success() const { return valid && judged && verdict.reason == FailureReason::kNone; }
+};
+
+AicoPathCheck CheckAicoPath(const Scenario& s, const Trajectory& path, bool invalid_input,
+                            bool judge_invalid) {
+  AicoPathCheck c;
+  CollisionData coll(s.robot, s.env, s.collision);
+  KinematicsData kin(s.robot);
+  c.valid =
+      !invalid_input && PathIsValid(path, s.check_resolution, ValidityChecker(s, &coll, &kin));
+  c.queries = coll.queries;
+  c.narrow_phase_calls = coll.narrow_phase_calls;
+  if (c.valid || judge_invalid) {
+    c.verdict = JudgePlan(s, path);
+    c.judged = true;
+  }
+  return c;
+}
+
+bool FoldAicoAttempt(const AicoResult& r, const AicoPathCheck& check, PlanResult* out) {
   PlanReport& rep = out->report;
   rep.status = r.status;
   rep.iterations += r.iterations;
   rep.cost = r.cost;
   rep.cost_history = r.cost_history;
-  rep.collision_checks += r.collision_queries;
-  rep.narrow_phase_calls += r.narrow_phase_calls;
+  rep.collision_checks += r.collision_queries + check.queries;
+  rep.narrow_phase_calls += r.narrow_phase_calls + check.narrow_phase_calls;
   out->trajectory = r.trajectory;
-  CollisionData coll(s.robot, s.env, s.collision);
-  KinematicsData kin(s.robot);
-  rep.path_collision_free =
-      r.status != SolveStatus::kInvalidInput &&
-      PathIsValid(out->trajectory, s.check_resolution, ValidityChecker(s, &coll, &kin));
-  rep.collision_checks += coll.queries;
-  rep.narrow_phase_calls += coll.narrow_phase_calls;
-  ApplyVerdict(JudgePlan(s, out->trajectory), &rep);
+  rep.path_collision_free = check.valid;
+  ApplyVerdict(check.verdict, &rep);
   rep.path_length = PathLength(out->trajectory);
   rep.success = rep.path_collision_free && rep.failure_reason == FailureReason::kNone;
   return rep.success;
+}
+
+}  // namespace
+
+bool AddAicoAttempt(const Scenario& s, const AicoResult& r, PlanResult* out) {
+  const bool invalid_input = r.status == SolveStatus::kInvalidInput;
+  return FoldAicoAttempt(r, CheckAicoPath(s, r.trajectory, invalid_input, true), out);
+}
+
+PlanResult RunAicoAttempts(const Scenario& s, const AicoSweepFn& on_sweep) {
+  PlanResult out;
+  PlanReport& rep = out.report;
+  rep.planner = PlannerName(Planner::kAico);
+  rep.attempts = 0;
+  for (int k = 0; k < static_cast<int>(s.aico_attempts.size()); ++k) {
+    const MotionProblem later = k > 0 ? AttemptProblem(s, k) : MotionProblem{};
+    ++rep.attempts;
+    AicoSolver solver(k > 0 ? later : s.problem, AttemptOptions(s, k));
+    long probe_queries = 0, probe_narrow = 0;  // validations of trajectories that were no success
+    bool solved = false;
+    while (!solver.done()) {
+      const AicoStep step = solver.Step();
+      if (on_sweep) on_sweep(solver, step);
+      if (!s.stop_when_solved || !step.accepted || solver.done()) continue;
+      const Trajectory& path = solver.trajectory();
+      if (!CheckEndState(s, path.q.col(path.num_points() - 1), false).ok()) continue;
+      const AicoPathCheck check = CheckAicoPath(s, path, false, false);
+      if (!check.success()) {
+        probe_queries += check.queries;
+        probe_narrow += check.narrow_phase_calls;
+        continue;
+      }
+      AicoResult r = solver.result();
+      r.status = SolveStatus::kSolved;
+      solved = FoldAicoAttempt(r, check, &out);
+      break;
+    }
+    if (!solved) solved = AddAicoAttempt(s, solver.result(), &out);
+    rep.collision_checks += probe_queries;
+    rep.narrow_phase_calls += probe_narrow;
+    if (solved) break;
+  }
+  return out;
 }
 
 void NameFailure(PlanReport* rep) {
@@ -302,6 +361,7 @@ void NameFailure(PlanReport* rep) {
       break;
     case SolveStatus::kConverged:
     case SolveStatus::kMaxIterations:
+    case SolveStatus::kSolved:
       if (rep->failure_reason == FailureReason::kNone) {
         rep->failure_reason = FailureReason::kBudgetExhausted;  // no path within the limits
       }

@@ -117,6 +117,18 @@ using PollFn = std::function<void()>;
 PlanResult RunPlanner(const Scenario& scenario, Planner planner, unsigned seed,
                       const AicoCallback& callback = {}, const PollFn& poll = {});
 
+// AICO on the scenario, the planner of RunPlanner and of the viewer: attempt k (aico_attempts) is
+// an AicoSolver on AttemptProblem(s, k) stepped one sweep at a time, `on_sweep(solver, step)`
+// after each sweep, then folded in by AddAicoAttempt; the next attempt runs only when one fails.
+// With s.stop_when_solved, after every accepted sweep that does not end the solve, the trajectory
+// is tested as a finished plan: the end conditions of its last slice (CheckEndState, no collision
+// query), then the counted validation at check_resolution, then JudgePlan; the first success ends
+// the run with status kSolved (its validation counted once), and every failed test's validation
+// queries are added to collision_checks and narrow_phase_calls. Fills every report field of an
+// AICO run except time_s and start_writhe_total; does not call NameFailure.
+using AicoSweepFn = std::function<void(const AicoSolver& solver, const AicoStep& step)>;
+PlanResult RunAicoAttempts(const Scenario& scenario, const AicoSweepFn& on_sweep = {});
+
 // Folds one AICO solve `r` of the scenario (or of one of its attempts' problems) into `out`, as
 // RunPlanner does for every attempt: trajectory, status, iterations, cost and its history are
 // replaced; collision checks (the solver's r.collision_queries plus the validation's) and

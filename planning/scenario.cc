@@ -581,6 +581,7 @@ std::unique_ptr<Scenario> SetUpScenario(ScenarioSpec spec,
   s->start_wrap_deg = 360.0 * std::abs(ReportWritheTotal(*s, start.q0));
 
   s->aico = sp.aico;
+  s->stop_when_solved = sp.aico_stop_when_solved;
   s->rrt = sp.rrt;
   s->check_resolution = sp.check_resolution;
   for (const AicoAttemptSpec& a : sp.aico_attempts) {
@@ -660,6 +661,7 @@ std::unique_ptr<Scenario> LoadScenario(const std::string& path,
   spec.package_paths.insert(spec.package_paths.begin(), overrides.package_paths.begin(),
                             overrides.package_paths.end());
   if (!overrides.srdf.empty()) spec.srdf = overrides.srdf;
+  if (overrides.stop_when_solved) spec.aico_stop_when_solved = *overrides.stop_when_solved;
   return SetUpScenario(std::move(spec), overrides.start_wrap_deg);
 }
 

@@ -32,6 +32,7 @@ namespace planning {
 
 struct ScenarioOverrides {
   std::optional<double> start_wrap_deg;  // replaces start.coil.wrap_deg
+  std::optional<bool> stop_when_solved;  // replaces aico.stop_when_solved
   // Where relative robot/object URDF paths are looked up after the scenario's own folder.
   std::vector<std::string> search_roots;
   // Extra package:// roots (tried before the file's "package_paths"), and an SRDF that replaces
@@ -75,6 +76,8 @@ struct Scenario {
   MotionProblem problem;  // attempt 0: q0, tasks (targets resolved), T, dt, process parameters
   AicoOptions aico;
   std::vector<AicoAttempt> aico_attempts;  // at least one
+  // Stop AICO at the first accepted sweep whose trajectory is a success (RunAicoAttempts).
+  bool stop_when_solved = false;
   RrtOptions rrt;
   double check_resolution = 0.02;  // edge resolution for validating any output path
   Eigen::VectorXd goal_q;          // q̂_T (final-pose estimate): the RRT goal

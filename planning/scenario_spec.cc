@@ -294,7 +294,7 @@ SuccessSpec ReadSuccess(const JsonNode& n) {
 void ReadAico(const JsonNode& n, ScenarioSpec* spec) {
   n.CheckKeys({"max_iterations", "tolerance", "damping", "sweep_mode", "max_step",
                "max_relocations", "relocation_damping", "rollout_init", "rollout_prior",
-               "rollout_iterations", "retry"});
+               "rollout_iterations", "stop_when_solved", "retry"});
   AicoOptions& a = spec->aico;
   const int kMax = kMaxIterations;
   if (n.Has("max_iterations"))
@@ -312,6 +312,7 @@ void ReadAico(const JsonNode& n, ScenarioSpec* spec) {
   if (n.Has("rollout_iterations")) {
     a.rollout_iterations = static_cast<int>(n.At("rollout_iterations").Integer(1, kMax));
   }
+  spec->aico_stop_when_solved = n.Bool("stop_when_solved", spec->aico_stop_when_solved);
   spec->aico_attempts[0].max_iterations = a.max_iterations;
   if (!n.Has("retry")) return;
   const JsonNode rn = n.At("retry");

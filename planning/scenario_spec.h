@@ -91,6 +91,10 @@
 //                            relocation_damping: in [1e-6, 1], default 0.3; rollout_init:
 //                            bool, default false; rollout_prior: default 100;
 //                            rollout_iterations: integer >= 1, default 10 (see aico.h);
+//                            stop_when_solved: bool, default false: after every accepted sweep
+//                            whose last slice meets the end conditions, validate and judge the
+//                            trajectory (as a finished plan, counted) and stop at the first that
+//                            is a success (status "solved"; planner.h RunAicoAttempts)
 //     retry         object   a second attempt when the first fails validation or the success
 //                            criteria: precision_scale: {task name: factor > 0, ...} (default
 //                            {}); max_iterations: integer >= 1, default aico.max_iterations
@@ -303,6 +307,7 @@ struct ScenarioSpec {
   SuccessSpec success;
   AicoOptions aico;
   std::vector<AicoAttemptSpec> aico_attempts;  // [0]: plain; [1]: "aico.retry" when given
+  bool aico_stop_when_solved = false;
   RrtOptions rrt;
   double check_resolution = 0.02;
 };

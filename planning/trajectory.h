@@ -17,6 +17,8 @@ enum class SolveStatus {
   kBudgetExhausted,  // RRT: the validity-check budget ran out without a path (counts as failure).
   kDiverged,         // AICO: no accepted sweep within the backtracking limit / non-finite cost.
   kInvalidInput,     // invalid start or goal (e.g. in collision) detected by the planner.
+  kSolved,  // AICO run by a scenario with aico.stop_when_solved: stopped at the first accepted
+            // sweep whose trajectory meets the scenario's success criteria (planner.h).
 };
 
 inline constexpr EnumName<SolveStatus> kSolveStatusNames[] = {
@@ -25,6 +27,7 @@ inline constexpr EnumName<SolveStatus> kSolveStatusNames[] = {
     {SolveStatus::kBudgetExhausted, "budget_exhausted"},
     {SolveStatus::kDiverged, "diverged"},
     {SolveStatus::kInvalidInput, "invalid_input"},
+    {SolveStatus::kSolved, "solved"},
 };
 constexpr std::span<const EnumName<SolveStatus>> EnumNames(SolveStatus) {
   return kSolveStatusNames;

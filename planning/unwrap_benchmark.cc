@@ -121,6 +121,7 @@ UnwrapBenchmarkResult RunUnwrapBenchmark(const UnwrapBenchmarkOptions& options) 
       }
       Scenario& scenario = own ? *own : *shared;
       if (options.rrt_budget > 0) scenario.rrt.max_checks = options.rrt_budget;
+      if (options.aico_stop_when_solved) scenario.stop_when_solved = *options.aico_stop_when_solved;
       for (Planner planner : options.planners) {
         UnwrapRun run;
         run.angle_deg = angle;

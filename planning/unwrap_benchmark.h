@@ -5,6 +5,7 @@
 
 #include <Eigen/Core>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -44,6 +45,8 @@ struct UnwrapBenchmarkOptions {
   // Pole perturbation [m], >= 0: each seed s moves the writhe-report object (the pole) by
   // UnwrapPoleOffset(s, perturb_m, axis) before the scenario is set up (0: the shipped placement).
   double perturb_m = 0.0;
+  // Replaces the scenario's aico.stop_when_solved when set (planner.h RunAicoAttempts).
+  std::optional<bool> aico_stop_when_solved;
   // Where relative robot/object paths of the scenario are also looked up (see ScenarioOverrides).
   std::vector<std::string> search_roots;
   // Called after every run with the number of runs done so far and the total.

@@ -677,7 +677,8 @@ PYBIND11_MODULE(_core, m) {
   m.def(
       "load_scenario",
       [](const fs::path& arg_path, std::optional<double> start_wrap, long rrt_budget,
-         const std::map<std::string, py::object>& move_objects, const py::object& resolved) {
+         const std::map<std::string, py::object>& move_objects, const py::object& resolved,
+         std::optional<bool> stop_when_solved) {
         const std::string arg = arg_path.string();
         if (start_wrap && !std::isfinite(*start_wrap)) ThrowValue("start_wrap: must be finite");
         const std::string path = Named(
@@ -722,16 +723,19 @@ PYBIND11_MODULE(_core, m) {
               planning::SetUpScenario(std::move(spec), start_wrap, given ? &*given : nullptr);
         }
         if (rrt_budget > 0) s.scenario->rrt.max_checks = rrt_budget;
+        if (stop_when_solved) s.scenario->stop_when_solved = *stop_when_solved;
         return s;
       },
       py::arg("path_or_name"), py::arg("start_wrap") = py::none(), py::arg("rrt_budget") = -1,
       py::arg("move_objects") = std::map<std::string, py::object>{},
-      py::arg("resolved") = py::none(),
+      py::arg("resolved") = py::none(), py::arg("stop_when_solved") = py::none(),
       "Loads a scenario file, or a name in the shipped assets/scenarios (e.g. 'unwrap'), and\n"
       "sets it up (start coil, final-pose estimate). start_wrap overrides the coil's angle to\n"
       "unwrap [deg]; rrt_budget > 0 replaces the RRTs' collision-check budget; move_objects\n"
       "{name: (3,) offset [m]} moves objects of the scenario before it is set up; resolved (a\n"
-      "dict from Scenario.resolved_poses() of the same set-up) skips the expensive part.");
+      "dict from Scenario.resolved_poses() of the same set-up) skips the expensive part;\n"
+      "stop_when_solved (bool) replaces the scenario's aico.stop_when_solved (True: AICO stops at\n"
+      "the first accepted sweep whose trajectory meets the success criteria, status 'solved').");
   m.def(
       "unwrap_perturbation",
       [](const fs::path& arg_path, int seeds, double perturb) {

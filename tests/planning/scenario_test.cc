@@ -117,8 +117,9 @@ TEST(ScenarioLoader, NumbersOutOfRangeNameFileAndPath) {
                   "aico.max_iterations: integer 4294967297 out of range");
   // aico.KEY = VALUE outside its range: the message names the key.
   const std::vector<std::pair<std::string, std::string>> bad_aico = {
-      {"max_relocations", "0"},    {"max_relocations", "101"},    {"max_relocations", "2.5"},
-      {"relocation_damping", "0"}, {"relocation_damping", "1.5"}, {"relocation_damping", "-0.3"}};
+      {"max_relocations", "0"},    {"max_relocations", "101"},     {"max_relocations", "2.5"},
+      {"relocation_damping", "0"}, {"relocation_damping", "1.5"},  {"relocation_damping", "-0.3"},
+      {"stop_when_solved", "1"},   {"stop_when_solved", "\"yes\""}};
   for (const auto& [key, value] : bad_aico) {
     ExpectLoadError(key + ".json",
                     R"({"robot": ")" + kAssets + R"(robots/lwr4_sdh.urdf", "start": {"q": "zero"},
@@ -283,16 +284,26 @@ TEST(Planners, NamesRoundTripAndUnknownNamesListTheValidOnes) {
 
 // One AICO run on unwrap from the given start wrap: a success by JudgePlan in one attempt (the
 // resampled path collision-free and within limits, the winding about the pole continuous and
-// ending near 0, |writhe| < 0.05, the grasp point within 0.05 m of the cylinder centre).
+// ending near 0, |writhe| < 0.05, the grasp point within 0.05 m of the cylinder centre), both as
+// shipped (stopping at the first accepted sweep that is a success) and run to convergence.
+void CheckUnwrapRun(double wrap_deg, bool stop_when_solved);
 void CheckUnwrap(double wrap_deg) {
+  CheckUnwrapRun(wrap_deg, true);
+  CheckUnwrapRun(wrap_deg, false);
+}
+
+void CheckUnwrapRun(double wrap_deg, bool stop_when_solved) {
   ScenarioOverrides o;
   o.start_wrap_deg = wrap_deg;
+  o.stop_when_solved = stop_when_solved;
   const auto s = LoadScenario(kAssets + "scenarios/unwrap.json", o);
   EXPECT_TRUE(s->collision.analytic_capsules);  // the file's collision.analytic_capsules
   EXPECT_NEAR(s->start_wrap_deg, wrap_deg, 5.0);
   const PlanResult r = RunPlanner(*s, Planner::kAico, 0);
-  SCOPED_TRACE("start wrap " + std::to_string(wrap_deg));
+  SCOPED_TRACE("start wrap " + std::to_string(wrap_deg) +
+               (stop_when_solved ? ", stop when solved" : ", converged"));
   EXPECT_TRUE(r.report.success) << FailureReasonName(r.report.failure_reason);
+  EXPECT_EQ(r.report.status, stop_when_solved ? SolveStatus::kSolved : SolveStatus::kConverged);
   EXPECT_EQ(r.report.failure_reason, FailureReason::kNone);
   EXPECT_EQ(r.report.attempts, 1);
   EXPECT_NEAR(std::abs(r.report.start_writhe_total) * 360.0, wrap_deg, 5.0);
@@ -329,6 +340,47 @@ TEST(UnwrapScenario, AicoUnwrapsFrom540Degrees) { CheckUnwrap(540.0); }
 // Regression: with undamped repeated relocations (relocation_damping 1) the local iteration of a
 // step kept moving 0.03-0.1 rad per relocation and 870° ended 0.109 m from the target.
 TEST(UnwrapScenario, AicoUnwrapsFrom870Degrees) { CheckUnwrap(870.0); }
+
+// aico.stop_when_solved: the run ends at the first accepted sweep whose trajectory passes the
+// success criteria, with that trajectory (the solver's after the same number of sweeps, stepped
+// here by hand and judged by JudgePlan after every accepted sweep); the converged run of the same
+// scenario takes more sweeps, and the stopped run's checks include its validations.
+TEST(UnwrapScenario, StopWhenSolvedEndsAtTheFirstAcceptedSweepThatIsASuccess) {
+  ScenarioOverrides o;
+  o.start_wrap_deg = 720.0;
+  o.stop_when_solved = true;
+  const auto s = LoadScenario(kAssets + "scenarios/unwrap.json", o);
+  ASSERT_TRUE(s->stop_when_solved);
+  const PlanResult r = RunPlanner(*s, Planner::kAico, 0);
+  ASSERT_TRUE(r.report.success) << FailureReasonName(r.report.failure_reason);
+  EXPECT_EQ(r.report.status, SolveStatus::kSolved);
+  EXPECT_STREQ(StatusName(r.report.status), "solved");
+
+  AicoSolver solver(s->problem, AttemptOptions(*s, 0));
+  int first = -1;
+  while (!solver.done() && first < 0) {
+    const AicoStep step = solver.Step();
+    if (!step.accepted) continue;
+    CollisionData coll(s->robot, s->env, s->collision);
+    KinematicsData kin(s->robot);
+    const bool valid =
+        PathIsValid(solver.trajectory(), s->check_resolution, ValidityChecker(*s, &coll, &kin));
+    if (valid && JudgePlan(*s, solver.trajectory()).reason == FailureReason::kNone) {
+      first = step.sweep;
+    }
+  }
+  ASSERT_GE(first, 1);  // at 720° the first sweeps' trajectories are no success yet
+  EXPECT_EQ(r.report.iterations, first + 1);
+  EXPECT_EQ(r.trajectory.q, solver.trajectory().q);
+  EXPECT_GT(r.report.collision_checks, solver.result().collision_queries);
+
+  o.stop_when_solved = false;
+  const auto converged = LoadScenario(kAssets + "scenarios/unwrap.json", o);
+  const PlanResult c = RunPlanner(*converged, Planner::kAico, 0);
+  EXPECT_TRUE(c.report.success);
+  EXPECT_EQ(c.report.status, SolveStatus::kConverged);
+  EXPECT_GT(c.report.iterations, r.report.iterations);
+}
 
 // The pole moved by up to 3 cm perpendicular to its axis (bench unwrap --perturb 0.03): AICO still
 // unwraps in one attempt (seed 0 of the benchmark's offsets, 2.2 cm; seed 1, 1.9 cm in another

@@ -33,6 +33,20 @@ def test_unwrap_360_matches_cli(unwrap360, cli, tmp_path):
     assert abs(unwrap360.writhe_total(trajectory[-1]) - report["final_writhe_total"]) < 1e-12
 
 
+def test_stop_when_solved_follows_the_scenario_and_can_be_replaced(unwrap360):
+    # The shipped unwrap scenario stops at the first accepted sweep that is a success.
+    _, solved = unwrap360.plan("aico")
+    assert solved["success"] is True and solved["status"] == "solved"
+    converged = topoplan.load_scenario(
+        "unwrap", start_wrap=360, resolved=unwrap360.resolved_poses(), stop_when_solved=False
+    )
+    _, r = converged.plan("aico")
+    assert r["success"] is True and r["status"] == "converged"
+    assert r["iterations"] > solved["iterations"]
+    with pytest.raises(TypeError):
+        topoplan.load_scenario("unwrap", start_wrap=360, stop_when_solved="yes")
+
+
 def test_rrt_seed_is_deterministic(cli, tmp_path):
     s = topoplan.load_scenario("unwrap", start_wrap=0)
     _, r1 = s.plan("birrt", seed=2)
