@@ -63,8 +63,9 @@ struct BenchArgs {
 // "converged": when the sweeps converge). Empty: the scenario's aico.stop_when_solved.
 constexpr const char* kAicoStopHelp =
     "when AICO stops: 'solved' (the first accepted sweep whose trajectory passes the success "
-    "criteria, status \"solved\") or 'converged' (run the sweeps to convergence); default: the "
-    "scenario's aico.stop_when_solved";
+    "criteria, status \"solved\"; a success first reached by the last sweep keeps its solver "
+    "status) or 'converged' (run the sweeps to convergence); default: the scenario's "
+    "aico.stop_when_solved";
 
 // The value of --aico-stop (checked by the flag: "solved" or "converged"; "" when not given).
 std::optional<bool> ParseAicoStop(const std::string& text) {

@@ -1,5 +1,6 @@
 #include "planning/planner.h"
 
+#include <cassert>
 #include <chrono>
 #include <cmath>
 #include <random>
@@ -289,6 +290,7 @@ AicoPathCheck CheckAicoPath(const Scenario& s, const Trajectory& path, bool inva
 }
 
 bool FoldAicoAttempt(const AicoResult& r, const AicoPathCheck& check, PlanResult* out) {
+  assert(check.judged);
   PlanReport& rep = out->report;
   rep.status = r.status;
   rep.iterations += r.iterations;

@@ -105,14 +105,14 @@ ValidityFn ValidityChecker(const Scenario& s, CollisionData* coll, KinematicsDat
 // its start value), q_0 → the final-pose estimate goal_q.
 RrtProblem ScenarioRrtProblem(const Scenario& s);
 
-// Runs one planner on the scenario. AICO: SolveAico on each attempt's problem (its collision
-// feature's queries are counted) plus the validation of the result at check_resolution, the next
-// attempt only when one fails; RRT/BiRRT: PlanRrt / PlanBiRrt from q0 to goal_q with a validity
-// checker (joint limits + InCollision, one counted query per state) inside the joint-limit box.
-// `seed` seeds the RRTs' std::mt19937. OMPL planners: the same checker, box, goal, scenario.rrt
-// options (range, resolution, goal_bias, max_checks) and seed, through OMPL (no path
-// simplification). The AICO callback, if given, is forwarded. `poll`, if given, is called every
-// few RRT/BiRRT iterations; it may throw to abort the run (the CLI's interrupt/--timeout check).
+// Runs one planner on the scenario. AICO: RunAicoAttempts (its collision feature's queries and
+// the validations at check_resolution are counted); RRT/BiRRT: PlanRrt / PlanBiRrt from q0 to
+// goal_q with a validity checker (joint limits + InCollision, one counted query per state) inside
+// the joint-limit box. `seed` seeds the RRTs' std::mt19937. OMPL planners: the same checker, box,
+// goal, scenario.rrt options (range, resolution, goal_bias, max_checks) and seed, through OMPL (no
+// path simplification). The AICO callback, if given, is forwarded. `poll`, if given, is called
+// every few RRT/BiRRT iterations; it may throw to abort the run (the CLI's interrupt/--timeout
+// check).
 using PollFn = std::function<void()>;
 PlanResult RunPlanner(const Scenario& scenario, Planner planner, unsigned seed,
                       const AicoCallback& callback = {}, const PollFn& poll = {});
@@ -124,15 +124,19 @@ PlanResult RunPlanner(const Scenario& scenario, Planner planner, unsigned seed,
 // is tested as a finished plan: the end conditions of its last slice (CheckEndState, no collision
 // query), then the counted validation at check_resolution, then JudgePlan; the first success ends
 // the run with status kSolved (its validation counted once), and every failed test's validation
-// queries are added to collision_checks and narrow_phase_calls. Fills every report field of an
+// queries are added to collision_checks and narrow_phase_calls. A success first reached by the
+// sweep that ends the solve is judged as without the option (status kConverged or
+// kMaxIterations). Success can only be more frequent than without the option: a trajectory that
+// passes part-way is returned even if the converged one would fail (and no retry attempt runs).
+// Fills every report field of an
 // AICO run except time_s and start_writhe_total; does not call NameFailure.
 using AicoSweepFn = std::function<void(const AicoSolver& solver, const AicoStep& step)>;
 PlanResult RunAicoAttempts(const Scenario& scenario, const AicoSweepFn& on_sweep = {});
 
 // Folds one AICO solve `r` of the scenario (or of one of its attempts' problems) into `out`, as
-// RunPlanner does for every attempt: trajectory, status, iterations, cost and its history are
-// replaced; collision checks (the solver's r.collision_queries plus the validation's) and
-// narrow-phase calls (r.narrow_phase_calls plus the validation's) are added; the path is
+// RunAicoAttempts does for every attempt: trajectory, status, cost and its history are replaced;
+// iterations are added; collision checks (the solver's r.collision_queries plus the validation's)
+// and narrow-phase calls (r.narrow_phase_calls plus the validation's) are added; the path is
 // validated at check_resolution (counted queries) and judged by JudgePlan, whose fields fill the
 // report (ApplyVerdict). Returns whether the attempt is a success (valid path, no failure reason);
 // report.success is set accordingly.
@@ -145,7 +149,7 @@ void ApplyVerdict(const PlanVerdict& v, PlanReport* report);
 // Names a failed run (report.success false) by its solver status when that status is a failure
 // in itself: kDiverged, kInvalidInput, kBudgetExhausted replace the verdict's reason; after
 // kConverged / kMaxIterations a run without a verdict reason is kBudgetExhausted (no path within
-// the limits). A successful report is left as it is.
+// the limits; kSolved only ends successful runs). A successful report is left as it is.
 void NameFailure(PlanReport* report);
 
 // Judges `path` (non-empty) by the scenario's success criteria, the same for every planner

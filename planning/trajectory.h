@@ -18,7 +18,8 @@ enum class SolveStatus {
   kDiverged,         // AICO: no accepted sweep within the backtracking limit / non-finite cost.
   kInvalidInput,     // invalid start or goal (e.g. in collision) detected by the planner.
   kSolved,  // AICO run by a scenario with aico.stop_when_solved: stopped at the first accepted
-            // sweep whose trajectory meets the scenario's success criteria (planner.h).
+            // sweep whose trajectory meets the scenario's success criteria, before the solve
+            // ended (planner.h RunAicoAttempts).
 };
 
 inline constexpr EnumName<SolveStatus> kSolveStatusNames[] = {

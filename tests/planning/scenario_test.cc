@@ -286,19 +286,20 @@ TEST(Planners, NamesRoundTripAndUnknownNamesListTheValidOnes) {
 // resampled path collision-free and within limits, the winding about the pole continuous and
 // ending near 0, |writhe| < 0.05, the grasp point within 0.05 m of the cylinder centre), both as
 // shipped (stopping at the first accepted sweep that is a success) and run to convergence.
-void CheckUnwrapRun(double wrap_deg, bool stop_when_solved);
+void CheckUnwrapRun(Scenario* s, double wrap_deg, bool stop_when_solved);
 void CheckUnwrap(double wrap_deg) {
-  CheckUnwrapRun(wrap_deg, true);
-  CheckUnwrapRun(wrap_deg, false);
-}
-
-void CheckUnwrapRun(double wrap_deg, bool stop_when_solved) {
   ScenarioOverrides o;
   o.start_wrap_deg = wrap_deg;
-  o.stop_when_solved = stop_when_solved;
   const auto s = LoadScenario(kAssets + "scenarios/unwrap.json", o);
   EXPECT_TRUE(s->collision.analytic_capsules);  // the file's collision.analytic_capsules
+  EXPECT_TRUE(s->stop_when_solved);             // the file's aico.stop_when_solved
   EXPECT_NEAR(s->start_wrap_deg, wrap_deg, 5.0);
+  CheckUnwrapRun(s.get(), wrap_deg, true);
+  CheckUnwrapRun(s.get(), wrap_deg, false);
+}
+
+void CheckUnwrapRun(Scenario* s, double wrap_deg, bool stop_when_solved) {
+  s->stop_when_solved = stop_when_solved;
   const PlanResult r = RunPlanner(*s, Planner::kAico, 0);
   SCOPED_TRACE("start wrap " + std::to_string(wrap_deg) +
                (stop_when_solved ? ", stop when solved" : ", converged"));
@@ -374,9 +375,8 @@ TEST(UnwrapScenario, StopWhenSolvedEndsAtTheFirstAcceptedSweepThatIsASuccess) {
   EXPECT_EQ(r.trajectory.q, solver.trajectory().q);
   EXPECT_GT(r.report.collision_checks, solver.result().collision_queries);
 
-  o.stop_when_solved = false;
-  const auto converged = LoadScenario(kAssets + "scenarios/unwrap.json", o);
-  const PlanResult c = RunPlanner(*converged, Planner::kAico, 0);
+  s->stop_when_solved = false;  // the same scenario, run to convergence
+  const PlanResult c = RunPlanner(*s, Planner::kAico, 0);
   EXPECT_TRUE(c.report.success);
   EXPECT_EQ(c.report.status, SolveStatus::kConverged);
   EXPECT_GT(c.report.iterations, r.report.iterations);
