@@ -1,7 +1,6 @@
 #include "app/session.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <deque>
 #include <filesystem>
@@ -147,23 +146,6 @@ void RunRecordingEnd(Output* out, Fn&& job) {
 
 }  // namespace
 
-namespace {
-
-// RunPlanner's AICO (planning::RunAicoAttempts) on the worker: `on_sweep(solver, step)` after every
-// sweep (records it, then waits at the worker's checkpoint while the step budget is used up). The
-// result equals RunPlanner's bit for bit (time excepted).
-planning::PlanResult RunSteppedAico(const planning::Scenario& s,
-                                    const planning::AicoSweepFn& on_sweep) {
-  const auto t0 = std::chrono::steady_clock::now();
-  planning::PlanResult out = planning::RunAicoAttempts(s, on_sweep);
-  planning::NameFailure(&out.report);
-  out.report.start_writhe_total = planning::ReportWritheTotal(s, s.problem.q0);
-  out.report.time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  return out;
-}
-
-}  // namespace
-
 std::shared_ptr<Session::PlanOutput> Session::NewPlanJob(long budget, const char* stepped_name,
                                                          Worker::Job* job) {
   auto out = std::make_shared<PlanOutput>();
@@ -217,13 +199,12 @@ void Session::StartPlan(Settings* settings, long budget) {
       // AICO: one real sweep per worker checkpoint (step N runs N, then holds the solver).
       planning::PlanResult r =
           planner == planning::Planner::kAico
-              ? RunSteppedAico(
-                    *scenario,
-                    [&](const planning::AicoSolver& solver, const planning::AicoStep& st) {
+              ? planning::RunPlanner(
+                    *scenario, planner, seed,
+                    [&](int sweep, double cost, bool accepted, const planning::Trajectory& q) {
                       {
                         std::lock_guard<std::mutex> lock(out->mutex);
-                        out->sweeps.push_back(
-                            {st.sweep, st.cost, st.accepted, solver.trajectory().q});
+                        out->sweeps.push_back({sweep, cost, accepted, q.q});
                       }
                       worker.Checkpoint();
                     })

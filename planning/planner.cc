@@ -180,13 +180,7 @@ PlanResult RunPlanner(const Scenario& s, Planner planner, unsigned seed,
   bool found = false;
   bool judged = false;  // AICO: the report holds the last attempt's verdict
   if (planner == Planner::kAico) {
-    AicoSweepFn on_sweep;
-    if (callback) {
-      on_sweep = [&callback](const AicoSolver& solver, const AicoStep& step) {
-        callback(step.sweep, step.cost, step.accepted, solver.trajectory());
-      };
-    }
-    out = RunAicoAttempts(s, on_sweep);
+    out = RunAicoAttempts(s, callback);
     judged = true;
     found = out.trajectory.num_points() > 0;
   } else {
@@ -313,7 +307,7 @@ bool AddAicoAttempt(const Scenario& s, const AicoResult& r, PlanResult* out) {
   return FoldAicoAttempt(r, CheckAicoPath(s, r.trajectory, invalid_input, true), out);
 }
 
-PlanResult RunAicoAttempts(const Scenario& s, const AicoSweepFn& on_sweep) {
+PlanResult RunAicoAttempts(const Scenario& s, const AicoCallback& callback) {
   PlanResult out;
   PlanReport& rep = out.report;
   rep.planner = PlannerName(Planner::kAico);
@@ -326,7 +320,7 @@ PlanResult RunAicoAttempts(const Scenario& s, const AicoSweepFn& on_sweep) {
     bool solved = false;
     while (!solver.done()) {
       const AicoStep step = solver.Step();
-      if (on_sweep) on_sweep(solver, step);
+      if (callback) callback(step.sweep, step.cost, step.accepted, solver.trajectory());
       if (!s.stop_when_solved || !step.accepted || solver.done()) continue;
       const Trajectory& path = solver.trajectory();
       if (!CheckEndState(s, path.q.col(path.num_points() - 1), false).ok()) continue;

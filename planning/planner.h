@@ -117,21 +117,20 @@ using PollFn = std::function<void()>;
 PlanResult RunPlanner(const Scenario& scenario, Planner planner, unsigned seed,
                       const AicoCallback& callback = {}, const PollFn& poll = {});
 
-// AICO on the scenario, the planner of RunPlanner and of the viewer: attempt k (aico_attempts) is
-// an AicoSolver on AttemptProblem(s, k) stepped one sweep at a time, `on_sweep(solver, step)`
-// after each sweep, then folded in by AddAicoAttempt; the next attempt runs only when one fails.
-// With s.stop_when_solved, after every accepted sweep that does not end the solve, the trajectory
-// is tested as a finished plan: the end conditions of its last slice (CheckEndState, no collision
-// query), then the counted validation at check_resolution, then JudgePlan; the first success ends
-// the run with status kSolved (its validation counted once), and every failed test's validation
-// queries are added to collision_checks and narrow_phase_calls. A success first reached by the
-// sweep that ends the solve is judged as without the option (status kConverged or
-// kMaxIterations). Success can only be more frequent than without the option: a trajectory that
-// passes part-way is returned even if the converged one would fail (and no retry attempt runs).
-// Fills every report field of an
-// AICO run except time_s and start_writhe_total; does not call NameFailure.
-using AicoSweepFn = std::function<void(const AicoSolver& solver, const AicoStep& step)>;
-PlanResult RunAicoAttempts(const Scenario& scenario, const AicoSweepFn& on_sweep = {});
+// AICO on the scenario, as RunPlanner runs it: attempt k (aico_attempts) is an AicoSolver on
+// AttemptProblem(s, k) stepped one sweep at a time, `callback(sweep, cost, accepted, trajectory())`
+// after each sweep (it may throw to cancel), then folded in by AddAicoAttempt; the next attempt
+// runs only when one fails. With s.stop_when_solved, after every accepted sweep that does not end
+// the solve, the trajectory is tested as a finished plan: the end conditions of its last slice
+// (CheckEndState, no collision query), then the counted validation at check_resolution, then
+// JudgePlan; the first success ends the run with status kSolved (its validation counted once), and
+// every failed test's validation queries are added to collision_checks and narrow_phase_calls. A
+// success first reached by the sweep that ends the solve is judged as without the option (status
+// kConverged or kMaxIterations). Success can only be more frequent than without the option: a
+// trajectory that passes part-way is returned even if the converged one would fail (and no retry
+// attempt runs). Fills every report field of an AICO run except time_s and start_writhe_total; does
+// not call NameFailure.
+PlanResult RunAicoAttempts(const Scenario& scenario, const AicoCallback& callback = {});
 
 // Folds one AICO solve `r` of the scenario (or of one of its attempts' problems) into `out`, as
 // RunAicoAttempts does for every attempt: trajectory, status, cost and its history are replaced;
