@@ -639,6 +639,11 @@ void Session::Apply(const SessionCommand& c, Settings* settings) {
     case K::kLoad:
       DropJob();
       Load(c.text, *settings);
+      if (scenario_) {  // the planner panel starts from the scenario's own solver options
+        settings->planner.max_iterations = scenario_->aico.max_iterations;
+        settings->planner.tolerance = scenario_->aico.tolerance;
+        settings->planner.damping = scenario_->aico.damping;
+      }
       settings->scenario_path = c.text;
       settings->sweep = -1;
       settings->frame = 0;
@@ -835,6 +840,7 @@ const std::vector<VerbSpec>& ScriptVerbs() {
       {"toggle", 1, 1, "toggle NAME"},
       {"planner", 1, 1, "planner NAME"},
       {"seed", 1, 1, "seed N"},
+      {"damping", 1, 1, "damping LAMBDA"},
       {"camera", 3, 6, "camera YAW PITCH DISTANCE [TX TY TZ]"},
       {"frames", 1, 1, "frames N"},
       {"screenshot", 1, 1, "screenshot PATH"},
@@ -847,9 +853,10 @@ const std::vector<VerbSpec>& ScriptVerbs() {
 
 // The arguments of a script line, checked when the script is read (the viewer converts them
 // later): "frames" an integer in [1, kMaxScriptFrames] (and all frames lines together at most
-// kMaxScriptTotalFrames), "seed" an integer in [0, 2^32 − 1], step/rrt_step/sim_step N in
-// [1, 1e6], sim_phase N in [1, 7], "joint" an index in [0, 1e6] and a finite value,
-// camera/seek/grasp_step/move finite numbers that fit a float; names from their fixed lists.
+// kMaxScriptTotalFrames), "seed" an integer in [0, 2^32 − 1], "damping" a number in [0, 1e6],
+// step/rrt_step/sim_step N in [1, 1e6], sim_phase N in [1, 7], "joint" an index in [0, 1e6] and a
+// finite value, camera/seek/grasp_step/move finite numbers that fit a float; names from their fixed
+// lists.
 void CheckScriptArgs(const std::string& path, const ScriptLine& l, long long* total_frames) {
   const std::string at = path + ":" + std::to_string(l.line) + ": ";
   const auto where = [&](size_t i) { return at + "'" + l.args[i] + "'"; };
@@ -882,6 +889,8 @@ void CheckScriptArgs(const std::string& path, const ScriptLine& l, long long* to
     }
   } else if (l.verb == "seed") {
     integer(0, 0, 4294967295.0);
+  } else if (l.verb == "damping") {
+    number(0, 0.0, 1e6);
   } else if (l.verb == "joint") {
     integer(0, 0, 1e6);
     number(1, -1e6, 1e6);

@@ -32,6 +32,7 @@ struct ViewToggles {
 struct PlannerSettings {
   std::string planner = "aico";  // aico | rrt | birrt
   unsigned seed = 0;
+  // AICO solver options; loading a scenario sets them to the scenario's own (aico.*).
   int max_iterations = 40;     // AICO sweeps
   double tolerance = 1e-2;     // AICO belief-step tolerance
   double damping = 1.0;        // AICO initial Levenberg damping

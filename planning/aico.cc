@@ -1,6 +1,7 @@
 #include "planning/aico.h"
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -110,11 +111,18 @@ class Aico {
   long evals0_ = 0, coll0_ = 0, narrow0_ = 0;
   Eigen::VectorXd metric_;
   std::vector<Eigen::VectorXd> err_;  // per task residual buffer, allocated once per run
-  Eigen::MatrixXd gram_rows_;         // max task dim × n: AddGram's non-zero rows of J
-  Eigen::MatrixXd linv_;              // d × d: InvertSpd's L⁻¹
-  // R += w·JᵀJ (lower triangle only; TaskMessage mirrors R at its end) over the non-zero rows of J:
-  // collision, clearance and limit features are zero on most rows away from contact.
-  void AddGram(const Eigen::MatrixXd& J, double w, Eigen::Ref<Eigen::MatrixXd> R);
+  // The non-zero rows of the task Jacobians of one message, each scaled by √(its weight), stacked
+  // for one rank-k update per block (order-0 rows: the q block; order-1 rows: the q̇ block) instead
+  // of one per task: collision, clearance and limit features are zero on most rows away from
+  // contact, and the small updates are dominated by their call overhead. Capacity (set in Start):
+  // every row of every task at the slice and at its 2 × `between` between states.
+  Eigen::MatrixXd gram_q_, gram_v_;
+  Eigen::Index rows_q_ = 0, rows_v_ = 0;
+  Eigen::MatrixXd linv_;  // d × d: InvertSpd's L⁻¹
+  // Appends √w × the non-zero rows of J to `stack` (w >= 0); FlushGram adds the stacks' Gram
+  // matrices GᵀG to R's blocks (lower triangles; TaskMessage mirrors R at its end).
+  void StackRows(const Eigen::MatrixXd& J, double w, Eigen::MatrixXd* stack, Eigen::Index* rows);
+  void FlushGram(Eigen::MatrixXd* R);
 };
 
 void Aico::SetUpProcess() {
@@ -157,13 +165,26 @@ void Aico::InvertSpd(const Eigen::MatrixXd& m, Eigen::MatrixXd* out) {
   out->triangularView<Eigen::StrictlyUpper>() = out->transpose();
 }
 
-void Aico::AddGram(const Eigen::MatrixXd& J, double w, Eigen::Ref<Eigen::MatrixXd> R) {
-  Eigen::Index k = 0;
+void Aico::StackRows(const Eigen::MatrixXd& J, double w, Eigen::MatrixXd* stack,
+                     Eigen::Index* rows) {
+  const double scale = std::sqrt(w);
   for (Eigen::Index i = 0; i < J.rows(); ++i) {
     if (J.row(i).isZero(0.0)) continue;
-    gram_rows_.row(k++) = J.row(i);
+    assert(*rows < stack->rows());
+    stack->row((*rows)++) = scale * J.row(i);
   }
-  if (k > 0) R.selfadjointView<Eigen::Lower>().rankUpdate(gram_rows_.topRows(k).transpose(), w);
+}
+
+void Aico::FlushGram(Eigen::MatrixXd* R) {
+  if (rows_q_ > 0) {
+    R->topLeftCorner(n_, n_).selfadjointView<Eigen::Lower>().rankUpdate(
+        gram_q_.topRows(rows_q_).transpose());
+  }
+  if (rows_v_ > 0) {
+    R->bottomRightCorner(n_, n_).selfadjointView<Eigen::Lower>().rankUpdate(
+        gram_v_.topRows(rows_v_).transpose());
+  }
+  rows_q_ = rows_v_ = 0;
 }
 
 // R_t, r_t, r̂_t and the task cost at x (the linearisation point).
@@ -187,12 +208,12 @@ void Aico::TaskMessage(int t, const Eigen::VectorXd& x) {
       e = task.target.col(t) - w.tasks.y[i];
       cost += rho * e.squaredNorm();
       e.noalias() += J * w.q;
-      AddGram(J, rho, R.topLeftCorner(n_, n_));
+      StackRows(J, rho, &gram_q_, &rows_q_);
       r.head(n_).noalias() += rho * J.transpose() * e;
       rhat += rho * e.squaredNorm();
     } else if (p_.dynamic) {
       e = task.target.col(t);
-      AddGram(J, rho, R.bottomRightCorner(n_, n_));
+      StackRows(J, rho, &gram_v_, &rows_v_);
       r.tail(n_).noalias() += rho * J.transpose() * e;
       e.noalias() -= J * w.qdot;
       cost += rho * e.squaredNorm();
@@ -200,6 +221,7 @@ void Aico::TaskMessage(int t, const Eigen::VectorXd& x) {
   }
   st().rhat[t] = rhat;
   st().task_cost[t] = cost + BetweenMessage(t);
+  FlushGram(&R);
   R.triangularView<Eigen::StrictlyUpper>() = R.transpose();
 }
 
@@ -210,7 +232,6 @@ void Aico::TaskMessage(int t, const Eigen::VectorXd& x) {
 // Each such state is seen from both ends of its step: returns half its cost.
 double Aico::BetweenMessage(int t) {
   AicoWorkspace& w = *ws_;
-  Eigen::MatrixXd& R = st().R[t];
   Eigen::VectorXd& r = st().r[t];
   double cost = 0.0;
   for (int k = t - 1; k <= t + 1; k += 2) {
@@ -233,7 +254,7 @@ double Aico::BetweenMessage(int t) {
           e = task.target.col(step) - w.tasks.y[i];
           cost += 0.5 * rho * e.squaredNorm();
           e.noalias() += c * (J * w.q);
-          AddGram(J, rho * c * c, R.topLeftCorner(n_, n_));
+          StackRows(J, rho * c * c, &gram_q_, &rows_q_);
           r.head(n_).noalias() += (rho * c) * J.transpose() * e;
         }
       }
@@ -496,13 +517,19 @@ void Aico::Start(const Trajectory* init) {
   coll0_ = CollisionQueries(p_, ws_->tasks);
   narrow0_ = NarrowPhaseCalls(p_, ws_->tasks);
   err_.clear();
-  Eigen::Index max_dim = 1;
+  Eigen::Index rows_q = 1, rows_v = 1;
   for (const Task& task : p_.tasks) {
-    err_.emplace_back(Eigen::VectorXd::Zero(task.feature->dim()));
-    max_dim = std::max<Eigen::Index>(max_dim, task.feature->dim());
+    const Eigen::Index dim = task.feature->dim();
+    err_.emplace_back(Eigen::VectorXd::Zero(dim));
+    if (task.order == 0) {
+      rows_q += dim * (1 + 2 * std::max(task.between, 0));  // the slice and its between states
+    } else {
+      rows_v += dim;
+    }
   }
   max_between_ = MaxBetween(p_);
-  gram_rows_.resize(max_dim, n_);
+  gram_q_.resize(rows_q, n_);
+  gram_v_.resize(rows_v, n_);
   linv_.resize(d_, d_);
   Trajectory rollout;
   if (init == nullptr && o_.rollout_init) {

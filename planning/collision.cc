@@ -323,6 +323,15 @@ double AabbGap(const fcl::CollisionObjectd& a, const fcl::CollisionObjectd& b) {
   return gap.norm();
 }
 
+// AabbGap(a, b) < margin without the square root (margin >= 0).
+bool AabbGapBelow(const fcl::CollisionObjectd& a, const fcl::CollisionObjectd& b, double margin) {
+  const fcl::AABBd& x = a.getAABB();
+  const fcl::AABBd& y = b.getAABB();
+  const Eigen::Vector3d gap =
+      (x.min_ - y.max_).cwiseMax(y.min_ - x.max_).cwiseMax(Eigen::Vector3d::Zero());
+  return gap.squaredNorm() < margin * margin;
+}
+
 template <typename Visit>
 void ForEachClosePair(const Robot& robot, const KinematicsData& kin, double margin,
                       CollisionData* coll, Visit&& visit) {
@@ -334,7 +343,7 @@ void ForEachClosePair(const Robot& robot, const KinematicsData& kin, double marg
   for (const FclPair& p : s.pairs) {
     const FclShape& a = s.robot[p.a];
     const FclShape& b = p.env_pair ? s.env[p.b] : s.robot[p.b];
-    if (AabbGap(*a.obj, *b.obj) >= margin) continue;
+    if (!AabbGapBelow(*a.obj, *b.obj, margin)) continue;
     // Closed-form capsule pairs are as cheap as their bound; others skip the narrow phase when
     // their bounding capsules are margin apart.
     if (!ClosedFormPair(a, b) && BoundGap(a, b) >= margin) continue;

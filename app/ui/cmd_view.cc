@@ -22,7 +22,8 @@ void AddViewCommand(CLI::App* root, CommandList* commands) {
       "--script", o->script,
       "command file, one per line: load PATH, plan [async], step [N], wait, cancel, "
       "rrt_step N, sim_step N, sim_phase [N], move OBJECT X Y Z, status FILE, play, pause, seek "
-      "SECONDS, joint I A, reset, toggle NAME, planner P, seed N, camera YAW PITCH "
+      "SECONDS, joint I A, reset, toggle NAME, planner P, seed N, damping LAMBDA (AICO's initial "
+      "damping), camera YAW PITCH "
       "DIST [TX TY TZ], frames N, click WIDGET, screenshot PNG, grasp NAME METHOD, "
       "grasp_step N, quit");
   view->add_flag("--headless", o->headless, "no window even without --screenshot");

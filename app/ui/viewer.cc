@@ -208,6 +208,8 @@ class ScriptRunner {
       settings->planner.planner = arg(0);
     } else if (l.verb == "seed") {
       settings->planner.seed = static_cast<unsigned>(num(0));
+    } else if (l.verb == "damping") {
+      settings->planner.damping = num(0);
     } else if (l.verb == "camera") {
       settings->camera.yaw_deg = static_cast<float>(num(0));
       settings->camera.pitch_deg = static_cast<float>(num(1));

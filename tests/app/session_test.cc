@@ -10,6 +10,8 @@
 #include <filesystem>
 #include <fstream>
 
+#include "planning/scenario.h"
+
 namespace app {
 namespace {
 
@@ -32,8 +34,24 @@ TEST_F(SessionTest, LoadsScenarioWithStartConfigurationAndWrithe) {
   EXPECT_GT(std::abs(w.sum()), 1.0);  // the start coil wraps the pole
 }
 
+TEST_F(SessionTest, PlannerPanelStartsFromTheScenariosSolverOptions) {
+  const std::unique_ptr<planning::Scenario> file =
+      planning::LoadScenario(TOPOPLAN_SOURCE_DIR "/assets/scenarios/unwrap.json");
+  EXPECT_EQ(settings_.planner.damping, file->aico.damping);
+  EXPECT_EQ(settings_.planner.tolerance, file->aico.tolerance);
+  EXPECT_EQ(settings_.planner.max_iterations, file->aico.max_iterations);
+  // An edit in the panel is what the next plan uses; loading again restores the file's options.
+  settings_.planner.damping = file->aico.damping * 2.0;
+  session_.Apply(SessionCommand(SessionCommand::Kind::kPlan), &settings_);
+  EXPECT_EQ(session_.scenario()->aico.damping, file->aico.damping * 2.0);
+  session_.Apply(SessionCommand(SessionCommand::Kind::kLoad, "unwrap"), &settings_);
+  EXPECT_EQ(settings_.planner.damping, file->aico.damping);
+}
+
 TEST_F(SessionTest, StepRunsRealSweepsThatMatchTheFullPlan) {
-  // The full plan, for reference.
+  // The full plan, for reference; with the initial damping λ = 1 instead of the scenario's, so
+  // that the plan has enough sweeps to step through.
+  settings_.planner.damping = 1.0;
   session_.Apply(SessionCommand(SessionCommand::Kind::kPlan), &settings_);
   ASSERT_TRUE(session_.result().has_value());
   const std::vector<SweepRecord> full = session_.sweeps();
@@ -305,8 +323,12 @@ TEST(ScriptTest, ParsesCommandsAndRejectsBadLinesWithFileAndLine) {
             std::string::npos);
   EXPECT_EQ(error("plan async\nstep\nstep 3\nwait\ncancel\nrrt_step 5\nsim_step 2\n"
                   "move ring 0.5 0 1\nstatus s.json\ncamera 0 20 3 0 0 1\nsim_phase\n"
-                  "sim_phase 7\n"),
+                  "sim_phase 7\ndamping 0.5\n"),
             "no error");
+  EXPECT_NE(error("damping -1\n").find(path + ":1: '-1' is out of range [0, 1e+06]"),
+            std::string::npos);
+  EXPECT_NE(error("damping nan\n").find(path + ":1: 'nan' is not a finite number"),
+            std::string::npos);
   EXPECT_THROW(ParseScript("/nonexistent/script.txt"), std::invalid_argument);
 }
 
