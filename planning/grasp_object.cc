@@ -209,7 +209,8 @@ std::vector<GraspObject> LoadGraspObjects(const std::string& path) {
   std::vector<GraspObject> objects;
   for (size_t i = 0; i < list.Size(); ++i) {
     const JsonNode o = list.At(i);
-    o.CheckKeys({"name", "mass", "description", "primitives", "reference", "extra_references"});
+    o.CheckKeys({"name", "mass", "description", "primitives", "reference", "extra_references",
+                 "main_reference_in_target"});
     GraspObject obj;
     obj.name = o.At("name").String();
     // Limits keep the ODE simulation in range: a hand holds objects of at most 1000 kg.
@@ -225,6 +226,11 @@ std::vector<GraspObject> LoadGraspObjects(const std::string& path) {
       for (size_t k = 0; k < extra.Size(); ++k) {
         obj.extra_references.push_back(ReadReference(extra.At(k)));
       }
+    }
+    obj.main_reference_in_target = o.Bool("main_reference_in_target", true);
+    if (!obj.main_reference_in_target && obj.extra_references.empty()) {
+      o.At("main_reference_in_target")
+          .Fail("false needs extra_references (the winding target would be empty)");
     }
     objects.push_back(obj);
   }

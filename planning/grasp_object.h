@@ -49,6 +49,12 @@ struct GraspObject {
   // fingertip lies.
   // `reference` alone places the SDH and is reported as the grasp's winding vector.
   std::vector<ReferenceCurve> extra_references;
+  // Whether the winding target term includes the per-finger windings about `reference` (JSON
+  // "main_reference_in_target", default true). False for an object whose fingers do not wind about
+  // its main reference in any of its grasps (a thin plate about its edge axis: w ≈ 0 on either
+  // face), so that those windings are no target, only the extra curves are; the main reference
+  // still places the SDH and is reported. Needs extra_references.
+  bool main_reference_in_target = true;
   std::string description;
 };
 
@@ -66,8 +72,9 @@ double PrimitiveSignedDistance(const GraspPrimitive& prim, const Eigen::Vector3d
 // "primitives": [{"type": "sphere|cylinder|box|capsule|torus", "size": [..3], "xyz": [..3],
 // "rpy": [..3]}], "reference": {"type": "axis", "point": [..], "direction": [..]} or
 // {"type": "loop", "points": [[x,y,z], ...]} or {"type": "circle", "center", "normal",
-// "radius", "segments"}, "extra_references": [reference, ...] (optional)}]}. Throws
-// std::invalid_argument naming the file and JSON path.
+// "radius", "segments"}, "extra_references": [reference, ...] (optional),
+// "main_reference_in_target": bool (optional, default true; false needs extra_references)}]}.
+// Throws std::invalid_argument naming the file and JSON path.
 std::vector<GraspObject> LoadGraspObjects(const std::string& path);
 
 // The object with this name; throws std::invalid_argument listing the known names.

@@ -24,15 +24,20 @@ struct WindingData : FeatureData {
   topology::WritheWorkspace ws;
 };
 
-// y = (per-finger winding vector about the main reference (as EncodeGrasp); per extra reference
-// curve the opposition pair (max_f, min_f) of the finger values (OppositionPair)), J = ∂y/∂q
-// ((chains + 2·extra) × n).
+// y = (per-finger winding vector about the main reference (as EncodeGrasp; only when `main`);
+// per extra reference curve the opposition pair (max_f, min_f) of the finger values
+// (OppositionPair)), J = ∂y/∂q ((chains·main + 2·extra) × n).
 class GraspWindingFeature : public Feature {
  public:
   GraspWindingFeature(std::vector<int> chains, ReferenceCurve reference,
-                      std::vector<ReferenceCurve> extra)
-      : chains_(std::move(chains)), reference_(std::move(reference)), extra_(std::move(extra)) {}
-  int dim() const override { return static_cast<int>(chains_.size() + 2 * extra_.size()); }
+                      std::vector<ReferenceCurve> extra, bool main)
+      : chains_(std::move(chains)),
+        reference_(std::move(reference)),
+        extra_(std::move(extra)),
+        main_(main) {}
+  int dim() const override {
+    return static_cast<int>((main_ ? chains_.size() : 0) + 2 * extra_.size());
+  }
   std::string name() const override { return "grasp_winding"; }
   std::unique_ptr<FeatureData> CreateData(const Robot&) const override {
     return std::make_unique<WindingData>();
@@ -42,7 +47,7 @@ class GraspWindingFeature : public Feature {
     auto* d = static_cast<WindingData*>(data);
     const int n = num_dofs(robot);
     if (J) J->setZero();
-    for (size_t c = 0; c < chains_.size(); ++c) {
+    for (size_t c = 0; main_ && c < chains_.size(); ++c) {
       ChainPoints(robot, kin, chains_[c], &d->points);
       const int np = static_cast<int>(d->points.cols());
       if (reference_.kind == ReferenceCurve::Kind::kAxis) {
@@ -60,7 +65,7 @@ class GraspWindingFeature : public Feature {
         }
       }
     }
-    const int nc = static_cast<int>(chains_.size());
+    const int nc = main_ ? static_cast<int>(chains_.size()) : 0;
     for (size_t r = 0; r < extra_.size(); ++r) {
       const int row = nc + 2 * static_cast<int>(r);
       Eigen::MatrixXd jf, jp;
@@ -75,6 +80,7 @@ class GraspWindingFeature : public Feature {
   std::vector<int> chains_;
   ReferenceCurve reference_;
   std::vector<ReferenceCurve> extra_;
+  bool main_;
 };
 
 struct PointJacobianData : FeatureData {
@@ -264,11 +270,14 @@ Eigen::VectorXd WindingTarget(const TransferSetup& s) {
   KinematicsData hkin(s.human);
   ForwardKinematics(s.human, s.human_q, &hkin);
   const int ne = static_cast<int>(s.extra_references.size());
-  Eigen::VectorXd y(3 + 2 * ne);
-  y.head(3) =
-      FingerCorrespondence() * EncodeGrasp(s.human, hkin, s.human_chains, s.reference).finger;
+  const int nm = s.object.main_reference_in_target ? 3 : 0;
+  Eigen::VectorXd y(nm + 2 * ne);
+  if (nm > 0) {
+    y.head(3) =
+        FingerCorrespondence() * EncodeGrasp(s.human, hkin, s.human_chains, s.reference).finger;
+  }
   for (int r = 0; r < ne; ++r) {
-    y.segment<2>(3 + 2 * r) =
+    y.segment<2>(nm + 2 * r) =
         OppositionPair(EncodeGrasp(s.human, hkin, s.human_chains, s.extra_references[r]).finger);
   }
   return y;
@@ -515,7 +524,8 @@ MotionProblem MakeTransferProblem(const TransferSetup& s, TransferMethod method,
   if (method == TransferMethod::kWinding || method == TransferMethod::kWindingOnly) {
     target.push_back(FinalTask(
         "winding",
-        std::make_unique<GraspWindingFeature>(s.sdh_chains, s.reference, s.extra_references),
+        std::make_unique<GraspWindingFeature>(s.sdh_chains, s.reference, s.extra_references,
+                                              s.object.main_reference_in_target),
         WindingTarget(s), o.winding_precision, T));
     contact = method == TransferMethod::kWinding;
   } else if (method == TransferMethod::kFingertip) {

@@ -132,9 +132,9 @@ TransferSetup MakeTransferSetup(const Robot& human_hand, const Robot& sdh_source
 // Correspondence matrix M (3 × 5), see the file comment.
 Eigen::MatrixXd FingerCorrespondence();
 
-// Target of the winding term (docs/methods.md §9.1): M · w_human about setup.reference (3),
-// then per extra reference curve r the opposition pair OppositionPair(w_human^(r)) = (max, min)
-// over the five human fingers (2 each).
+// Target of the winding term (docs/methods.md §9.1): M · w_human about setup.reference (3; left
+// out when setup.object.main_reference_in_target is false), then per extra reference curve r the
+// opposition pair OppositionPair(w_human^(r)) = (max, min) over the five human fingers (2 each).
 Eigen::VectorXd WindingTarget(const TransferSetup& setup);
 
 // SDH palm at the placement (6 floating dofs = (placement translation, 0, 0, 0)), the spread
@@ -156,7 +156,8 @@ std::vector<Task> SharedTransferTasks(const TransferSetup& setup, const Transfer
 // The AICO problem TransferGrasp solves for an SDH method (kinematic, T = options.num_steps,
 // duration 1 s, palm translation metric 100): SharedTransferTasks with the method's target term
 //   winding: "winding" (final slice, winding_precision, WindingTarget: M·y_human about the
-//     main reference, the opposition pair about each extra curve) + contact;
+//     main reference unless the object leaves it out, the opposition pair about each extra
+//     curve) + contact;
 //   winding_only: "winding", no contact; contact_only: no target + contact;
 //   fingertip: "tip_sdh_thumb", "tip_sdh_finger_1", "tip_sdh_finger_2" (final slice,
 //     tip_precision, the mean human fingertip of the corresponding fingers) + contact;

@@ -135,7 +135,8 @@ TEST(GraspTrialsTest, HumanTrialReportsItsOwnExtraCurveWindings) {
   EXPECT_LT(t.target_extra_winding[1], -0.1);
 }
 
-// Why the winding pinch is not stable: the SDH holds the plate between two opposed fingertips
+// Why a two-fingertip pinch is not stable (the winding pinch before the plate's edge axis left the
+// target; docs/methods.md §9.1): the SDH holds the plate between two opposed fingertips
 // (fingers 1 and 2, which face each other along the palm's y axis at the pinch's spread). Both
 // motors saturate, so the plate sits in neutral balance along that line and gravity along ±y moves
 // it until the weaker side's finger reaches its set-point, close_by past the grasp. The slip along
@@ -143,7 +144,13 @@ TEST(GraspTrialsTest, HumanTrialReportsItsOwnExtraCurveWindings) {
 TEST(GraspTrialsTest, TwoFingerPinchDriftsByTheGripTravel) {
   const Robot human = LoadRobot(kAssets + "robots/human_hand.urdf");
   const Robot lwr = LoadRobot(kAssets + "robots/lwr4_sdh.urdf");
-  const std::vector<GraspObject> objects = LoadGraspObjects(kAssets + "grasps/objects.json");
+  std::vector<GraspObject> objects = LoadGraspObjects(kAssets + "grasps/objects.json");
+  // A two-fingertip pinch: the winding transfer with the plate's edge axis kept in the target
+  // (main_reference_in_target true, the representation before the plate left it out) closes
+  // finger_1 and finger_2 on the plate's faces and nothing else.
+  for (GraspObject& object : objects) {
+    if (object.name == "flat_box") object.main_reference_in_target = true;
+  }
   const std::vector<HumanGrasp> grasps = {
       LoadHumanGrasp(kAssets + "grasps/lateral_pinch_box.json")};
   const std::vector<TransferMethod> methods = {TransferMethod::kWinding};

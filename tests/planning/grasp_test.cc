@@ -87,6 +87,12 @@ TEST(GraspObjectTest, CatalogueLoadsAndBadFilesNameThePath) {
                   "direction": [0, 0, 1]}, "extra_references": [{"type": "loop",
                   "points": [[0, 0, 0]]}]}]})",
                "objects[0].extra_references[0].points");
+  expect_error(R"({"objects": [{"name": "x", "mass": 1, "primitives": [{"type": "sphere",
+                  "size": [1, 0, 0]}], "reference": {"type": "axis", "point": [0, 0, 0],
+                  "direction": [0, 0, 1]}, "main_reference_in_target": false}]})",
+               "objects[0].main_reference_in_target: false needs extra_references");
+  EXPECT_FALSE(FindGraspObject(Objects(), "flat_box").main_reference_in_target);
+  EXPECT_TRUE(FindGraspObject(Objects(), "bottle").main_reference_in_target);
 }
 
 TEST(HumanGraspTest, AtLeastEightPlausibleGraspsWithFingersOnTheSurface) {
@@ -243,23 +249,30 @@ TEST(GraspTransferTest, OppositionPairJacobianMatchesFiniteDifferences) {
 }
 
 // The lateral pinch: the box's rim sees on which face each fingertip lies (thumb and index on
-// opposite faces: opposite signs), where the edge axis sees little; the winding term of the
-// transfer problem adds the opposition pair about the rim, and the SDH reaches it.
+// opposite faces: opposite signs), where the edge axis sees little; the box leaves the edge axis
+// out of the winding term (main_reference_in_target false), whose target is the opposition pair
+// about the rim, and the SDH reaches it.
 TEST(GraspTransferTest, PlateRimSeesTheLateralPinch) {
   const HumanGrasp g = LoadHumanGrasp(kAssets + "grasps/lateral_pinch_box.json");
   const GraspObject& box = FindGraspObject(Objects(), "flat_box");
   ASSERT_EQ(box.extra_references.size(), 1u);
   const TransferSetup setup = MakeTransferSetup(Human(), LwrSdh(), box, g);
   ASSERT_EQ(setup.extra_references.size(), 1u);
+  // About the edge axis the human fingers barely wind (why it is no target).
+  KinematicsData hkin(setup.human);
+  ForwardKinematics(setup.human, setup.human_q, &hkin);
+  const Eigen::VectorXd edge =
+      FingerCorrespondence() *
+      EncodeGrasp(setup.human, hkin, setup.human_chains, setup.reference).finger;
+  EXPECT_LT(edge.cwiseAbs().maxCoeff(), 0.2) << edge.transpose();
   const Eigen::VectorXd target = WindingTarget(setup);
-  ASSERT_EQ(target.size(), 5);  // 3 about the edge axis, the opposition pair about the rim
-  EXPECT_LT(target.head(3).cwiseAbs().maxCoeff(), 0.2) << target.transpose();
-  EXPECT_GT(target[3], 0.2) << target.transpose();   // a finger on one face ...
-  EXPECT_LT(target[4], -0.3) << target.transpose();  // ... the thumb on the other
+  ASSERT_EQ(target.size(), 2);                       // the opposition pair about the rim
+  EXPECT_GT(target[0], 0.2) << target.transpose();   // a finger on one face ...
+  EXPECT_LT(target[1], -0.3) << target.transpose();  // ... the thumb on the other
   const MotionProblem p = MakeTransferProblem(setup, TransferMethod::kWinding);
   for (const Task& t : p.tasks) {
     if (t.name == "winding") {
-      EXPECT_EQ(t.feature->dim(), 5);
+      EXPECT_EQ(t.feature->dim(), 2);
     }
   }
   // The transferred SDH holds the plate between two fingers on opposite faces.
@@ -269,6 +282,44 @@ TEST(GraspTransferTest, PlateRimSeesTheLateralPinch) {
   EXPECT_EQ(r.target_extra_winding, target.tail(2));
   EXPECT_GT(r.robot_extra_winding[0], 0.15) << r.robot_extra_winding.transpose();
   EXPECT_LT(r.robot_extra_winding[1], -0.15) << r.robot_extra_winding.transpose();
+}
+
+// The whole winding term of the transfer problem (the feature AICO uses), with the main
+// reference's rows (mug: its handle loop, and no extra curve) and without them (plate: only the
+// opposition pair about the rim): Jacobian against central differences.
+TEST(GraspTransferTest, WindingTermJacobianMatchesFiniteDifferences) {
+  for (const std::string name : {"lateral_pinch_box", "hook_mug_handle"}) {
+    const HumanGrasp g = LoadHumanGrasp(kAssets + "grasps/" + name + ".json");
+    const TransferSetup setup =
+        MakeTransferSetup(Human(), LwrSdh(), FindGraspObject(Objects(), g.object), g);
+    const MotionProblem p = MakeTransferProblem(setup, TransferMethod::kWinding);
+    const Task* term = nullptr;
+    for (const Task& t : p.tasks) term = t.name == "winding" ? &t : term;
+    ASSERT_NE(term, nullptr) << name;
+    const Robot& robot = *p.robot;
+    const int dim = term->feature->dim();
+    EXPECT_EQ(dim, setup.object.main_reference_in_target ? 3 : 2) << name;
+    const std::unique_ptr<FeatureData> data = term->feature->CreateData(robot);
+    KinematicsData kin(robot);
+    const auto eval = [&](const Eigen::VectorXd& x, Eigen::MatrixXd* J) {
+      ForwardKinematics(robot, x, &kin);
+      Eigen::VectorXd y(dim);
+      term->feature->Eval(robot, kin, data.get(), y, J);
+      return y;
+    };
+    Eigen::VectorXd q = p.q0;
+    q.tail<7>() << 0.3, 0.4, 0.7, 0.5, 0.6, 0.8, 0.9;  // fingers part-way closed
+    Eigen::MatrixXd J(dim, q.size());
+    eval(q, &J);
+    const double h = 1e-6;
+    for (int k = 0; k < q.size(); ++k) {
+      Eigen::VectorXd qp = q, qm = q;
+      qp[k] += h;
+      qm[k] -= h;
+      const Eigen::VectorXd fd = (eval(qp, nullptr) - eval(qm, nullptr)) / (2 * h);
+      EXPECT_LT((fd - J.col(k)).cwiseAbs().maxCoeff(), 1e-5) << name << " dof " << k;
+    }
+  }
 }
 
 TEST(GraspTransferTest, PowerGraspTransfersToTheSdhWithMatchingWindings) {
