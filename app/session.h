@@ -236,9 +236,10 @@ void WriteStatusJson(const std::string& path, const std::string& planner,
 //   load PATH | plan [async] | step [N] | wait | cancel | rrt_step N | sim_step N | sim_phase [N] |
 //   move OBJECT X Y Z | status FILE | play | pause | seek SECONDS | joint INDEX ANGLE | reset |
 //   toggle chains|collision|grid|contacts|heatmap|cost | planner aico|rrt|birrt | seed N |
-//   damping LAMBDA (AICO's initial Levenberg damping; loading a scenario resets it to aico.damping)
-//   | camera YAW PITCH DISTANCE [TX TY TZ] | frames N (draw N frames) | screenshot PATH | click
-//   WIDGET (press a named widget, e.g. "Plan", "chains") | grasp NAME METHOD | grasp_step N | quit
+//   damping LAMBDA (AICO's initial damping; loading a scenario resets it to aico.damping) |
+//   camera YAW PITCH DISTANCE [TX TY TZ] | frames N (draw N frames) | screenshot PATH |
+//   click WIDGET (press a named widget, e.g. "Plan", "chains") | grasp NAME METHOD |
+//   grasp_step N | quit
 // Session commands come back as Commands; view-only lines are applied to `settings` at the
 // right moment by RunScript (viewer). Throws std::invalid_argument "FILE:LINE: ..." for unknown
 // verbs, wrong argument counts and bad values, listing the valid choices as "(valid: a, b, c)";

@@ -314,22 +314,21 @@ void ShapeDistance(const FclShape& a, const FclShape& b, CollisionData* coll, Pr
   }
 }
 
-// Distance between the world AABBs of two objects (0 if they overlap).
-double AabbGap(const fcl::CollisionObjectd& a, const fcl::CollisionObjectd& b) {
+// Per-axis gap between the world AABBs of two objects (0 on the axes where they overlap).
+Eigen::Vector3d AabbGapVector(const fcl::CollisionObjectd& a, const fcl::CollisionObjectd& b) {
   const fcl::AABBd& x = a.getAABB();
   const fcl::AABBd& y = b.getAABB();
-  const Eigen::Vector3d gap =
-      (x.min_ - y.max_).cwiseMax(y.min_ - x.max_).cwiseMax(Eigen::Vector3d::Zero());
-  return gap.norm();
+  return (x.min_ - y.max_).cwiseMax(y.min_ - x.max_).cwiseMax(Eigen::Vector3d::Zero());
+}
+
+// Distance between the world AABBs of two objects (0 if they overlap).
+double AabbGap(const fcl::CollisionObjectd& a, const fcl::CollisionObjectd& b) {
+  return AabbGapVector(a, b).norm();
 }
 
 // AabbGap(a, b) < margin without the square root (margin >= 0).
 bool AabbGapBelow(const fcl::CollisionObjectd& a, const fcl::CollisionObjectd& b, double margin) {
-  const fcl::AABBd& x = a.getAABB();
-  const fcl::AABBd& y = b.getAABB();
-  const Eigen::Vector3d gap =
-      (x.min_ - y.max_).cwiseMax(y.min_ - x.max_).cwiseMax(Eigen::Vector3d::Zero());
-  return gap.squaredNorm() < margin * margin;
+  return AabbGapVector(a, b).squaredNorm() < margin * margin;
 }
 
 template <typename Visit>
