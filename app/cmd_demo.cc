@@ -282,8 +282,7 @@ class Demo {
     // Reduced: 0..900 deg every 90 deg, 1 seed; full: 0..1080 deg every 15 deg, 3 seeds.
     const double max_angle = args_.full ? 1080.0 : 900.0, step = args_.full ? 15.0 : 90.0;
     for (int k = 0; k * step <= max_angle + 1e-9; ++k) options.angles_deg.push_back(k * step);
-    options.planners = {planning::Planner::kAico, planning::Planner::kRrt,
-                        planning::Planner::kBiRrt};
+    options.planners = planning::AvailablePlanners();  // with the OMPL peers when built
     options.seeds = args_.full ? 3 : 1;
     options.progress = [this](int done, int total, const planning::UnwrapRun& run) {
       Progress("  %d/%d runs (%s @ %.0f deg seed %d)", done, total,
@@ -300,7 +299,8 @@ class Demo {
     // Planners that fail at large angles are the figure's point, not a demo failure.
     html_ << "<h2>4. Collision checks vs angle to unwrap (Fig. 4.5)</h2>\n"
              "<p>AICO with the writhe task against uni-directional RRT (10% goal bias) and "
-             "bi-directional RRT, both given the final-pose estimate as their goal; a run that "
+             "bi-directional RRT, both given the final-pose estimate as their goal (and OMPL's "
+             "RRT and RRTConnect on the same problem when this build has OMPL); a run that "
              "exhausts its budget of collision checks counts as failed (marked). The figure shows "
              "the median (and the interquartile band with several seeds) over the solved runs, "
              "the table the mean. Wall times are those of this run of the demo. "

@@ -49,7 +49,7 @@ struct PlanArgs {
 };
 
 struct BenchArgs {
-  std::string angles = "0:900:90", planners = "aico,rrt,birrt", output;
+  std::string angles = "0:900:90", planners, output;  // planners "": all of this build
   int seeds = 3;
   long budget = -1;
   double perturb = 0.0;
@@ -75,14 +75,20 @@ std::optional<bool> ParseAicoStop(const std::string& text) {
 
 // Largest number of angles in --angles.
 constexpr int kMaxAngles = 10000;
+// Largest number of runs of one `bench unwrap` (angles × planners × seeds).
+constexpr long kMaxBenchRuns = 1000000;
+// Largest --perturb: the pole moved by more than a metre leaves the scene.
+constexpr double kMaxPerturbM = 1.0;
 
 // "a:b:step" → a, a+step, ..., ≤ b.
 std::vector<double> ParseRange(const std::string& text, const std::string& flag) {
   const std::vector<double> v = [&] {
-    std::string t = text;
-    for (char& c : t) {
-      if (c == ':') c = ',';
+    if (std::count(text.begin(), text.end(), ':') != 2 || text.find(',') != std::string::npos) {
+      throw std::invalid_argument(
+          flag + ": expected a:b:step (three numbers separated by ':'), got '" + text + "'");
     }
+    std::string t = text;
+    std::replace(t.begin(), t.end(), ':', ',');
     return ParseNumberList(t, flag, 3);
   }();
   if (!(v[2] > 0.0) || !(v[1] >= v[0]) || !(v[0] >= 0.0) || !(v[1] <= 2000.0)) {
@@ -108,14 +114,24 @@ std::string PlannerChoices() {
   return out;
 }
 
+// "aico,birrt" → the planners, each at most once; "" → every planner of this build (with the OMPL
+// peers when it has them).
 std::vector<planning::Planner> ParsePlanners(const std::string& text) {
+  if (text.empty()) return planning::AvailablePlanners();
   std::vector<planning::Planner> out;
   std::stringstream ss(text);
   std::string item;
   while (std::getline(ss, item, ',')) {
-    out.push_back(ParseFlag("--planners", [&] { return planning::ParsePlanner(item); }));
+    const planning::Planner p =
+        ParseFlag("--planners", [&] { return planning::ParsePlanner(item); });
+    if (std::find(out.begin(), out.end(), p) != out.end()) {
+      throw std::invalid_argument("--planners: '" + item + "' is listed twice");
+    }
+    out.push_back(p);
   }
-  if (out.empty()) throw std::invalid_argument("--planners: empty list");
+  if (out.empty() || text.back() == ',') {
+    throw std::invalid_argument("--planners: empty name in '" + text + "'");
+  }
   return out;
 }
 
@@ -383,10 +399,12 @@ void AddPlanCommands(CLI::App* root, CommandList* commands) {
                },
                [&stop] { stop.Poll(); });
          } catch (const StopRequested& e) {
-           const nlohmann::json report =
-               StoppedReportJson(e, {{"scenario", scenario->name},
-                                     {"planner", planning::PlannerName(planner)},
-                                     {"seed", pa->seed}});
+           const nlohmann::json report = StoppedReportJson(
+               e, {{"scenario", scenario->name},
+                   {"planner", planning::PlannerName(planner)},
+                   {"seed", pa->seed},
+                   {"attempts", 1},
+                   {"failure_reason", e.timeout ? "budget_exhausted" : "interrupted"}});
            WriteFileAtomic((fs::path(out.staging()) / "report.json").string(),
                            report.dump(2) + "\n");
            out.Commit();
@@ -422,15 +440,23 @@ void AddPlanCommands(CLI::App* root, CommandList* commands) {
   unwrap->add_option("--angles", ba->angles, "start wraps a:b:step in degrees (default 0:900:90)");
   unwrap->add_option("--seeds", ba->seeds, "runs per angle and planner, seeds 0..N-1 (default 3)")
       ->check(CLI::Range(1, 1000));
-  unwrap->add_option("--planners", ba->planners,
-                     "comma-separated subset of aico,rrt,birrt,ompl-rrt,ompl-rrtconnect");
+  unwrap->add_option(
+      "--planners", ba->planners,
+      "comma-separated planners, each at most once (default: all of this build: " +
+          [] {
+            std::string c = PlannerChoices();
+            std::replace(c.begin(), c.end(), '|', ',');
+            c.erase(std::remove(c.begin(), c.end(), ' '), c.end());
+            return c;
+          }() +
+          ")");
   unwrap
       ->add_option("--budget", ba->budget,
                    "collision-check budget of the RRTs (default: the scenario's, 100000)")
       ->check(CLI::Range(1L, 1000000000L));
   unwrap->add_option("--perturb", ba->perturb,
                      "move the pole of each seed by a random offset of at most M metres "
-                     "perpendicular to its axis (seeded, reproducible; default 0)");
+                     "perpendicular to its axis (seeded, reproducible; 0 <= M <= 1, default 0)");
   unwrap->add_option("--aico-stop", ba->aico_stop, kAicoStopHelp)
       ->check(CLI::IsMember({"solved", "converged"}));
   AddTimeoutFlag(unwrap, &ba->timeout);
@@ -458,8 +484,15 @@ void AddPlanCommands(CLI::App* root, CommandList* commands) {
          options.search_roots = {AssetRoot()};
          options.seeds = ba->seeds;
          options.rrt_budget = ba->budget;
-         if (!(ba->perturb >= 0.0) || !std::isfinite(ba->perturb)) {
-           throw std::invalid_argument("--perturb: expected a finite distance >= 0 in metres");
+         if (!(ba->perturb >= 0.0 && ba->perturb <= kMaxPerturbM)) {
+           throw std::invalid_argument("--perturb: expected a distance in metres in [0, 1]");
+         }
+         const long runs = static_cast<long>(options.angles_deg.size()) *
+                           static_cast<long>(options.planners.size()) * ba->seeds;
+         if (runs > kMaxBenchRuns) {
+           throw std::invalid_argument("--seeds: " + std::to_string(runs) +
+                                       " runs (angles x planners x seeds), more than " +
+                                       std::to_string(kMaxBenchRuns));
          }
          options.perturb_m = ba->perturb;
          options.aico_stop_when_solved = ParseAicoStop(ba->aico_stop);
@@ -481,19 +514,20 @@ void AddPlanCommands(CLI::App* root, CommandList* commands) {
                          planning::PlannerName(run.planner), run.angle_deg, run.seed);
            ProgressBar(done, total, what);
            finished.runs.push_back(run);
-           stop.Poll();
+           if (done < total) stop.Poll();  // after the last run the sweep is complete
          };
-         const int total =
-             static_cast<int>(options.angles_deg.size() * options.planners.size()) * ba->seeds;
+         const int total = static_cast<int>(runs);
          ProgressBar(0, total, "");
          planning::UnwrapBenchmarkResult result;
          try {
            result = planning::RunUnwrapBenchmark(options);
          } catch (const StopRequested& e) {
-           // Keep the finished rows: unwrap.csv only (no figure of a partial sweep).
-           WriteFileAtomic((fs::path(out.staging()) / "unwrap.csv").string(), UnwrapCsv(finished));
+           // Keep the finished rows under a name that says so (no figure of a partial sweep);
+           // unwrap.csv and unwrap.png of an earlier complete run in DIR stay as they were.
+           WriteFileAtomic((fs::path(out.staging()) / "unwrap.partial.csv").string(),
+                           UnwrapCsv(finished));
            out.Commit();
-           std::fprintf(stderr, "\n%s: wrote %s/unwrap.csv (%zu of %d runs)\n", e.what(),
+           std::fprintf(stderr, "\n%s: wrote %s/unwrap.partial.csv (%zu of %d runs)\n", e.what(),
                         ba->output.c_str(), finished.runs.size(), total);
            return e.timeout ? kExitFailed : kExitInterrupted;
          }

@@ -53,7 +53,8 @@ nlohmann::json PlanReportJson(const planning::Scenario& s, const planning::PlanR
   j["cost"] = r.cost;
   j["path_length"] = r.path_length;
   j["time_s"] = r.time_s;
-  j["start_wrap_deg"] = s.start_wrap_deg;
+  // A wrap angle means something only for a coil start (unwrap), not e.g. for the ring.
+  if (s.spec.start.kind == planning::StartKind::kCoil) j["start_wrap_deg"] = s.start_wrap_deg;
   j["start_writhe_total"] = r.start_writhe_total;
   j["final_writhe_total"] = r.final_writhe_total;
   j["min_clearance_m"] = r.min_clearance_m;
@@ -100,14 +101,19 @@ nlohmann::json StoppedReportJson(const StopRequested& stop, nlohmann::json field
 }
 
 std::string PlanSummaryLine(const planning::Scenario& s, const planning::PlanReport& r) {
+  // The start wrap means something only for a coil start (unwrap); other starts name no angle.
+  char wrap[64] = "";
+  if (s.spec.start.kind == planning::StartKind::kCoil) {
+    std::snprintf(wrap, sizeof(wrap), " (start wrap %.1f deg)", s.start_wrap_deg);
+  }
   char line[512];
   std::snprintf(line, sizeof(line),
-                "%s on %s (start wrap %.1f deg): %s [%s, %s], %ld collision checks, %ld "
+                "%s on %s%s: %s [%s, %s], %ld collision checks, %ld "
                 "iterations, %.3f s, writhe %+.3f -> %+.3f, min clearance %.3f m",
-                r.planner.c_str(), s.name.c_str(), s.start_wrap_deg,
-                r.success ? "success" : "FAILED", planning::StatusName(r.status),
-                planning::FailureReasonName(r.failure_reason), r.collision_checks, r.iterations,
-                r.time_s, r.start_writhe_total, r.final_writhe_total, r.min_clearance_m);
+                r.planner.c_str(), s.name.c_str(), wrap, r.success ? "success" : "FAILED",
+                planning::StatusName(r.status), planning::FailureReasonName(r.failure_reason),
+                r.collision_checks, r.iterations, r.time_s, r.start_writhe_total,
+                r.final_writhe_total, r.min_clearance_m);
   return line;
 }
 
@@ -350,6 +356,13 @@ std::optional<render::Figure> UnwrapFigure(const planning::UnwrapBenchmarkResult
       {"Wall time", "Wall time (s)", [](const planning::PlanReport& r) { return r.time_s; }}};
   int seeds = 0;
   for (const planning::UnwrapRun& r : result.runs) seeds = std::max(seeds, r.seed + 1);
+  // Failure crosses are staggered vertically by planner (factors 1.25^k about the run's value, k
+  // centred on the planner list) so that the failures of several planners at one budget stay
+  // visible; on the log axes that is 0.1 decade between neighbouring planners.
+  const double planners = static_cast<double>(result.planners.size());
+  const auto stagger = [&](size_t p) {
+    return std::pow(1.25, static_cast<double>(p) - 0.5 * (planners - 1.0));
+  };
   std::vector<render::PlotPanel> panels;
   for (const Measure& m : measures) {
     render::PlotPanel panel;
@@ -367,7 +380,7 @@ std::optional<render::Figure> UnwrapFigure(const planning::UnwrapBenchmarkResult
             solved.push_back(v);
           } else {
             ser.failure_x.push_back(angle);
-            ser.failure_y.push_back(v);
+            ser.failure_y.push_back(v * stagger(p));
           }
         }
         const double nan = std::numeric_limits<double>::quiet_NaN();
@@ -412,7 +425,8 @@ std::optional<render::Figure> UnwrapFigure(const planning::UnwrapBenchmarkResult
   layout.columns = 3;
   layout.title = "Unwrapping (Fig. 4.5): median over the solved runs of " + std::to_string(seeds) +
                  (seeds == 1 ? " seed" : " seeds") +
-                 (seeds >= 2 ? ", band: interquartile range" : "") + "; \u2715 failed run";
+                 (seeds >= 2 ? ", band: interquartile range" : "") +
+                 "; \u2715 failed run (staggered by planner)";
   return render::PanelsFigure(panels, layout);
 }
 

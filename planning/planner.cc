@@ -237,6 +237,14 @@ PlanResult RunPlanner(const Scenario& s, Planner planner, unsigned seed,
     rep.path_length = PathLength(out.trajectory);
     if (planner != Planner::kAico) rep.cost = rep.path_length;
     rep.success = found && rep.path_collision_free && rep.failure_reason == FailureReason::kNone;
+  } else {
+    // No path: the arm stays at its start. The end quantities are those of q0 (so a failed run
+    // does not report the zeros of an unwrapped arm); the failure is named below from the status.
+    Trajectory start;
+    start.q = s.problem.q0;
+    ApplyVerdict(JudgePlan(s, start), &rep);
+    rep.failure_reason = FailureReason::kNone;
+    rep.failure_step = -1;
   }
   NameFailure(&rep);
   return out;

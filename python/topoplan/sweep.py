@@ -20,6 +20,7 @@ is written to DIR then), 1 when a run raised.
 import argparse
 import collections
 import functools
+import math
 import os
 import sys
 import time
@@ -29,6 +30,7 @@ CSV_HEADER = (
     "time_s,path_length,reach_error_m,pole_offset_m"
 )
 MAX_ANGLES = 10000  # as `bench unwrap --angles`
+MAX_RUNS = 1000000  # as `bench unwrap`: angles x planners x seeds
 
 
 class UsageError(Exception):
@@ -40,8 +42,10 @@ def parse_range(text, flag="--angles"):
     try:
         a, b, step = (float(x) for x in text.split(":"))
     except ValueError:
-        raise UsageError(f"{flag}: expected a:b:step, got '{text}'") from None
-    if not (step > 0.0) or b < a or a < 0.0 or b > 2000.0:
+        raise UsageError(
+            f"{flag}: expected a:b:step (three numbers separated by ':'), got '{text}'"
+        ) from None
+    if not all(math.isfinite(x) for x in (a, b, step)) or not (step > 0.0 and 0.0 <= a <= b <= 2000.0):
         raise UsageError(f"{flag}: expected a:b:step with 0 <= a <= b <= 2000, step > 0")
     count = int((b - a) / step + 1e-9) + 1  # the same values as `bench unwrap`: a + i * step
     if count > MAX_ANGLES:
@@ -50,13 +54,18 @@ def parse_range(text, flag="--angles"):
 
 
 def parse_planners(text, available):
-    """Comma-separated planner names, each one of `available`."""
+    """Comma-separated planner names, each one of `available` and listed once; None -> all of
+    `available` (the OMPL peers too when the module was built with them), as `bench unwrap`."""
+    if text is None:
+        return list(available)
     names = [p for p in text.split(",")]
     if not names or any(not p for p in names):
         raise UsageError(f"--planners: empty name in '{text}'")
-    for p in names:
+    for i, p in enumerate(names):
         if p not in available:
             raise UsageError(f"--planners: unknown planner '{p}' ({', '.join(available)})")
+        if p in names[:i]:
+            raise UsageError(f"--planners: '{p}' is listed twice")
     return names
 
 
@@ -231,8 +240,8 @@ def connect(scheduler, workers, timeout):
 
 
 def check_common(args):
-    if args.seeds < 1:
-        raise UsageError("--seeds: must be >= 1")
+    if not 1 <= args.seeds <= 1000:
+        raise UsageError("--seeds: must be in 1..1000")
     if args.workers is not None and args.workers < 1:
         raise UsageError("--workers: must be >= 1")
     if os.path.exists(args.output) and not os.path.isdir(args.output):
@@ -308,6 +317,11 @@ def sweep_unwrap(args):
         raise UsageError("--perturb: expected a distance in metres in 0..1")
     csv_path = os.path.join(args.output, "unwrap.csv")
     done = read_rows(csv_path)
+    if len(angles) * len(planners) * args.seeds > MAX_RUNS:
+        raise UsageError(
+            f"--seeds: {len(angles) * len(planners) * args.seeds} runs (angles x planners x seeds), "
+            f"more than {MAX_RUNS}"
+        )
     runs = [(fmt_number(a), p, s) for a in angles for p in planners for s in range(args.seeds)]
     if done and args.perturb > 0:
         want = {s: fmt_number(pole_offset_norm(s, args.seeds, args.perturb)) for s in range(args.seeds)}
@@ -538,7 +552,12 @@ def build_parser():
     )
     u.add_argument("--angles", default="0:900:90", help="start wraps a:b:step in degrees")
     u.add_argument("--seeds", type=int, default=3, help="seeds 0..N-1 per angle and planner")
-    u.add_argument("--planners", default="aico,rrt,birrt", help="comma-separated planners")
+    u.add_argument(
+        "--planners",
+        default=None,
+        help="comma-separated planners, each at most once (default: all of this build, with the "
+        "OMPL peers when built)",
+    )
     u.add_argument("--budget", type=int, default=-1, help="RRT collision-check budget")
     u.add_argument(
         "--perturb",

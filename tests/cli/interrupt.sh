@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # interrupt.sh SIGNAL TOPOPLAN DIR: sends SIGNAL to `topoplan bench unwrap` (10 runs) once its
-# first run has finished and checks that it exits with 130, that DIR/unwrap.csv holds the header and the
-# finished rows only, and that no partial output (unwrap.png, the staging folder) is left.
+# first run has finished and checks that it exits with 130, that DIR/unwrap.partial.csv holds the
+# header and the finished rows only, and that no unwrap.csv / unwrap.png (the names of a complete
+# sweep) and no staging folder are left.
 set -u
 sig=$1 bin=$2 out=$3
 log=$out.log
@@ -17,10 +18,11 @@ wait "$pid"
 rc=$?
 fail() { echo "interrupt.sh: $*"; cat "$log"; exit 1; }
 [[ $rc -eq 130 ]] || fail "expected exit 130 after SIG$sig, got $rc"
-[[ -f "$out/unwrap.csv" ]] || fail "no unwrap.csv"
-rows=$(($(wc -l <"$out/unwrap.csv") - 1))
+[[ -f "$out/unwrap.partial.csv" ]] || fail "no unwrap.partial.csv"
+[[ ! -e "$out/unwrap.csv" ]] || fail "unwrap.csv written for a partial sweep"
+rows=$(($(wc -l <"$out/unwrap.partial.csv") - 1))
 [[ $rows -ge 1 && $rows -lt 10 ]] || fail "expected 1..9 finished rows, got $rows"
-head -1 "$out/unwrap.csv" | grep -q '^angle_deg,planner,seed,success' || fail "bad header"
+head -1 "$out/unwrap.partial.csv" | grep -q '^angle_deg,planner,seed,success' || fail "bad header"
 [[ ! -e "$out/unwrap.png" ]] || fail "unwrap.png of a partial sweep was written"
 compgen -G "$out.partial-*" >/dev/null && fail "staging folder left behind"
 grep -q "interrupted: wrote" "$log" || fail "no 'interrupted' message"

@@ -3,6 +3,7 @@
 // with `reach_error`, an exact hit passes; the winding keys of "success" are checked on load.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -212,6 +213,24 @@ TEST(FailureReasons, NamesAreStable) {
   EXPECT_STREQ(FailureReasonName(FailureReason::kReachError), "reach_error");
   EXPECT_STREQ(FailureReasonName(FailureReason::kWritheNotReached), "writhe_not_reached");
   EXPECT_STREQ(FailureReasonName(FailureReason::kBudgetExhausted), "budget_exhausted");
+}
+
+// A run without a path reports the end quantities of the start it stayed in (not the zeros of an
+// unwrapped arm at the target): at 720° the winding about the pole is about −2 turns (the coil),
+// the grasp point is far from the cylinder, and the failure is the budget.
+TEST(RunPlanner, ARunWithoutAPathReportsTheStartItStayedIn) {
+  auto s = Unwrap(720.0);
+  s->rrt.max_checks = 50;
+  const PlanResult r = RunPlanner(*s, Planner::kBiRrt, 0);
+  ASSERT_EQ(r.trajectory.num_points(), 0);
+  EXPECT_FALSE(r.report.success);
+  EXPECT_EQ(r.report.failure_reason, FailureReason::kBudgetExhausted);
+  EXPECT_EQ(r.report.failure_step, -1);
+  EXPECT_NEAR(std::abs(r.report.final_winding_turns), 2.0, 0.25);
+  EXPECT_NEAR(r.report.final_writhe_total, r.report.start_writhe_total, 1e-12);
+  EXPECT_GT(r.report.reach_error_m, 0.5);
+  EXPECT_EQ(r.report.max_winding_jump_turns, 0.0);
+  EXPECT_GT(r.report.min_clearance_m, 0.0);  // the start coil is collision-free
 }
 
 }  // namespace
