@@ -67,7 +67,15 @@ auto Named(const std::string& arg, F f, PyObject* type = PyExc_ValueError) -> de
   try {
     return f();
   } catch (const std::invalid_argument& e) {
-    ThrowPy(type, arg + ": " + e.what());
+    // The shared app code names its command-line flag or positional ("--grasp: ", "SCENARIO: "):
+    // here the Python argument is named instead.
+    std::string what = e.what();
+    const size_t colon = what.find(": ");
+    if (colon != std::string::npos &&
+        (what.rfind("--", 0) == 0 || what.rfind("SCENARIO", 0) == 0) && what.find(' ') > colon) {
+      what.erase(0, colon + 2);
+    }
+    ThrowPy(type, arg + ": " + what);
   }
 }
 
@@ -330,7 +338,14 @@ py::tuple PlanPy(PyScenario& s, const std::string& planner_name, unsigned seed,
       py::gil_scoped_acquire gil;
       try {
         const py::object r = callback(sweep, cost, Eigen::MatrixXd(trajectory.q.transpose()));
-        if (!r.is_none() && !py::cast<bool>(r)) {
+        // True / None go on, False cancels; anything else is a mistake, not a truth value.
+        const std::string type = py::str(py::type::of(r).attr("__name__")).cast<std::string>();
+        if (!r.is_none() && type != "bool" && type != "bool_") {  // bool_: NumPy's
+          PyErr_SetString(PyExc_TypeError,
+                          ("callback: must return True, False or None, got " + type).c_str());
+          throw py::error_already_set();
+        }
+        if (!r.is_none() && !r.cast<bool>()) {
           cancelled = true;
           cancelled_sweep = sweep;
           cancelled_q = trajectory.q.transpose();
@@ -672,8 +687,10 @@ PYBIND11_MODULE(_core, m) {
           "Runs a planner (aico, rrt, birrt, and ompl-* when built with OMPL) and returns\n"
           "(trajectory, report): trajectory (T+1) x n (RRT: waypoints; empty on failure), report\n"
           "a dict with the keys of `topoplan plan`'s report.json. For AICO, callback(sweep, cost,\n"
-          "trajectory) is called after every sweep; returning False cancels the plan\n"
-          "(PlanCancelled is raised). The GIL is released while planning.");
+          "trajectory) is called after every sweep and returns True or None (go on) or False\n"
+          "(cancel: PlanCancelled is raised); any other return value is a TypeError, and an\n"
+          "exception in the callback ends the plan and propagates. The GIL is released while\n"
+          "planning.");
   m.def(
       "load_scenario",
       [](const fs::path& arg_path, std::optional<double> start_wrap, long rrt_budget,
@@ -681,6 +698,9 @@ PYBIND11_MODULE(_core, m) {
          std::optional<bool> stop_when_solved) {
         const std::string arg = arg_path.string();
         if (start_wrap && !std::isfinite(*start_wrap)) ThrowValue("start_wrap: must be finite");
+        if (start_wrap && !(*start_wrap >= 0.0 && *start_wrap <= 2000.0)) {
+          ThrowValue("start_wrap: must be in [0, 2000] degrees");
+        }
         const std::string path = Named(
             "path_or_name", [&] { return app::ResolveScenarioPath(arg); }, PyExc_FileNotFoundError);
         planning::ScenarioOverrides overrides;

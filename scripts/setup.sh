@@ -22,6 +22,7 @@ REQUIRED=(
   libgtest-dev libgmock-dev libbenchmark-dev      # tests, benchmarks
   pybind11-dev python3-dev python3-pybind11       # Python module (python/)
   python3-numpy python3-pytest                    # its arrays and tests
+  python3-matplotlib                              # the README's Python example (plots)
   python3-dask python3-distributed                # sweeps on Dask (topoplan.sweep)
   xvfb xauth xdotool imagemagick                  # headless window tests
 )

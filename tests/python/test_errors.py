@@ -82,9 +82,19 @@ def test_scenario_errors(tmp_path):
         topoplan.load_scenario(str(bad))
     with pytest.raises(ValueError, match="start_wrap"):
         topoplan.load_scenario("unwrap", start_wrap=float("nan"))
+    with pytest.raises(ValueError, match=r"start_wrap: must be in \[0, 2000\]"):
+        topoplan.load_scenario("unwrap", start_wrap=-5)
+    # The message names the Python argument, not the CLI's positional.
+    with pytest.raises(FileNotFoundError, match="^path_or_name: no file"):
+        topoplan.load_scenario("no_such_scenario")
     s = topoplan.load_scenario("reach_through_ring")
     with pytest.raises(ValueError, match="planner: unknown planner 'prm'"):
         s.plan("prm")
+    # A callback returns True, False or None: anything else is a TypeError naming it.
+    for bad in ("yes", 1, 0.0):
+        with pytest.raises(TypeError, match="callback: must return True, False or None"):
+            s.plan(callback=lambda sweep, cost, q, bad=bad: bad)
+    assert s.plan(callback=lambda sweep, cost, q: np.bool_(True))[1]["success"]
 
 
 def test_image_errors(tmp_path):
@@ -108,7 +118,7 @@ def test_grasp_errors():
     for bad in (-0.1, 0.6, float("nan")):
         with pytest.raises(ValueError, match="close_by"):
             topoplan.grasp_transfer("power_bottle", "winding", close_by=bad)
-    with pytest.raises(FileNotFoundError, match="grasp"):
+    with pytest.raises(FileNotFoundError, match="^grasp: no grasp file 'no_such_grasp'"):
         topoplan.grasp_transfer("no_such_grasp", "winding")
 
 
