@@ -639,20 +639,26 @@ GraspSummaryData GraspSummaryDataOf(const phys::GraspTrialsResult& result) {
   }
   const bool perturbed = result.perturb > 0;
   if (perturbed) {
-    d.title = "SDH grasp transfer: stable under " + std::to_string(result.perturb) +
-              " perturbed poses (\u03bc = " + mu + ", Wilson 95 %)";
+    d.title = "Stable fraction of " + std::to_string(result.perturb) +
+              " perturbed poses, \u03bc = " + mu + " (Wilson 95 %)";
     d.y_label = "Stable fraction of perturbed repetitions";
     d.y_max = 1.0;
   } else {
-    d.title = "SDH grasp transfer: gravity directions held (\u03bc = " + mu + ")";
+    d.title = "Gravity directions held, \u03bc = " + mu + " (legend: stable, Wilson 95 %)";
     d.y_label = "Gravity directions held (of 6)";
     d.y_max = 6.0;
   }
   for (const planning::HumanGrasp& g : result.grasps) d.grasps.push_back(g.name);
   for (size_t mi = 0; mi < result.methods.size(); ++mi) {
     const phys::GraspMethodSummary& s = result.summary[mi];
-    d.methods.push_back(std::string(planning::ToString(s.method)) + " (" +
-                        std::to_string(s.stable) + "/" + std::to_string(s.grasps) + " stable)");
+    // The legend carries each method's rate with its Wilson 95 % interval: over the grasps
+    // (stable = all six directions held) and, with perturbations, over every repetition.
+    std::string label =
+        std::string(planning::ToString(s.method)) + ": " + RateText(s.stable, s.grasps, s.ci95);
+    if (perturbed) {
+      label += ", perturbed " + RateText(s.perturbed_stable, s.perturbed_trials, s.perturbed_ci95);
+    }
+    d.methods.push_back(label);
     d.value.emplace_back();
     if (perturbed) {
       d.lo.emplace_back();
@@ -694,7 +700,7 @@ render::Figure GraspSummaryFigure(const GraspSummaryData& d) {
     chart.series.push_back(b);
   }
   render::PlotOptions po;
-  po.width = 960;
+  po.width = 1280;  // room for the legend's rates with their intervals
   po.height = 560;
   po.title = d.title;
   po.x_label = "Grasp";

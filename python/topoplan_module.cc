@@ -20,6 +20,7 @@
 #include <filesystem>
 #include <map>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <string>
 #include <vector>
@@ -30,6 +31,7 @@
 #include "app/reports.h"
 #include "app/robot_scene.h"
 #include "app/scene_builder.h"
+#include "app/scene_json.h"
 #include "planning/collision.h"
 #include "planning/grasp_object.h"
 #include "planning/grasp_quality.h"
@@ -274,7 +276,12 @@ struct PyRobot {
         if (it == names.end()) {
           ThrowValue("q: unknown joint '" + name + "' (joints: " + Join(names) + ")");
         }
-        const double v = py::cast<double>(value);
+        double v = 0.0;
+        try {
+          v = py::cast<double>(value);
+        } catch (const py::cast_error&) {
+          ThrowValue("q: joint '" + name + "' is not a number");
+        }
         if (!std::isfinite(v)) ThrowValue("q: joint '" + name + "' is not finite");
         out[it - names.begin()] = v;
       }
@@ -413,8 +420,17 @@ py::array_t<std::uint8_t> RenderPy(const py::handle& what, const py::handle& q,
     const std::string path = py::str(py::module_::import("os").attr("fspath")(what));
     RequireFile(path, "scene");
     if (!app::IsRobotSceneFile(path)) {
-      ThrowValue("scene: " + path +
-                 " is not a robot .urdf or a scene/scenario .json with \"robot\"");
+      // A plain scene file (shapes, camera, lights: `topoplan render SCENE.json`).
+      if (fs::path(path).extension() != ".json") {
+        ThrowValue("scene: " + path + " is not a robot .urdf, a scenario .json or a scene .json");
+      }
+      if (!q.is_none()) ThrowValue("q: only for a robot .urdf or a scenario");
+      const app::SceneDocument doc = Named("scene", [&] { return app::LoadSceneFile(path); });
+      {
+        py::gil_scoped_release release;
+        image = RenderScene(doc.scene, doc.camera, width, height);
+      }
+      return ImageArray(image);
     }
     std::string q_text;
     if (!q.is_none()) {
@@ -426,7 +442,16 @@ py::array_t<std::uint8_t> RenderPy(const py::handle& what, const py::handle& q,
       }
     }
     py::gil_scoped_release release;
-    const app::SceneDocument doc = app::RobotSceneDocument(path, q_text);
+    app::SceneDocument doc;
+    try {
+      doc = app::RobotSceneDocument(path, q_text);
+    } catch (const std::invalid_argument& e) {
+      // The shared code names the CLI's --q; here the argument is q.
+      std::string what = e.what();
+      if (what.rfind("--q", 0) == 0) what.erase(0, 2);
+      py::gil_scoped_acquire gil;
+      ThrowValue(what.rfind("q", 0) == 0 ? what : "scene: " + what);
+    }
     image = RenderScene(doc.scene, doc.camera, width, height);
   } else {
     ThrowValue("scene: expected a path, a Scenario or a Robot");
@@ -488,7 +513,12 @@ PYBIND11_MODULE(_core, m) {
       "Bad input raises ValueError naming the argument, missing files FileNotFoundError, and a\n"
       "missing GL context RuntimeError.";
 
-  py::register_exception<render::EnvironmentError>(m, "EnvironmentError", PyExc_RuntimeError);
+  // Not "EnvironmentError": that is Python's built-in alias of OSError, which `from topoplan
+  // import *` would shadow.
+  py::register_exception<render::EnvironmentError>(m, "GLError", PyExc_RuntimeError)
+      .attr("__doc__") =
+      "No usable GL context (OSMesa or EGL could not start): raised by render, heatmap and\n"
+      "the figure functions. A RuntimeError.";
   static py::exception<CallbackStop> plan_cancelled(m, "PlanCancelled", PyExc_RuntimeError);
   plan_cancelled.doc() =
       "Raised by Scenario.plan when its callback returned False; has .sweep (the sweep index) and "
@@ -813,9 +843,19 @@ PYBIND11_MODULE(_core, m) {
       py::arg("path"), "Reads a PNG into an H x W x 3 uint8 array.");
   m.def(
       "write_png",
-      [](const fs::path& file, const py::array_t<std::uint8_t>& image) {
+      [](const fs::path& file, const py::array& any) {
         const std::string path = file.string();
+        // uint8 only: a silent cast would wrap 300 to 44 and truncate 0.9 to 0.
+        if (!any.dtype().is(py::dtype::of<std::uint8_t>())) {
+          ThrowValue("image: expected dtype uint8, got " +
+                     py::str(any.dtype()).cast<std::string>());
+        }
+        const auto image = py::array_t<std::uint8_t>::ensure(any);
         if (image.ndim() != 3 || image.shape(2) != 3) ThrowValue("image: expected shape (H, W, 3)");
+        const fs::path parent = fs::path(path).parent_path();
+        if (!parent.empty() && !fs::is_directory(parent)) {
+          ThrowPy(PyExc_FileNotFoundError, "path: no folder " + parent.string());
+        }
         render::Image out(static_cast<int>(image.shape(1)), static_cast<int>(image.shape(0)));
         const auto v = image.unchecked<3>();
         for (py::ssize_t y = 0; y < image.shape(0); ++y) {
@@ -825,7 +865,9 @@ PYBIND11_MODULE(_core, m) {
         }
         render::WritePng(path, out);
       },
-      py::arg("path"), py::arg("image"), "Writes an H x W x 3 uint8 array as a PNG.");
+      py::arg("path"), py::arg("image"),
+      "Writes an H x W x 3 uint8 array as a PNG (ValueError for another dtype or shape;\n"
+      "FileNotFoundError when the folder does not exist).");
 
   // experiments
   m.def(
@@ -860,6 +902,10 @@ PYBIND11_MODULE(_core, m) {
         nlohmann::json report;
         {
           py::gil_scoped_release release;
+          // ODE is initialised once per process (OdeRuntime allows one instance at a time): calls
+          // from several Python threads (a multi-threaded Dask worker) take turns here.
+          static std::mutex ode_mutex;
+          const std::lock_guard<std::mutex> lock(ode_mutex);
           const app::GraspInputs in = app::LoadGraspInputs(files);
           const planning::physics::OdeRuntime ode;
           planning::physics::GraspTrialsOptions options;
@@ -880,7 +926,9 @@ PYBIND11_MODULE(_core, m) {
       "friction mu and returns its entry of `topoplan grasp transfer`'s report.json. perturb = N\n"
       "> 0 repeats the test N times with the object moved (<= 5 mm) and turned (<= 5 deg), seeded\n"
       "by seed as `grasp transfer --perturb N --seed S` (methods[...]['perturbed']). close_by:\n"
-      "the grip, flexion set-points this many rad past the grasp (`--close-by`, in [0, 0.5]).");
+      "the grip, flexion set-points this many rad past the grasp (`--close-by`, in [0, 0.5]).\n"
+      "Releases the GIL; concurrent calls from several threads run one after another (ODE is\n"
+      "initialised once per process).");
   m.def(
       "available_grasps",
       [] {

@@ -30,7 +30,7 @@ if "TOPOPLAN_ASSETS" not in _os.environ:
         _os.environ["TOPOPLAN_ASSETS"] = str(_parents[4] / "share" / "topoplan")
 
 from ._core import (  # noqa: E402
-    EnvironmentError,
+    GLError,
     PlanCancelled,
     Robot,
     Scenario,
@@ -53,7 +53,7 @@ from ._core import (  # noqa: E402
 )
 
 __all__ = [
-    "EnvironmentError",
+    "GLError",
     "PlanCancelled",
     "Robot",
     "Scenario",

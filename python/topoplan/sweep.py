@@ -20,9 +20,11 @@ is written to DIR then), 1 when a run raised.
 import argparse
 import collections
 import functools
+import json
 import math
 import os
 import sys
+import tempfile
 import time
 
 CSV_HEADER = (
@@ -185,6 +187,8 @@ def read_rows(path, header=CSV_HEADER, parse=None, key=None):
         if end != len(data):  # a crash mid-line: keep only complete lines
             f.truncate(end)
     lines = data[:end].decode().splitlines()
+    if not lines and data:  # only a torn header: no finished run
+        return rows
     if lines and lines[0] != header:
         raise UsageError(f"{path}: not a {os.path.basename(path)} of this sweep (header '{lines[0]}')")
     for n, line in enumerate(lines[1:], start=2):
@@ -244,11 +248,60 @@ def check_common(args):
         raise UsageError("--seeds: must be in 1..1000")
     if args.workers is not None and args.workers < 1:
         raise UsageError("--workers: must be >= 1")
-    if os.path.exists(args.output) and not os.path.isdir(args.output):
-        raise UsageError(f"-o: {args.output} exists and is not a folder")
+    if not (math.isfinite(args.timeout) and 0 < args.timeout <= 3600):
+        raise UsageError("--timeout: expected seconds in (0, 3600]")
+    if args.scheduler is not None:
+        url = args.scheduler
+        scheme, sep, rest = url.partition("://")
+        if not sep or scheme not in ("tcp", "tls", "inproc", "ucx", "ws", "wss") or not rest:
+            raise UsageError(f"--scheduler: expected tcp://HOST:PORT, got '{url}'")
+    check_output_folder(args.output)
 
 
-def run_tasks(args, csv_path, header, runs, done, key, line, submit, label):
+def check_output_folder(output):
+    """-o: a folder that exists or can be made (its nearest existing ancestor is a writable
+    folder); checked before any work, so a bad -o exits 2 and starts no cluster."""
+    if not output:
+        raise UsageError("-o: empty output path")
+    if os.path.exists(output):
+        if not os.path.isdir(output):
+            raise UsageError(f"-o: {output} exists and is not a folder")
+        if not os.access(output, os.W_OK | os.X_OK):
+            raise UsageError(f"-o: {output} is not writable")
+        return
+    parent = os.path.dirname(os.path.abspath(output))
+    while not os.path.exists(parent):
+        parent = os.path.dirname(parent)
+    if not os.path.isdir(parent):
+        raise UsageError(f"-o: {output}: {parent} is not a folder")
+    try:  # a probe folder, removed again: permissions alone do not tell (e.g. /proc as root)
+        os.rmdir(tempfile.mkdtemp(prefix=".topoplan-probe-", dir=parent))
+    except OSError as e:
+        raise UsageError(f"-o: {output}: cannot create folders in {parent} ({e.strerror})") from None
+
+
+def params_path(csv_path):
+    """The sidecar that records the flags a result CSV was computed with but does not hold."""
+    return os.path.join(os.path.dirname(csv_path), "." + os.path.basename(csv_path) + ".json")
+
+
+def check_params(csv_path, done, params):
+    """A rerun into a folder must use the flags its finished rows were computed with (those not
+    in the rows themselves): exit 2 naming the first flag that differs."""
+    path = params_path(csv_path)
+    if not done or not os.path.exists(path):
+        return
+    with open(path) as f:
+        before = json.load(f)
+    for flag, value in params.items():
+        if flag in before and before[flag] != value:
+            raise UsageError(
+                f"{flag}: {csv_path} was computed with {flag} {before[flag]}, not {value}; "
+                "use another -o folder"
+            )
+
+
+def run_tasks(args, csv_path, header, runs, done, key, line, submit, label, params=None):
     """Submits one task per run not yet in `done` (submit(client, run) -> future), appends each
     finished row to csv_path (line(row), fsync'ed) and records it in done[key(row)]. Returns the
     number of runs that raised."""
@@ -261,8 +314,12 @@ def run_tasks(args, csv_path, header, runs, done, key, line, submit, label):
     try:
         from distributed import as_completed
 
-        new_file = not os.path.exists(csv_path)
-        with open(csv_path, "a") as f:
+        # A file without its complete header line (a crash before it reached the disk) is
+        # started afresh: it holds no finished run.
+        new_file = not os.path.exists(csv_path) or os.path.getsize(csv_path) <= len(header)
+        if new_file and params is not None:
+            write_atomically(params_path(csv_path), lambda tmp: json.dump(params, open(tmp, "w")))
+        with open(csv_path, "w" if new_file else "a") as f:
             if new_file:
                 f.write(header + "\n")
                 f.flush()
@@ -315,6 +372,12 @@ def sweep_unwrap(args):
     check_common(args)
     if not (0 <= args.perturb <= 1):  # also refuses NaN
         raise UsageError("--perturb: expected a distance in metres in 0..1")
+    if args.budget != -1 and not 1 <= args.budget <= 1000000000:
+        raise UsageError("--budget: expected a collision-check count in 1..1e9 (as bench unwrap)")
+    keys = [fmt_number(a) for a in angles]
+    if len(set(keys)) != len(keys):
+        # Runs are keyed by the angle as unwrap.csv prints it (6 significant digits).
+        raise UsageError("--angles: two angles print alike with 6 significant digits (use a larger step)")
     csv_path = os.path.join(args.output, "unwrap.csv")
     done = read_rows(csv_path)
     if len(angles) * len(planners) * args.seeds > MAX_RUNS:
@@ -359,7 +422,10 @@ def sweep_unwrap(args):
     def label(row):
         return f"{row['planner']} @ {fmt_number(row['angle_deg'])} deg seed {row['seed']}"
 
-    if run_tasks(args, csv_path, CSV_HEADER, runs, done, unwrap_key, row_line, submit, label):
+    params = {"--budget": args.budget, "--perturb": args.perturb}
+    check_params(csv_path, done, params)
+    if run_tasks(args, csv_path, CSV_HEADER, runs, done, unwrap_key, row_line, submit, label,
+                 params):
         return 1
     rows = [done[r] for r in runs]
     figure = topoplan.unwrap_figure(rows, angles, planners, args.seeds)
@@ -491,6 +557,10 @@ def sweep_grasp(args):
         raise UsageError("--perturb: must be in 0..1000")
     if not (0.0 <= args.close_by <= 0.5):
         raise UsageError("--close-by: must be a number of radians in [0, 0.5]")
+    if args.perturb == 0 and args.seeds > 1:
+        # Without perturbations every seed is the same deterministic trial: counting them as
+        # independent trials would narrow the intervals on no new evidence.
+        raise UsageError("--seeds: without --perturb every seed is the same run; use --seeds 1")
     check_common(args)
     csv_path = os.path.join(args.output, "grasp.csv")
     done = read_rows(csv_path, GRASP_HEADER, parse_grasp_row, grasp_key)
@@ -515,7 +585,10 @@ def sweep_grasp(args):
     def label(row):
         return f"{row['grasp']} / {row['method']} seed {row['seed']}"
 
-    if run_tasks(args, csv_path, GRASP_HEADER, runs, done, grasp_key, grasp_line, submit, label):
+    params = {"--perturb": args.perturb}
+    check_params(csv_path, done, params)
+    if run_tasks(args, csv_path, GRASP_HEADER, runs, done, grasp_key, grasp_line, submit, label,
+                 params):
         return 1
     summary = grasp_summary([done[r] for r in runs], args.perturb)
     summary_path = os.path.join(args.output, "grasp_summary.csv")
@@ -536,29 +609,33 @@ def sweep_grasp(args):
 def add_cluster_flags(p):
     p.add_argument("--scheduler", help="tcp://HOST:PORT of a dask scheduler (default: local)")
     p.add_argument("--workers", type=int, help="local worker processes (default: one per core)")
-    p.add_argument("--timeout", type=float, default=10.0, help="scheduler connect timeout [s]")
+    p.add_argument("--timeout", type=float, default=10.0, help="scheduler connect timeout [s] (default 10)")
     p.add_argument("--quiet", action="store_true", help="no progress line")
     p.add_argument("-o", "--output", required=True, help="output folder")
 
 
 def build_parser():
     parser = argparse.ArgumentParser(
-        prog="python3 -m topoplan.sweep", description="topoplan parameter sweeps on Dask"
+        prog="python3 -m topoplan.sweep",
+        description="topoplan parameter sweeps on Dask",
+        epilog="Results stream into OUT/unwrap.csv or OUT/grasp.csv (a rerun skips the runs "
+        "already there); the figure and summary are written at the end. Exit codes: 0 done, "
+        "1 some runs raised, 2 bad input or an unreachable scheduler, 130 interrupted.",
     )
     sub = parser.add_subparsers(dest="command", required=True)
     u = sub.add_parser(
         "unwrap",
         help="thesis Fig. 4.5: collision checks vs angle to unwrap (as `topoplan bench unwrap`)",
     )
-    u.add_argument("--angles", default="0:900:90", help="start wraps a:b:step in degrees")
-    u.add_argument("--seeds", type=int, default=3, help="seeds 0..N-1 per angle and planner")
+    u.add_argument("--angles", default="0:900:90", help="start wraps a:b:step in degrees (default 0:900:90)")
+    u.add_argument("--seeds", type=int, default=3, help="seeds 0..N-1 per angle and planner (default 3)")
     u.add_argument(
         "--planners",
         default=None,
         help="comma-separated planners, each at most once (default: all of this build, with the "
         "OMPL peers when built)",
     )
-    u.add_argument("--budget", type=int, default=-1, help="RRT collision-check budget")
+    u.add_argument("--budget", type=int, default=-1, help="RRT collision-check budget (default: the scenario's, 100000)")
     u.add_argument(
         "--perturb",
         type=float,
@@ -573,9 +650,9 @@ def build_parser():
     )
     g.add_argument("--grasps", default="all", help="'all' or comma-separated grasp names")
     g.add_argument("--methods", default="all", help="'all' or comma-separated transfer methods")
-    g.add_argument("--seeds", type=int, default=1, help="perturbation seeds 0..N-1 per run")
-    g.add_argument("--perturb", type=int, default=0, help="perturbed repetitions per seed")
-    g.add_argument("--mu", type=float, default=1.0, help="Coulomb friction of the protocol")
+    g.add_argument("--seeds", type=int, default=1, help="perturbation seeds 0..N-1 per run (default 1)")
+    g.add_argument("--perturb", type=int, default=0, help="perturbed repetitions per seed (default 0)")
+    g.add_argument("--mu", type=float, default=1.0, help="Coulomb friction of the protocol (default 1)")
     g.add_argument(
         "--close-by",
         type=float,
@@ -597,6 +674,10 @@ def main(argv=None):
     except UsageError as e:
         print(f"error: {e}", file=sys.stderr)
         return 2
+    except KeyboardInterrupt:  # every finished run is already in the CSV (fsync'ed)
+        print(f"\ninterrupted: the finished runs are in {args.output}; rerun to go on",
+              file=sys.stderr)
+        return 130
 
 
 if __name__ == "__main__":

@@ -124,13 +124,13 @@ def test_grasp_errors():
 
 def test_no_gl_is_runtime_error(tmp_path):
     # A GL backend that cannot start: an EGL device that does not exist, or OSMesa without its
-    # library. The render call must raise RuntimeError (topoplan.EnvironmentError).
+    # library. The render call must raise RuntimeError (topoplan.GLError).
     code = (
         "import topoplan, sys\n"
         "try:\n"
         f"    topoplan.render({ARM!r}, size=(32, 32))\n"
         "except RuntimeError as e:\n"
-        "    print('RuntimeError', isinstance(e, topoplan.EnvironmentError)); sys.exit(0)\n"
+        "    print('RuntimeError', isinstance(e, topoplan.GLError)); sys.exit(0)\n"
         "print('rendered'); sys.exit(0)\n"
     )
     env = dict(os.environ, TOPOPLAN_GL="nonsense")

@@ -41,3 +41,12 @@ def test_png_round_trip_through_path(tmp_path):
     out = tmp_path / "img.png"
     topoplan.write_png(out, image)
     np.testing.assert_array_equal(topoplan.read_png(out), image)
+
+
+def test_write_png_refuses_other_dtypes_and_missing_folders(tmp_path):
+    for bad in (np.full((4, 4, 3), 300), np.full((4, 4, 3), 0.9)):
+        with pytest.raises(ValueError, match="image: expected dtype uint8"):
+            topoplan.write_png(tmp_path / "x.png", bad)
+    with pytest.raises(FileNotFoundError, match="path: no folder"):
+        topoplan.write_png(tmp_path / "none" / "x.png", np.zeros((4, 4, 3), np.uint8))
+    assert not (tmp_path / "none").exists() and not (tmp_path / "x.png").exists()

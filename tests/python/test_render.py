@@ -3,6 +3,7 @@
 import os
 
 import numpy as np
+import pytest
 
 import topoplan
 
@@ -18,6 +19,24 @@ def test_render_matches_cli(cli, tmp_path):
     image = topoplan.render(urdf, q=q, size=(160, 120))
     assert image.shape == (120, 160, 3) and image.dtype == np.uint8
     assert np.array_equal(image, topoplan.read_png(str(out)))
+
+
+def test_render_of_a_scene_file_matches_cli(cli, tmp_path):
+    scene = os.path.join(ASSETS, "scenes", "example.json")
+    out = tmp_path / "scene.png"
+    cli("render", scene, "--size", "160x120", "-o", out)
+    image = topoplan.render(scene, size=(160, 120))
+    assert np.array_equal(image, topoplan.read_png(str(out)))
+    with pytest.raises(ValueError, match="^q: only for a robot"):
+        topoplan.render(scene, q=[0.0])
+
+
+def test_render_q_errors_name_q():
+    urdf = os.path.join(ASSETS, "robots", "lwr4_sdh.urdf")
+    with pytest.raises(ValueError, match="^q: expected 14"):
+        topoplan.render(urdf, q=[0.0, 1.0])
+    with pytest.raises(ValueError, match="^q: joint 'lwr_joint_1' is not a number"):
+        topoplan.Robot.load(urdf).fk({"lwr_joint_1": "a"})
 
 
 def test_render_scenario_and_robot():

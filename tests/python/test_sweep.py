@@ -90,6 +90,11 @@ def test_sweep_equals_bench_unwrap(cli, tmp_path):
         (["--perturb", "nan"], "--perturb"),
         (["--perturb", "-0.01"], "--perturb"),
         (["--scheduler", "tcp://127.0.0.1:9", "--timeout", "2"], "--scheduler: cannot reach"),
+        (["--scheduler", "notaurl"], "--scheduler: expected tcp://HOST:PORT"),
+        (["--timeout", "nan"], "--timeout"),
+        (["--timeout", "-1"], "--timeout"),
+        (["--budget", "0"], "--budget"),
+        (["--angles", "100:100.0003:0.0001"], "print alike"),
     ],
 )
 def test_bad_input_exits_2_and_writes_nothing(tmp_path, args, message):
@@ -139,3 +144,34 @@ def test_local_cluster_workers_run_without_the_profiler():
         cluster.close()
     # Only the cluster's workers: this process keeps its own configuration.
     assert dask.config.get("distributed.worker.profile.enabled") == before
+
+
+@pytest.mark.parametrize("output", ["/dev/null/out", "", "/proc/topoplan_out"])
+def test_unusable_output_exits_2_before_starting_a_cluster(output):
+    t0 = time.monotonic()
+    r = run_sweep("--angles", "0:0:90", "--seeds", "1", "--planners", "aico", "-o", output,
+                  timeout=120)
+    assert r.returncode == 2, r.stderr
+    assert "-o: " in r.stderr and "Traceback" not in r.stderr
+    assert time.monotonic() - t0 < 20  # refused before a LocalCluster is started
+
+
+def test_a_csv_with_a_torn_header_is_started_afresh(tmp_path):
+    out = tmp_path / "out"
+    out.mkdir()
+    (out / "unwrap.csv").write_text("angle_deg,plan")  # a crash before the header was complete
+    for _ in range(2):  # the second run finds every run done
+        r = run_sweep("--angles", "0:0:90", "--seeds", "1", "--planners", "aico", "-o", out)
+        assert r.returncode == 0, r.stderr
+    lines = (out / "unwrap.csv").read_text().splitlines()
+    assert lines[0].startswith("angle_deg,planner,seed,success") and len(lines) == 2
+
+
+def test_a_rerun_with_another_budget_exits_2(tmp_path):
+    # --budget is not in the rows: a rerun with another budget would silently reuse them.
+    out = tmp_path / "out"
+    base = ["--angles", "90:90:90", "--seeds", "1", "--planners", "rrt", "-o", out]
+    assert run_sweep(*base, "--budget", "200").returncode == 0
+    r = run_sweep(*base, "--budget", "100000")
+    assert r.returncode == 2 and "--budget: " in r.stderr and "200" in r.stderr, r.stderr
+    assert run_sweep(*base, "--budget", "200").returncode == 0  # the same flags go on

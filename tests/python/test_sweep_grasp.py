@@ -80,6 +80,7 @@ def test_wilson_interval_known_values():
         (["--close-by", "0.6"], "--close-by"),
         (["--close-by", "nan"], "--close-by"),
         (["--seeds", "0"], "--seeds"),
+        (["--seeds", "3"], "--seeds: without --perturb every seed is the same run"),
     ],
 )
 def test_bad_input_exits_2_and_writes_nothing(tmp_path, args, message):
@@ -88,3 +89,11 @@ def test_bad_input_exits_2_and_writes_nothing(tmp_path, args, message):
     assert r.returncode == 2, r.stderr
     assert message in r.stderr
     assert not out.exists()
+
+
+def test_a_rerun_with_another_perturbation_exits_2(tmp_path):
+    out = tmp_path / "out"
+    base = ["--grasps", "power_bottle", "--methods", "joint", "--seeds", "1", "-o", out]
+    assert run_sweep(*base).returncode in (0, 1)  # 1: an unstable grasp is a result
+    r = run_sweep(*base, "--perturb", "1")
+    assert r.returncode == 2 and "--perturb: " in r.stderr, r.stderr
