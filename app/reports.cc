@@ -481,6 +481,31 @@ std::string RateText(int stable, int trials, const Eigen::Vector2d& ci) {
   return buf;
 }
 
+// Spearman's rank correlation of ε against the ODE outcome over every trial of the run (each
+// grasp × method, and each perturbed repetition): {trials, spearman_stable,
+// spearman_directions}; a correlation is null when undefined (e.g. every trial stable).
+nlohmann::json EpsilonOutcomeJson(const phys::GraspTrialsResult& result) {
+  std::vector<double> eps, stable, directions;
+  for (const std::vector<phys::GraspTrial>& row : result.trials) {
+    for (const phys::GraspTrial& trial : row) {
+      eps.push_back(trial.epsilon_quality);
+      stable.push_back(trial.stability.stable ? 1.0 : 0.0);
+      directions.push_back(trial.stability.directions_passed);
+      for (const phys::PerturbedTrial& p : trial.perturbed) {
+        eps.push_back(p.epsilon_quality);
+        stable.push_back(p.stable ? 1.0 : 0.0);
+        directions.push_back(p.directions_passed);
+      }
+    }
+  }
+  auto value = [](const std::optional<double>& r) {
+    return r ? nlohmann::json(Round(*r, 1e4)) : nlohmann::json(nullptr);
+  };
+  return {{"trials", eps.size()},
+          {"spearman_stable", value(planning::SpearmanCorrelation(eps, stable))},
+          {"spearman_directions", value(planning::SpearmanCorrelation(eps, directions))}};
+}
+
 }  // namespace
 
 nlohmann::json GraspReportJson(const phys::GraspTrialsResult& result) {
@@ -555,6 +580,20 @@ nlohmann::json GraspReportJson(const phys::GraspTrialsResult& result) {
       if (result.perturb > 0) {
         j["perturbed"] =
             PerturbedJson(static_cast<int>(trial.perturbed.size()), trial.perturbed_stable);
+        // Each repetition: outcome, ε and how far the object was moved and turned from the
+        // grasp's pose.
+        nlohmann::json reps = nlohmann::json::array();
+        for (const phys::PerturbedTrial& p : trial.perturbed) {
+          const Eigen::Isometry3d delta = g.world_from_object.inverse() * p.world_from_object;
+          reps.push_back({{"stable", p.stable},
+                          {"directions_passed", p.directions_passed},
+                          {"epsilon_quality", Round(p.epsilon_quality)},
+                          {"offset_m", VecJson(p.world_from_object.translation() -
+                                               g.world_from_object.translation())},
+                          {"rotation_deg",
+                           Round(Eigen::AngleAxisd(delta.linear()).angle() * 180.0 / M_PI, 1e3)}});
+        }
+        j["perturbed"]["repetitions"] = reps;
       }
       mj[planning::ToString(result.methods[mi])] = j;
     }
@@ -571,6 +610,7 @@ nlohmann::json GraspReportJson(const phys::GraspTrialsResult& result) {
     summary[planning::ToString(s.method)] = sj;
   }
   report["summary"] = summary;
+  report["epsilon_vs_outcome"] = EpsilonOutcomeJson(result);
   if (result.perturb > 0) {
     report["perturb"] = {{"repetitions", result.perturb},
                          {"seed", result.seed},
@@ -627,6 +667,17 @@ std::string GraspSummaryMarkdown(const phys::GraspTrialsResult& result) {
        << result.perturb_rotation_deg << " deg (seed " << result.seed
        << "); intervals: Wilson 95 %.\n";
   }
+  const nlohmann::json rank = EpsilonOutcomeJson(result);
+  auto text = [](const nlohmann::json& r) {
+    char buf[32];
+    if (r.is_null()) return std::string("undefined (one outcome only)");
+    std::snprintf(buf, sizeof buf, "%.2f", r.get<double>());
+    return std::string(buf);
+  };
+  md << "\nRank correlation (Spearman) of eps with the outcome over all "
+     << rank["trials"].get<size_t>() << " trials"
+     << (result.perturb > 0 ? " (incl. perturbed)" : "") << ": " << text(rank["spearman_stable"])
+     << " against stable, " << text(rank["spearman_directions"]) << " against directions held.\n";
   return md.str();
 }
 

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <numeric>
 #include <stdexcept>
 #include <string>
 
@@ -119,6 +120,51 @@ Eigen::Vector2d WilsonInterval(int successes, int trials, double z) {
   const double centre = (p + z2 / (2.0 * n)) / denom;
   const double half = z / denom * std::sqrt(p * (1.0 - p) / n + z2 / (4.0 * n * n));
   return Eigen::Vector2d(std::max(0.0, centre - half), std::min(1.0, centre + half));
+}
+
+namespace {
+
+// Ranks 1..n of v, ties given the mean of the ranks they span.
+std::vector<double> AverageRanks(const std::vector<double>& v) {
+  std::vector<size_t> order(v.size());
+  std::iota(order.begin(), order.end(), size_t{0});
+  std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return v[a] < v[b]; });
+  std::vector<double> rank(v.size());
+  for (size_t i = 0; i < order.size();) {
+    size_t j = i;
+    while (j + 1 < order.size() && v[order[j + 1]] == v[order[i]]) ++j;
+    const double mean = 0.5 * static_cast<double>(i + j) + 1.0;
+    for (size_t k = i; k <= j; ++k) rank[order[k]] = mean;
+    i = j + 1;
+  }
+  return rank;
+}
+
+}  // namespace
+
+std::optional<double> SpearmanCorrelation(const std::vector<double>& x,
+                                          const std::vector<double>& y) {
+  if (x.size() != y.size()) {
+    throw std::invalid_argument("SpearmanCorrelation: x has " + std::to_string(x.size()) +
+                                " values, y " + std::to_string(y.size()));
+  }
+  for (size_t i = 0; i < x.size(); ++i) {
+    if (!std::isfinite(x[i]) || !std::isfinite(y[i])) {
+      throw std::invalid_argument("SpearmanCorrelation: non-finite value at index " +
+                                  std::to_string(i));
+    }
+  }
+  if (x.size() < 2) return std::nullopt;
+  const std::vector<double> rx = AverageRanks(x), ry = AverageRanks(y);
+  const double mean = 0.5 * static_cast<double>(x.size() + 1);  // mean rank, ties included
+  double sxy = 0.0, sxx = 0.0, syy = 0.0;
+  for (size_t i = 0; i < x.size(); ++i) {
+    sxy += (rx[i] - mean) * (ry[i] - mean);
+    sxx += (rx[i] - mean) * (rx[i] - mean);
+    syy += (ry[i] - mean) * (ry[i] - mean);
+  }
+  if (sxx <= 0.0 || syy <= 0.0) return std::nullopt;
+  return sxy / std::sqrt(sxx * syy);
 }
 
 }  // namespace planning

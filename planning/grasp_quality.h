@@ -19,6 +19,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <optional>
 #include <vector>
 
 namespace planning {
@@ -53,5 +54,13 @@ Eigen::Matrix<double, 6, Eigen::Dynamic> PrimitiveWrenches(
 // [lo, hi] = [centre − half, centre + half] (clamped to [0, 1]); z = 1.959964 gives 95 %.
 // Throws std::invalid_argument unless 0 <= successes <= trials, trials >= 1 and z > 0.
 Eigen::Vector2d WilsonInterval(int successes, int trials, double z = 1.959964);
+
+// Spearman's rank correlation of paired samples x, y (same length n): the Pearson correlation of
+// their ranks, ties given their average rank, in [−1, 1]. Used to ask how well a fast measure
+// (ε) orders the outcomes of the slow one (the ODE test: stable 0/1 or directions held). Returns
+// nullopt when it is undefined: n < 2 or all x (or all y) equal. Throws std::invalid_argument for
+// different lengths or a non-finite value.
+std::optional<double> SpearmanCorrelation(const std::vector<double>& x,
+                                          const std::vector<double>& y);
 
 }  // namespace planning

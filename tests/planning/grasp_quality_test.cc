@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 
 namespace planning {
@@ -157,6 +158,26 @@ TEST(GraspQualityTest, WilsonIntervalKnownValues) {
   EXPECT_THROW(WilsonInterval(3, 2), std::invalid_argument);
   EXPECT_THROW(WilsonInterval(0, 0), std::invalid_argument);
   EXPECT_THROW(WilsonInterval(-1, 5), std::invalid_argument);
+}
+
+// Spearman: without ties ρ = 1 − 6 Σd² / (n(n² − 1)); x = 1..5, y = (2, 1, 4, 3, 5): d = (1, 1, 1,
+// 1, 0), Σd² = 4, ρ = 1 − 24/120 = 0.8. With ties (ε against stable): x = (0.1, 0.5, 0.5, 0.9)
+// has ranks (1, 2.5, 2.5, 4), y = (0, 1, 0, 1) ranks (1.5, 3.5, 1.5, 3.5), mean rank 2.5:
+// Σ dx·dy = 1.5 + 0 + 0 + 1.5 = 3, Σ dx² = 4.5, Σ dy² = 4 → ρ = 3 / sqrt(18) = 0.7071068.
+TEST(GraspQualityTest, SpearmanCorrelationKnownValues) {
+  const std::optional<double> plain = SpearmanCorrelation({1, 2, 3, 4, 5}, {2, 1, 4, 3, 5});
+  ASSERT_TRUE(plain.has_value());
+  EXPECT_NEAR(*plain, 0.8, 1e-12);
+  const std::optional<double> ties = SpearmanCorrelation({0.1, 0.5, 0.5, 0.9}, {0, 1, 0, 1});
+  ASSERT_TRUE(ties.has_value());
+  EXPECT_NEAR(*ties, 0.7071068, 1e-7);
+  // Ranks only: a monotone transform of x changes nothing; reversing y flips the sign.
+  EXPECT_NEAR(*SpearmanCorrelation({1, 20, 300, 4000, 50000}, {2, 1, 4, 3, 5}), 0.8, 1e-12);
+  EXPECT_NEAR(*SpearmanCorrelation({1, 2, 3}, {3, 2, 1}), -1.0, 1e-12);
+  EXPECT_FALSE(SpearmanCorrelation({1, 2, 3}, {1, 1, 1}).has_value());  // constant outcome
+  EXPECT_FALSE(SpearmanCorrelation({1}, {1}).has_value());
+  EXPECT_THROW(SpearmanCorrelation({1, 2}, {1}), std::invalid_argument);
+  EXPECT_THROW(SpearmanCorrelation({1, std::nan("")}, {1, 2}), std::invalid_argument);
 }
 
 }  // namespace
