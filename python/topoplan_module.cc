@@ -194,18 +194,39 @@ render::Image RenderScene(const render::Scene& scene, const render::Camera& came
 
 // --- topology --------------------------------------------------------------------------------
 
-Eigen::MatrixXd WritheMatrixPy(const py::handle& a, const py::handle& b, bool unsigned_variant) {
+// Largest dense Jacobian writhe_jacobian returns: (N_A−1)(N_B−1)(N_A+N_B)·3 doubles ≤ 2^27 (1 GiB).
+constexpr double kMaxDenseJacobianEntries = double(1 << 27);
+
+Eigen::MatrixXd WritheMatrixPy(const py::handle& a_obj, const py::handle& b_obj,
+                               bool unsigned_variant) {
   topology::WritheOptions options;
   if (unsigned_variant) options.variant = topology::WritheVariant::kUnsignedSolidAngle;
-  return topology::WritheMatrix(ToPoints(a, "A"), ToPoints(b, "B"), options);
+  const Eigen::Matrix3Xd a = ToPoints(a_obj, "A"), b = ToPoints(b_obj, "B");
+  py::gil_scoped_release release;  // O(N_A N_B); other Python threads run meanwhile
+  return topology::WritheMatrix(a, b, options);
 }
 
 py::tuple WritheJacobianPy(const py::handle& a_obj, const py::handle& b_obj) {
   const Eigen::Matrix3Xd a = ToPoints(a_obj, "A"), b = ToPoints(b_obj, "B");
+  const double entries =
+      double(a.cols() - 1) * double(b.cols() - 1) * double(a.cols() + b.cols()) * 3.0;
+  if (entries > kMaxDenseJacobianEntries) {
+    char msg[256];
+    std::snprintf(msg, sizeof msg,
+                  "A, B: the dense Jacobians of %ld x %ld points would hold %.3g numbers "
+                  "(%.3g GB), more than the limit of %.3g (1 GiB); use fewer points, or "
+                  "writhe_matrix for W alone",
+                  long(a.cols()), long(b.cols()), entries, entries * 8e-9,
+                  kMaxDenseJacobianEntries);
+    ThrowValue(msg);
+  }
   Eigen::MatrixXd w;
   topology::WritheJacobian jac;
-  topology::WritheWorkspace ws;
-  topology::WritheMatrixWithJacobian(a, b, {}, &w, &jac, &ws);
+  {
+    py::gil_scoped_release release;
+    topology::WritheWorkspace ws;
+    topology::WritheMatrixWithJacobian(a, b, {}, &w, &jac, &ws);
+  }
   const py::ssize_t rows = jac.rows, cols = jac.cols, na = a.cols(), nb = b.cols();
   py::array_t<double> da({rows, cols, na, py::ssize_t(3)}), db({rows, cols, nb, py::ssize_t(3)});
   std::fill(da.mutable_data(), da.mutable_data() + da.size(), 0.0);
@@ -534,7 +555,8 @@ PYBIND11_MODULE(_core, m) {
       "writhe_jacobian", &WritheJacobianPy, py::arg("A"), py::arg("B"),
       "(W, dW_dA, dW_dB): the signed writhe matrix and its derivatives with respect to every\n"
       "chain point, dW_dA of shape (N_A-1, N_B-1, N_A, 3), dW_dB of shape (N_A-1, N_B-1, N_B, 3)\n"
-      "(dW_dA[i, j, p, k] = dW[i, j]/dA[p, k]; nonzero only for p in {i, i+1}).");
+      "(dW_dA[i, j, p, k] = dW[i, j]/dA[p, k]; nonzero only for p in {i, i+1}). The arrays are\n"
+      "dense: sizes whose two Jacobians would exceed 2^27 numbers (1 GiB) raise ValueError.");
   m.def("winding", &WindingPy, py::arg("chain"), py::arg("axis_point"), py::arg("axis_dir"),
         py::arg("gradient") = false, py::arg("unsigned") = false,
         "Winding number (turns) of chain (N x 3) about the oriented axis through axis_point along\n"

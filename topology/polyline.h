@@ -14,6 +14,11 @@ using Chain = Eigen::Matrix3Xd;
 // Largest chain read from a file (points).
 inline constexpr int kMaxChainPoints = 100000;
 
+// Largest |coordinate| the topology features accept (writhe, winding): squared distances of
+// points up to 1e100 apart stay far from double overflow (1.8e308); beyond it they would
+// silently become inf/NaN. Every physical chain is many orders of magnitude inside.
+inline constexpr double kMaxCoordinate = 1e100;
+
 // Reads a chain CSV: one point per line as `x,y,z` (spaces around fields allowed); blank lines and
 // lines whose first non-blank character is `#` are ignored. Throws std::invalid_argument naming
 // `source:line` for a malformed line, a non-finite number, more than kMaxChainPoints or fewer

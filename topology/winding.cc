@@ -21,6 +21,12 @@ void Check(const Chain& chain, const Axis& axis) {
   if (!axis.point.allFinite() || !axis.direction.allFinite() || axis.direction.norm() == 0.0) {
     throw std::invalid_argument("winding: axis direction must be finite and non-zero");
   }
+  if (chain.cwiseAbs().maxCoeff() > kMaxCoordinate ||
+      axis.point.cwiseAbs().maxCoeff() > kMaxCoordinate ||
+      axis.direction.cwiseAbs().maxCoeff() > kMaxCoordinate) {
+    throw std::invalid_argument(
+        "winding: a coordinate is beyond ±1e100 (squared lengths would overflow)");
+  }
 }
 
 // Δθ of segment i and its derivatives with respect to p_i (g0) and p_{i+1} (g1).

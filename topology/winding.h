@@ -34,7 +34,8 @@ struct WindingOptions {
 // If `grad` is not null it is resized to 3×N and receives ∂w/∂p_i. For the signed variant
 // ∂Δθ_i/∂p_{i+1} = (d̂ × u_{i+1})/|u_{i+1}|² and ∂Δθ_i/∂p_i = −(d̂ × u_i)/|u_i|², so interior
 // terms cancel and only the two end points carry gradient.
-// Throws std::invalid_argument for fewer than 2 points, non-finite input or a zero direction.
+// Throws std::invalid_argument for fewer than 2 points, non-finite input, a coordinate beyond
+// ±kMaxCoordinate (1e100) or a zero direction.
 double WindingNumber(const Chain& chain, const Axis& axis, const WindingOptions& options = {},
                      Eigen::Matrix3Xd* grad = nullptr);
 

@@ -91,6 +91,10 @@ void CheckChain(const Chain& c, const char* name) {
     throw std::invalid_argument(std::string("writhe: chain ") + name +
                                 " has a non-finite coordinate");
   }
+  if (c.cwiseAbs().maxCoeff() > kMaxCoordinate) {
+    throw std::invalid_argument(std::string("writhe: chain ") + name +
+                                " has a coordinate beyond ±1e100 (squared lengths would overflow)");
+  }
 }
 
 // Unit vectors and lengths from point a to every point of b.

@@ -35,6 +35,20 @@ def test_writhe_shape_nan_and_type_errors():
         topoplan.writhe_jacobian(np.zeros(3), good)
 
 
+def test_writhe_jacobian_refuses_sizes_beyond_its_dense_limit():
+    # (N-1)^2 * 2N * 3 doubles: N = 400 needs 3.8e8 > 2^27, N = 100 needs 5.9e6 (fine).
+    big = np.random.default_rng(0).normal(size=(400, 3))
+    with pytest.raises(ValueError, match=r"A, B: the dense Jacobians of 400 x 400 points"):
+        topoplan.writhe_jacobian(big, big)
+    w, da, db = topoplan.writhe_jacobian(big[:100], big[:100] + 5.0)
+    assert w.shape == (99, 99) and da.shape == (99, 99, 100, 3) and db.shape == (99, 99, 100, 3)
+    # Coordinates beyond 1e100 are refused (their squared lengths would overflow).
+    with pytest.raises(ValueError, match=r"beyond ±1e100"):
+        topoplan.writhe_matrix(big[:10] * 1e155, big[:10])
+    # The matrix alone has no such limit.
+    assert topoplan.writhe_matrix(big, big + 5.0).shape == (399, 399)
+
+
 def test_winding_errors():
     chain = np.array([[1.0, 0, 0], [0, 1.0, 0]])
     with pytest.raises(ValueError, match="axis_dir: must be non-zero"):

@@ -90,6 +90,10 @@ TEST(WindingTest, PointsOnTheAxisAreFiniteAndBadInputThrows) {
   EXPECT_TRUE(grad.allFinite());
   EXPECT_THROW(WindingNumber(c, Axis{{0, 0, 0}, {0, 0, 0}}), std::invalid_argument);
   EXPECT_THROW(WindingNumber(c.leftCols(1), kZ), std::invalid_argument);
+  // Scale-invariant up to the coordinate limit, refused beyond it.
+  EXPECT_NEAR(WindingNumber(1e99 * c, kZ), w, 1e-12);
+  EXPECT_THROW(WindingNumber(1e155 * c, kZ), std::invalid_argument);
+  EXPECT_THROW(WindingNumber(c, Axis{{1e155, 0, 0}, {0, 0, 1}}), std::invalid_argument);
 }
 
 }  // namespace

@@ -312,6 +312,22 @@ TEST(WritheTest, RejectsBadChains) {
   EXPECT_THROW(WritheMatrix(two, two), std::invalid_argument);
 }
 
+TEST(WritheTest, LinkingNumberIsScaleInvariantUpToTheCoordinateLimit) {
+  // From 1e-6 up to 1e99 (inside kMaxCoordinate) the Hopf link links −1; beyond it the chains are
+  // refused instead of their squared lengths overflowing to inf/NaN. (Below ~1e-11 the absolute
+  // degeneracy tolerance of the pair formula treats every pair as degenerate.)
+  for (double s : {1e-6, 1e-3, 1e3, 1e99}) {
+    EXPECT_NEAR(TotalWrithe(s * HopfA(32), s * HopfB(35)), -1.0, 1e-9) << s;
+  }
+  try {
+    TotalWrithe(HopfA(32), 1e155 * HopfB(35));
+    ADD_FAILURE() << "1e155 accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_STREQ(e.what(),
+                 "writhe: chain B has a coordinate beyond ±1e100 (squared lengths would overflow)");
+  }
+}
+
 TEST(WritheTest, SelfWritheOfPlanarCurveIsZeroAndMirrorFlips) {
   EXPECT_NEAR(SelfWrithe(HopfA(32)), 0.0, 1e-12);
   const Chain h = Helix(3, 0.3, 1.0, 90);
