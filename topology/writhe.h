@@ -63,8 +63,9 @@ struct WritheWorkspace {
 };
 
 // W = writhe matrix of A (3×N_A) against B (3×N_B); W is resized to (N_A−1)×(N_B−1).
-// Throws std::invalid_argument if a chain has fewer than 2 points or a non-finite coordinate or one
-// beyond ±kMaxCoordinate (1e100). Cost O(N_A·N_B); allocation-free when W and `ws` already have the right sizes.
+// Throws std::invalid_argument if a chain has fewer than 2 points, a non-finite coordinate or one
+// beyond ±kMaxCoordinate (1e100). Cost O(N_A·N_B); allocation-free when W and `ws` already have
+// the right sizes.
 void WritheMatrix(const Chain& a, const Chain& b, const WritheOptions& options, Eigen::MatrixXd* w,
                   WritheWorkspace* ws);
 Eigen::MatrixXd WritheMatrix(const Chain& a, const Chain& b, const WritheOptions& options = {});
