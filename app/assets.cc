@@ -6,7 +6,7 @@
 #include <string>
 #include <system_error>
 
-#include "app/command.h"
+#include "app/cli/command.h"
 
 namespace app {
 

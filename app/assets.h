@@ -4,7 +4,7 @@
 #include <memory>
 #include <string>
 
-#include "planning/scenario.h"
+#include "planning/motion/scenario.h"
 
 namespace app {
 

@@ -5,7 +5,7 @@
 #include <stdexcept>
 
 #include "app/assets.h"
-#include "planning/robot_io.h"
+#include "planning/robot/robot_io.h"
 
 namespace app {
 

@@ -5,9 +5,9 @@
 #include <string>
 #include <vector>
 
-#include "planning/grasp.h"
-#include "planning/grasp_object.h"
-#include "planning/robot.h"
+#include "planning/grasp/grasp.h"
+#include "planning/grasp/grasp_object.h"
+#include "planning/robot/robot.h"
 
 namespace app {
 

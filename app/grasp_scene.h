@@ -3,7 +3,7 @@
 
 #include <Eigen/Core>
 
-#include "planning/grasp_object.h"
+#include "planning/grasp/grasp_object.h"
 #include "planning/physics/grasp_simulation.h"
 #include "render/scene.h"
 

@@ -10,11 +10,11 @@
 #include <stdexcept>
 
 #include "app/assets.h"
-#include "app/command.h"
-#include "app/io.h"
+#include "app/cli/command.h"
+#include "app/cli/io.h"
 #include "planning/json_reader.h"
-#include "planning/robot_io.h"
-#include "planning/scenario.h"
+#include "planning/robot/robot_io.h"
+#include "planning/motion/scenario.h"
 #include "topology/input_limits.h"
 
 namespace app {
@@ -282,7 +282,7 @@ RobotScene LoadRobotSceneImpl(const std::string& path, const std::vector<std::st
           planning::LoadRobot(ResolveRelative(o["urdf"].get<std::string>(), base), options);
       const std::string name =
           o.contains("name") && o["name"].is_string() ? o["name"].get<std::string>() : object.name;
-      // "xyz" is the scenario files' spelling (planning/scenario.h), "position" ours.
+      // "xyz" is the scenario files' spelling (planning/motion/scenario.h), "position" ours.
       const std::string pos_key = o.contains("xyz") ? "xyz" : "position";
       const Eigen::Vector3d xyz = o.contains(pos_key) ? Vec3(o[pos_key], path, jp + "." + pos_key)
                                                       : Eigen::Vector3d::Zero();

@@ -1,13 +1,13 @@
 // A robot with a configuration and static objects, loaded from a URDF or a scene/scenario JSON:
 // what `topoplan fk/check/render` and the viewer work on.
 //
-// Planning scenarios (a JSON with "robot" and "tasks", planning/scenario.h) are loaded with
+// Planning scenarios (a JSON with "robot" and "tasks", planning/motion/scenario.h) are loaded with
 // planning::LoadScenario: robot, start configuration q0 (e.g. the start coil), objects, the
 // collision environment and options as the planners see them.
 // Scene JSON (other keys are ignored):
 //   {"robot": "robots/lwr4_sdh.urdf",          // relative to the JSON file, else to assets/
 //    "q": [0, 0.5, ...],                        // optional, fk joint order; default zeros
-//    "srdf": "robots/lwr4_sdh.srdf",           // optional (planning/srdf.h), relative to the JSON;
+//    "srdf": "robots/lwr4_sdh.srdf",           // optional (planning/robot/srdf.h), relative to the JSON;
 //                                               // default: FindSrdf next to the robot's URDF
 //    "package_paths": ["../ros_ws/src"],        // optional extra package:// roots, relative to
 //                                               // the JSON file's folder
@@ -24,9 +24,9 @@
 #include <string>
 #include <vector>
 
-#include "planning/collision.h"
-#include "planning/robot.h"
-#include "planning/srdf.h"
+#include "planning/collision/collision.h"
+#include "planning/robot/robot.h"
+#include "planning/robot/srdf.h"
 
 namespace CLI {
 class App;

@@ -9,10 +9,10 @@
 
 #include "app/robot_scene.h"
 #include "app/scene_json.h"
-#include "planning/collision.h"
-#include "planning/kinematics.h"
-#include "planning/robot.h"
-#include "planning/scenario_spec.h"
+#include "planning/collision/collision.h"
+#include "planning/robot/kinematics.h"
+#include "planning/robot/robot.h"
+#include "planning/motion/scenario_spec.h"
 #include "render/scene.h"
 
 namespace app {
@@ -31,7 +31,7 @@ struct SceneMeshCache {
   std::map<const planning::Mesh*, std::shared_ptr<const render::TriangleMesh>> meshes;
 };
 
-// The render copy of a loaded mesh (planning/mesh_io.h): the same vertices, unit normals and
+// The render copy of a loaded mesh (planning/robot/mesh_io.h): the same vertices, unit normals and
 // triangles (counter-clockwise vertex index triples, flattened to 3 indices per triangle).
 std::shared_ptr<const render::TriangleMesh> ToRenderMesh(const planning::Mesh& mesh);
 

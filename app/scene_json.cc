@@ -13,7 +13,7 @@
 
 #include "app/scene_builder.h"
 #include "planning/json_reader.h"
-#include "planning/mesh_io.h"
+#include "planning/robot/mesh_io.h"
 #include "topology/polyline.h"
 
 namespace app {

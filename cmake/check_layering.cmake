@@ -3,7 +3,9 @@
 #   topology/  -> Eigen and the standard library only
 #   render/    -> render/ only; no planning, topology, app, ImGui
 #   planning/  -> planning/, topology/; no render, app, GL, ImGui, ODE (ODE only in planning/physics/)
-#   app/       -> everything, but ImGui only inside app/ui/
+#   app/       -> everything, but ImGui only inside app/viewer/
+#   planning/<sub>/ -> only the planning sub-layers before it: robot, collision, features, motion,
+#                      grasp, physics
 if(NOT ROOT)
   message(FATAL_ERROR "usage: cmake -DROOT=<repo> -P check_layering.cmake")
 endif()
@@ -32,7 +34,31 @@ check_dir(topology "[<\"](planning|render|app)/|[<\"](imgui|GLFW|GL|EGL|ode|fcl|
 check_dir(render "[<\"](planning|topology|app)/|[<\"]imgui")
 check_dir(planning "[<\"](render|app)/|${GUI}|[<\"]ode/|\"planning/physics/" "^planning/physics/")
 check_dir(planning/physics "[<\"](render|app)/|${GUI}")
-check_dir(app "[<\"](imgui|backends/)" "^app/ui/")
+# Inside planning/, sub-layers in order: each folder uses only the folders before it.
+set(planning_order robot collision features motion grasp physics)
+list(LENGTH planning_order n)
+math(EXPR last "${n} - 1")
+foreach(i RANGE 0 ${last})
+  list(GET planning_order ${i} here)
+  math(EXPR next "${i} + 1")
+  set(above "")
+  if(next LESS n)
+    list(SUBLIST planning_order ${next} -1 above)
+  endif()
+  if(above)
+    list(JOIN above "|" above_regex)
+    check_dir(planning/${here} "\"planning/(${above_regex})/")
+  endif()
+endforeach()
+# Every planning header lives in one of the sub-layer folders (or is shared by all of them).
+file(GLOB loose "${ROOT}/planning/*.h" "${ROOT}/planning/*.cc")
+foreach(f IN LISTS loose)
+  file(RELATIVE_PATH rel "${ROOT}" "${f}")
+  if(NOT rel MATCHES "^planning/(json_reader|enum_names|random)\\.")
+    list(APPEND violations "${rel}: planning sources belong in ${planning_order}")
+  endif()
+endforeach()
+check_dir(app "[<\"](imgui|backends/)" "^app/viewer/")
 
 if(violations)
   list(JOIN violations "\n  " text)

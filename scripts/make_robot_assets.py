@@ -12,7 +12,7 @@ Outputs:
 Run from anywhere: python3 scripts/make_robot_assets.py
 
 URDF has no capsule: a <collision>/<visual> named "capsule..." holding a <cylinder> is a capsule
-whose cap centres are `length` apart (planning/robot_io.h); other tools see the cylinder.
+whose cap centres are `length` apart (planning/robot/robot_io.h); other tools see the cylinder.
 """
 import json
 import math

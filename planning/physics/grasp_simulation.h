@@ -108,7 +108,7 @@ struct SimOptions {
   // `quickstep_iterations` projected Gauss-Seidel sweeps, which do not converge the soft-finger
   // torsional rows: a 50 g plate pinched by two fingertips turns 49° about the contact line with
   // 60 iterations, 8.7° with 100, 2.2° with 200, 0.8° with 400, 0.0° with kWorldStep
-  // (tests/physics/grasp_simulation_test.cc). For the SDH and the human hand it is cheaper in total
+  // (tests/planning/physics/grasp_simulation_test.cc). For the SDH and the human hand it is cheaper in total
   // (48 trials at μ = 1: 34 s of simulation, QuickStep 60: 41 s), but its cost grows with the cube
   // of the rows: the test claw (16 links, ~20 contacts) takes 12 s per stability test, not 1.4 s.
   Stepper stepper = Stepper::kWorldStep;

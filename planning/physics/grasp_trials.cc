@@ -9,8 +9,8 @@
 #include <stdexcept>
 #include <thread>
 
-#include "planning/grasp_quality.h"
-#include "planning/kinematics.h"
+#include "planning/grasp/grasp_quality.h"
+#include "planning/robot/kinematics.h"
 #include "planning/random.h"
 
 namespace planning::physics {

@@ -7,13 +7,13 @@
 #include <string>
 #include <vector>
 
-#include "planning/grasp.h"
-#include "planning/grasp_object.h"
-#include "planning/grasp_transfer.h"
+#include "planning/grasp/grasp.h"
+#include "planning/grasp/grasp_object.h"
+#include "planning/grasp/grasp_transfer.h"
 #include "planning/physics/hand_builder.h"
 #include "planning/physics/ode_runtime.h"
 #include "planning/physics/stability.h"
-#include "planning/robot.h"
+#include "planning/robot/robot.h"
 
 namespace planning::physics {
 

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "planning/kinematics.h"
+#include "planning/robot/kinematics.h"
 
 namespace planning::physics {
 namespace {

@@ -8,9 +8,9 @@
 #include <utility>
 #include <vector>
 
-#include "planning/grasp_object.h"
+#include "planning/grasp/grasp_object.h"
 #include "planning/physics/grasp_simulation.h"
-#include "planning/robot.h"
+#include "planning/robot/robot.h"
 
 namespace planning::physics {
 

@@ -8,9 +8,9 @@
 #include <memory>
 #include <string>
 
-#include "planning/aico.h"
-#include "planning/planner.h"
-#include "planning/scenario.h"
+#include "planning/motion/aico.h"
+#include "planning/motion/planner.h"
+#include "planning/motion/scenario.h"
 
 namespace {
 

@@ -17,9 +17,9 @@
 #include <fstream>
 #include <string>
 
-#include "planning/collision.h"
-#include "planning/kinematics.h"
-#include "planning/robot_io.h"
+#include "planning/collision/collision.h"
+#include "planning/robot/kinematics.h"
+#include "planning/robot/robot_io.h"
 
 namespace {
 

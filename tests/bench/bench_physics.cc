@@ -2,12 +2,12 @@
 // 6 gravity directions × 2 s at 1 kHz (12 500 steps) — in ≤ 2 s.
 #include <benchmark/benchmark.h>
 
-#include "planning/grasp_transfer.h"
+#include "planning/grasp/grasp_transfer.h"
 #include "planning/physics/hand_builder.h"
 #include "planning/physics/ode_runtime.h"
 #include "planning/physics/stability.h"
-#include "planning/robot_io.h"
-#include "tests/physics/test_hands.h"
+#include "planning/robot/robot_io.h"
+#include "tests/planning/physics/test_hands.h"
 
 namespace {
 

@@ -5,14 +5,14 @@
 #include <string>
 #include <vector>
 
-#include "app/command.h"
+#include "app/cli/command.h"
 #include "app/figures.h"
-#include "app/io.h"
+#include "app/cli/io.h"
 #include "app/robot_scene.h"
 #include "app/scene_json.h"
-#include "app/session.h"
-#include "planning/grasp_transfer.h"
-#include "planning/planner.h"
+#include "app/viewer/session.h"
+#include "planning/grasp/grasp_transfer.h"
+#include "planning/motion/planner.h"
 #include "render/offscreen_context.h"
 #include "tests/fuzz/fuzz_targets.h"
 #include "topology/input_limits.h"

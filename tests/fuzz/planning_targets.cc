@@ -4,12 +4,12 @@
 #include <stdexcept>
 #include <string>
 
-#include "planning/grasp.h"
-#include "planning/grasp_object.h"
-#include "planning/mesh_io.h"
-#include "planning/robot_io.h"
-#include "planning/scenario_spec.h"
-#include "planning/srdf.h"
+#include "planning/grasp/grasp.h"
+#include "planning/grasp/grasp_object.h"
+#include "planning/robot/mesh_io.h"
+#include "planning/robot/robot_io.h"
+#include "planning/motion/scenario_spec.h"
+#include "planning/robot/srdf.h"
 #include "tests/fuzz/fuzz_targets.h"
 
 namespace topoplan_fuzz {

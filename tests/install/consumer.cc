@@ -8,11 +8,11 @@
 #include <numbers>
 #include <string>
 
-#include "planning/aico.h"
-#include "planning/feature.h"
-#include "planning/kinematics.h"
+#include "planning/motion/aico.h"
+#include "planning/features/feature.h"
+#include "planning/robot/kinematics.h"
 #include "planning/physics/ode_runtime.h"
-#include "planning/robot_io.h"
+#include "planning/robot/robot_io.h"
 #include "render/heatmap.h"
 #include "render/image.h"
 #include "topology/writhe.h"

@@ -31,7 +31,7 @@ foreach(f
     ${LIBDIR}/cmake/topoplan/topoplanTargets.cmake
     ${LIBDIR}/libtopology.a ${LIBDIR}/librender.a ${LIBDIR}/libplanning.a
     ${LIBDIR}/libplanning_physics.a
-    include/topology/writhe.h include/planning/kinematics.h include/render/renderer.h
+    include/topology/writhe.h include/planning/robot/kinematics.h include/render/renderer.h
     include/planning/physics/ode_runtime.h
     bin/topoplan share/topoplan/scenarios/unwrap.json share/topoplan/robots/arm20_sdh.urdf)
   if(NOT EXISTS ${prefix}/${f})

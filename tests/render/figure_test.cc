@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "app/reports.h"
+#include "app/present/reports.h"
 #include "render/heatmap.h"
 #include "render/plot.h"
 

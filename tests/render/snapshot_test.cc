@@ -10,7 +10,7 @@
 #include "app/figures.h"
 #include "app/scene_builder.h"
 #include "app/scene_json.h"
-#include "planning/mesh_io.h"
+#include "planning/robot/mesh_io.h"
 #include "render/diff.h"
 #include "render/plot.h"
 #include "tests/render/gl_fixture.h"

@@ -1,0 +1,560 @@
+// `topoplan plan` (AICO / RRT / BiRRT on a scenario, with trajectory, report and optional frames)
+// and `topoplan bench unwrap` (thesis Fig. 4.5: collision checks vs angle to unwrap).
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <ctime>
+#include <filesystem>
+#include <limits>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <sstream>
+
+#include "app/assets.h"
+#include "app/cli/command.h"
+#include "app/figures.h"
+#include "app/cli/io.h"
+#include "app/present/ompl_log.h"
+#include "app/present/reports.h"
+#include "app/robot_scene.h"
+#include "planning/motion/planner.h"
+#include "planning/motion/replan.h"
+#include "planning/motion/scenario.h"
+#include "planning/motion/unwrap_benchmark.h"
+#include "render/figure.h"
+#include "render/image.h"
+
+namespace app {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct PlanArgs {
+  std::string scenario, planner = "aico", output;
+  unsigned seed = 0;
+  double start_wrap = std::numeric_limits<double>::quiet_NaN();  // NaN: not given
+  std::string aico_stop;  // --aico-stop solved|converged ("": the scenario's)
+  double timeout = 0.0;
+  bool frames = false, json = false;
+  bool no_stamp = false;                      // --no-stamp: frames without scenario name and time
+  RobotInputOptions robot_input;              // --package-path, --srdf
+  std::vector<render::FigureFormat> formats;  // --formats
+  // Re-planning with a moving object (planning/motion/replan.h).
+  std::string moving_object, object_path;
+  double replan_period = 0.1;
+  int replan_sweeps = 3;
+};
+
+struct BenchArgs {
+  std::string angles = "0:900:90", planners, output;  // planners "": all of this build
+  int seeds = 3;
+  long budget = -1;
+  double perturb = 0.0;
+  std::string aico_stop;  // --aico-stop solved|converged ("": the scenario's)
+  double timeout = 0.0;
+  std::string ompl_log;  // --ompl-log FILE: OMPL benchmark logs, one per angle (app/present/ompl_log.h)
+  std::vector<render::FigureFormat> formats;  // --formats
+};
+
+// --aico-stop: when AICO stops ("solved": at the first accepted sweep that is a success;
+// "converged": when the sweeps converge). Empty: the scenario's aico.stop_when_solved.
+constexpr const char* kAicoStopHelp =
+    "when AICO stops: 'solved' (the first accepted sweep whose trajectory passes the success "
+    "criteria, status \"solved\"; a success first reached by the last sweep keeps its solver "
+    "status) or 'converged' (run the sweeps to convergence); default: the scenario's "
+    "aico.stop_when_solved";
+
+// The value of --aico-stop (checked by the flag: "solved" or "converged"; "" when not given).
+std::optional<bool> ParseAicoStop(const std::string& text) {
+  if (text.empty()) return std::nullopt;
+  return text == "solved";
+}
+
+// Largest number of angles in --angles.
+constexpr int kMaxAngles = 10000;
+// Largest number of runs of one `bench unwrap` (angles × planners × seeds).
+constexpr long kMaxBenchRuns = 1000000;
+// Largest --perturb: the pole moved by more than a metre leaves the scene.
+constexpr double kMaxPerturbM = 1.0;
+
+// "a:b:step" → a, a+step, ..., ≤ b.
+std::vector<double> ParseRange(const std::string& text, const std::string& flag) {
+  const std::vector<double> v = [&] {
+    if (std::count(text.begin(), text.end(), ':') != 2 || text.find(',') != std::string::npos) {
+      throw std::invalid_argument(
+          flag + ": expected a:b:step (three numbers separated by ':'), got '" + text + "'");
+    }
+    std::string t = text;
+    std::replace(t.begin(), t.end(), ':', ',');
+    return ParseNumberList(t, flag, 3);
+  }();
+  if (!(v[2] > 0.0) || !(v[1] >= v[0]) || !(v[0] >= 0.0) || !(v[1] <= 2000.0)) {
+    throw std::invalid_argument(flag + ": expected a:b:step with 0 <= a <= b <= 2000, step > 0");
+  }
+  // The count is computed (and bounded) first: a tiny step must not loop for ever.
+  const double count = std::floor((v[1] - v[0]) / v[2] + 1e-9) + 1.0;
+  if (count > kMaxAngles) {
+    throw std::invalid_argument(flag + ": more than " + std::to_string(kMaxAngles) +
+                                " angles (use a larger step)");
+  }
+  std::vector<double> out;
+  for (int i = 0; i < static_cast<int>(count); ++i) out.push_back(v[0] + i * v[2]);
+  return out;
+}
+
+// "aico | rrt | birrt ..." from the planner registry of this build.
+std::string PlannerChoices() {
+  std::string out;
+  for (planning::Planner p : planning::AvailablePlanners()) {
+    out += (out.empty() ? "" : " | ") + std::string(planning::PlannerName(p));
+  }
+  return out;
+}
+
+// "aico,birrt" → the planners, each at most once; "" → every planner of this build (with the OMPL
+// peers when it has them).
+std::vector<planning::Planner> ParsePlanners(const std::string& text) {
+  if (text.empty()) return planning::AvailablePlanners();
+  std::vector<planning::Planner> out;
+  std::stringstream ss(text);
+  std::string item;
+  while (std::getline(ss, item, ',')) {
+    const planning::Planner p =
+        ParseFlag("--planners", [&] { return planning::ParsePlanner(item); });
+    if (std::find(out.begin(), out.end(), p) != out.end()) {
+      throw std::invalid_argument("--planners: '" + item + "' is listed twice");
+    }
+    out.push_back(p);
+  }
+  if (out.empty() || text.back() == ',') {
+    throw std::invalid_argument("--planners: empty name in '" + text + "'");
+  }
+  return out;
+}
+
+// The header of the OMPL logs of `bench unwrap`: this host, the start time (UTC) and the options.
+OmplLogInfo BenchLogInfo(const planning::UnwrapBenchmarkOptions& options) {
+  OmplLogInfo info;
+  info.version = TOPOPLAN_VERSION;
+  char host[256] = {};
+  if (gethostname(host, sizeof host - 1) == 0 && host[0] != '\0') info.host = host;
+  for (char& c : info.host) {
+    if (c == ' ') c = '_';
+  }
+  const std::time_t now = std::time(nullptr);
+  char stamp[32];
+  std::tm utc{};
+  gmtime_r(&now, &utc);
+  std::strftime(stamp, sizeof stamp, "%Y-%m-%dT%H:%M:%S", &utc);
+  info.start_time = stamp;
+  std::ostringstream setup;
+  setup << "topoplan bench unwrap: thesis Fig. 4.5, collision checks to unwrap an arm coiled "
+           "around a pole\nscenario "
+        << options.scenario_path << "\nplanners";
+  for (planning::Planner p : options.planners) setup << " " << planning::PlannerName(p);
+  setup << "\nseeds 0.." << options.seeds - 1 << "\nrrt collision-check budget "
+        << (options.rrt_budget > 0 ? std::to_string(options.rrt_budget) : "of the scenario")
+        << "\npole perturbation " << options.perturb_m
+        << " m\nno time or memory limit per run (the RRTs stop at their budget)\n";
+  info.setup = setup.str();
+  info.rrt_budget = options.rrt_budget;
+  info.perturb_m = options.perturb_m;
+  return info;
+}
+
+void ProgressBar(int done, int total, const std::string& what) {
+  const int width = 30;
+  const int filled = total > 0 ? done * width / total : width;
+  Progress("[%s%s] %d/%d %s", std::string(filled, '#').c_str(),
+           std::string(width - filled, '.').c_str(), done, total, what.c_str());
+  if (done == total) EndProgress();
+}
+
+// "step,time_s,x,y,z": the moving object's position at every executed slice.
+std::string ObjectPositionsCsv(const planning::ReplanResult& r) {
+  std::ostringstream out;
+  out.precision(17);
+  out << "step,time_s,x,y,z\n";
+  for (size_t t = 0; t < r.object_positions.size(); ++t) {
+    const Eigen::Vector3d& p = r.object_positions[t];
+    out << t << "," << static_cast<double>(t) * r.executed.dt << "," << p.x() << "," << p.y() << ","
+        << p.z() << "\n";
+  }
+  return out.str();
+}
+
+// The plan report of a re-planning run: the executed path judged segment by segment (replan.h);
+// checks and iterations of the initial solve and every re-plan.
+planning::PlanReport ReplanPlanReport(const planning::ReplanResult& r) {
+  planning::PlanReport rep;
+  rep.planner = "aico";
+  rep.success = r.success;
+  rep.status = r.replans.empty() ? r.initial.status : r.replans.back().status;
+  rep.collision_checks = r.initial.collision_queries;
+  rep.iterations = r.initial.iterations;
+  rep.cost = r.replans.empty() ? r.initial.cost : r.replans.back().cost;
+  double wall_ms = r.initial_wall_ms;
+  for (const planning::ReplanStep& step : r.replans) {
+    rep.collision_checks += step.collision_queries;
+    rep.iterations += step.sweeps;
+    wall_ms += step.wall_ms;
+  }
+  rep.path_length = planning::PathLength(r.executed);
+  rep.time_s = wall_ms / 1000.0;
+  rep.start_writhe_total = r.start_writhe_total;
+  rep.final_writhe_total = r.final_writhe_total;
+  rep.min_clearance_m = r.verdict.min_clearance_m;
+  rep.path_collision_free = r.verdict.collision_free;
+  rep.cost_history = r.initial.cost_history;
+  rep.failure_reason = r.verdict.reason;
+  rep.failure_step = r.verdict.step;
+  rep.reach_error_m = r.verdict.reach_error_m;
+  rep.max_winding_jump_turns = r.verdict.max_winding_jump_turns;
+  rep.final_winding_turns = r.verdict.final_winding_turns;
+  return rep;
+}
+
+// `plan SCENARIO --moving-object NAME --object-path FILE`: re-planning while the object moves.
+ExitCode RunMovingObjectPlan(const PlanArgs& pa, const planning::ScenarioOverrides& overrides,
+                             planning::Planner planner) {
+  if (pa.moving_object.empty() || pa.object_path.empty()) {
+    throw std::invalid_argument("--moving-object and --object-path must be given together");
+  }
+  if (planner != planning::Planner::kAico) {
+    throw std::invalid_argument("--moving-object: re-planning uses AICO (--planner aico)");
+  }
+  if (!(pa.replan_period > 0.0) || !std::isfinite(pa.replan_period)) {
+    throw std::invalid_argument("--replan-period: expected a finite number of seconds > 0");
+  }
+  OutputDir out(pa.output, "-o");  // checked before any work
+  const planning::ObjectPath path =
+      ParseFlag("--object-path", [&] { return planning::ReadObjectPath(pa.object_path); });
+  const auto scenario = LoadScenarioArg(pa.scenario, overrides);
+  ParseFlag("--moving-object", [&] {  // unknown names list the valid ones
+    const std::vector<std::string> names = planning::ObjectNames(*scenario);
+    if (std::find(names.begin(), names.end(), pa.moving_object) == names.end()) {
+      planning::MoveObject(scenario.get(), pa.moving_object, Eigen::Vector3d::Zero());
+    }
+  });
+  const StopCheck stop(pa.timeout);
+  planning::ReplanOptions options;
+  options.replan_period_s = pa.replan_period;
+  options.sweeps = pa.replan_sweeps;
+  options.on_replan = [&stop](const planning::ReplanStep& step) {
+    Progress("re-plan at t = %.3f s: %d sweeps, %.1f ms", step.time_s, step.sweeps, step.wall_ms);
+    stop.Poll();
+  };
+  planning::ReplanResult r;
+  try {
+    r = planning::RunReplanning(scenario.get(), pa.moving_object, path, options);
+  } catch (const StopRequested& e) {
+    const nlohmann::json report = StoppedReportJson(
+        e,
+        {{"scenario", scenario->name}, {"planner", "aico"}, {"moving_object", pa.moving_object}});
+    WriteFileAtomic((fs::path(out.staging()) / "report.json").string(), report.dump(2) + "\n");
+    out.Commit();
+    std::fprintf(stderr, "\n%s: wrote %s/report.json\n", e.what(), pa.output.c_str());
+    if (pa.json) std::printf("%s\n", report.dump(2).c_str());
+    return e.timeout ? kExitFailed : kExitInterrupted;
+  }
+  EndProgress();
+  const planning::PlanReport rep = ReplanPlanReport(r);
+  nlohmann::json report = PlanReportJson(*scenario, rep, pa.seed);
+  nlohmann::json replans = nlohmann::json::array();
+  for (const planning::ReplanStep& step : r.replans) {
+    replans.push_back(
+        {{"time_s", step.time_s},
+         {"object_position",
+          {step.object_position.x(), step.object_position.y(), step.object_position.z()}},
+         {"sweeps", step.sweeps},
+         {"status", planning::StatusName(step.status)},
+         {"cost", step.cost},
+         {"cpu_ms", step.cpu_ms},
+         {"wall_ms", step.wall_ms}});
+  }
+  report["replanning"] = {{"object", pa.moving_object},
+                          {"object_path", pa.object_path},
+                          {"count", r.replans.size()},
+                          {"period_s", r.period_s},
+                          {"sweeps", options.sweeps},
+                          {"rate_hz", r.rate_hz},
+                          {"wall_rate_hz", r.wall_rate_hz},
+                          {"median_ms", r.median_cpu_ms},
+                          {"max_ms", r.max_cpu_ms},
+                          {"median_wall_ms", r.median_wall_ms},
+                          {"max_wall_ms", r.max_wall_ms},
+                          {"initial_solve_ms", r.initial_cpu_ms},
+                          {"passed_through", r.passed_through},
+                          {"replans", replans}};
+  const std::string dir = out.staging();
+  WriteFileAtomic((fs::path(dir) / "trajectory.csv").string(),
+                  TrajectoryCsv(*scenario, r.executed));
+  WriteFileAtomic((fs::path(dir) / "object_path.csv").string(), ObjectPositionsCsv(r));
+  WriteFileAtomic((fs::path(dir) / "report.json").string(), report.dump(2) + "\n");
+  if (pa.frames) {
+    MovingObjectFrames moving;
+    moving.object = r.object;
+    moving.positions = r.object_positions;
+    WritePlanFrames(
+        *scenario, r.executed, dir,
+        [&stop](const render::Image&, const render::Image*) { stop.Poll(); }, &moving,
+        PlanFrameOptions{.stamp = !pa.no_stamp, .formats = pa.formats});
+  }
+  out.Commit();
+  if (pa.json) {
+    std::printf("%s\n", report.dump(2).c_str());
+  } else {
+    std::printf("%s\n", PlanSummaryLine(*scenario, rep).c_str());
+    std::printf(
+        "re-planning: %zu re-plans every %.3f s, %.1f per CPU second, %.1f per wall second "
+        "(median %.1f ms, max %.1f ms CPU), %s the %s\n",
+        r.replans.size(), r.period_s, r.rate_hz, r.wall_rate_hz, r.median_cpu_ms, r.max_cpu_ms,
+        r.passed_through ? "passed through" : "did not pass through", pa.moving_object.c_str());
+    std::printf("wrote %s/trajectory.csv, %s/object_path.csv, %s/report.json\n", pa.output.c_str(),
+                pa.output.c_str(), pa.output.c_str());
+  }
+  return r.success ? kExitOk : kExitFailed;
+}
+
+}  // namespace
+
+void AddPlanCommands(CLI::App* root, CommandList* commands) {
+  // plan ------------------------------------------------------------------------------------------
+  auto pa = std::make_shared<PlanArgs>();
+  CLI::App* plan = root->add_subcommand(
+      "plan", "Plan a scenario with AICO (topology task variables) or an RRT baseline");
+  plan->add_option("SCENARIO", pa->scenario,
+                   "scenario JSON file, or a name in assets/scenarios/ (unwrap, "
+                   "reach_through_ring)")
+      ->required();
+  plan->add_option("--planner", pa->planner,
+                   PlannerChoices() +
+                       " (default aico; the OMPL peers need a build with "
+                       "libompl-dev)");
+  plan->add_option("--seed", pa->seed, "seed of the RRTs' random generator (default 0)");
+  plan->add_option("--start-wrap", pa->start_wrap,
+                   "start coil of a coil-start scenario (unwrap): angle to unwrap in degrees")
+      ->check(FiniteIn(0.0, 2000.0));
+  plan->add_option("--aico-stop", pa->aico_stop, kAicoStopHelp)
+      ->check(CLI::IsMember({"solved", "converged"}));
+  AddTimeoutFlag(plan, &pa->timeout);
+  plan->add_option("-o,--output", pa->output, "output folder")->required();
+  AddRobotInputFlags(plan, &pa->robot_input, nullptr);
+  plan->add_flag("--frames", pa->frames,
+                 "also render DIR/frames/*.png, DIR/heatmaps/*.png (writhe per frame) and "
+                 "DIR/writhe_cost.png");
+  plan->add_flag("--no-stamp", pa->no_stamp,
+                 "with --frames: no scenario name and time stamp in the frames' corner");
+  plan->add_flag("--json", pa->json, "print report.json to stdout");
+  plan->add_option("--moving-object", pa->moving_object,
+                   "re-plan while this object of the scenario (e.g. ring, pole) follows "
+                   "--object-path (AICO, receding horizon, warm-started)");
+  plan->add_option("--object-path", pa->object_path,
+                   "CSV 't,x,y,z' (header, then seconds of plan time and the object's world "
+                   "position in m; linear in between, held after the last row)");
+  plan->add_option("--replan-period", pa->replan_period,
+                   "plan time between re-plans in seconds, rounded to whole time slices "
+                   "(default 0.1)");
+  plan->add_option("--replan-sweeps", pa->replan_sweeps,
+                   "AICO sweep budget of each re-plan (default 3)")
+      ->check(CLI::Range(1, 1000));
+  AddFormatsFlag(plan, &pa->formats);
+  plan->footer(
+      "Writes DIR/trajectory.csv (step,time_s,<joints in robot order>) and DIR/report.json\n"
+      "(planner, success, collision_checks, iterations, cost, time_s, start_writhe_total,\n"
+      "final_writhe_total, min_clearance_m, ...). Exit codes: 0 success, 1 the planner failed\n"
+      "(no path, collision, goal not met), 2 bad scenario/flags, 3 no GL context for --frames.\n"
+      "With --moving-object NAME --object-path FILE the arm executes its plan while the object\n"
+      "moves; every --replan-period AICO re-plans from the current state, warm-started with the\n"
+      "previous plan shifted. trajectory.csv is the executed motion, DIR/object_path.csv the\n"
+      "object per step, report.json gains \"replanning\": {count, rate_hz (re-plans per CPU\n"
+      "second), wall_rate_hz (per wall second), median_ms, max_ms (CPU), median_wall_ms,\n"
+      "max_wall_ms, passed_through, ...}; --frames shows the object moving.");
+  commands->push_back(
+      {plan, [pa]() {
+         planning::ScenarioOverrides overrides;
+         if (!std::isnan(pa->start_wrap)) overrides.start_wrap_deg = pa->start_wrap;
+         overrides.stop_when_solved = ParseAicoStop(pa->aico_stop);
+         const planning::Planner planner =
+             ParseFlag("--planner", [&] { return planning::ParsePlanner(pa->planner); });
+         overrides.package_paths = PackagePaths(pa->robot_input.package_paths);
+         overrides.srdf = pa->robot_input.srdf;
+         if (!pa->moving_object.empty() || !pa->object_path.empty()) {
+           return RunMovingObjectPlan(*pa, overrides, planner);
+         }
+         OutputDir out(pa->output, "-o");  // checked before any work
+         const StopCheck stop(pa->timeout);
+         const auto scenario = LoadScenarioArg(pa->scenario, overrides);
+         planning::PlanResult result;
+         try {
+           result = planning::RunPlanner(
+               *scenario, planner, pa->seed,
+               [&stop](int sweep, double cost, bool accepted, const planning::Trajectory&) {
+                 Progress("sweep %3d  cost %-12.6g %s", sweep, cost,
+                          accepted ? "accepted" : "rejected");
+                 stop.Poll();
+               },
+               [&stop] { stop.Poll(); });
+         } catch (const StopRequested& e) {
+           const nlohmann::json report = StoppedReportJson(
+               e, {{"scenario", scenario->name},
+                   {"planner", planning::PlannerName(planner)},
+                   {"seed", pa->seed},
+                   {"attempts", 1},
+                   {"failure_reason", e.timeout ? "budget_exhausted" : "interrupted"}});
+           WriteFileAtomic((fs::path(out.staging()) / "report.json").string(),
+                           report.dump(2) + "\n");
+           out.Commit();
+           std::fprintf(stderr, "\n%s: wrote %s/report.json\n", e.what(), pa->output.c_str());
+           if (pa->json) std::printf("%s\n", report.dump(2).c_str());
+           return e.timeout ? kExitFailed : kExitInterrupted;
+         }
+         if (planner == planning::Planner::kAico) EndProgress();
+         const nlohmann::json report = WritePlanOutputs(*scenario, result, pa->seed, out.staging());
+         if (pa->frames && result.trajectory.num_points() > 0) {
+           WritePlanFrames(
+               *scenario, result.trajectory, out.staging(),
+               [&stop](const render::Image&, const render::Image*) { stop.Poll(); }, nullptr,
+               PlanFrameOptions{.stamp = !pa->no_stamp, .formats = pa->formats});
+         }
+         out.Commit();
+         if (pa->json) {
+           std::printf("%s\n", report.dump(2).c_str());
+         } else {
+           std::printf("%s\n", PlanSummaryLine(*scenario, result.report).c_str());
+           std::printf("wrote %s/trajectory.csv, %s/report.json\n", pa->output.c_str(),
+                       pa->output.c_str());
+         }
+         return result.report.success ? kExitOk : kExitFailed;
+       }});
+
+  // bench unwrap ----------------------------------------------------------------------------------
+  CLI::App* bench = root->add_subcommand("bench", "Benchmarks that reproduce thesis figures");
+  bench->require_subcommand(1);
+  auto ba = std::make_shared<BenchArgs>();
+  CLI::App* unwrap = bench->add_subcommand(
+      "unwrap", "Thesis Fig. 4.5: collision checks vs angle to unwrap, AICO vs RRT vs BiRRT");
+  unwrap->add_option("--angles", ba->angles, "start wraps a:b:step in degrees (default 0:900:90)");
+  unwrap->add_option("--seeds", ba->seeds, "runs per angle and planner, seeds 0..N-1 (default 3)")
+      ->check(CLI::Range(1, 1000));
+  unwrap->add_option(
+      "--planners", ba->planners,
+      "comma-separated planners, each at most once (default: all of this build: " +
+          [] {
+            std::string c = PlannerChoices();
+            std::replace(c.begin(), c.end(), '|', ',');
+            c.erase(std::remove(c.begin(), c.end(), ' '), c.end());
+            return c;
+          }() +
+          ")");
+  unwrap
+      ->add_option("--budget", ba->budget,
+                   "collision-check budget of the RRTs (default: the scenario's, 100000)")
+      ->check(CLI::Range(1L, 1000000000L));
+  unwrap->add_option("--perturb", ba->perturb,
+                     "move the pole of each seed by a random offset of at most M metres "
+                     "perpendicular to its axis (seeded, reproducible; 0 <= M <= 1, default 0)");
+  unwrap->add_option("--aico-stop", ba->aico_stop, kAicoStopHelp)
+      ->check(CLI::IsMember({"solved", "converged"}));
+  AddTimeoutFlag(unwrap, &ba->timeout);
+  unwrap->add_option("--ompl-log", ba->ompl_log,
+                     "also write OMPL benchmark logs (ompl_benchmark_statistics.py, Planner "
+                     "Arena): FILE_<angle>deg.log, one experiment per angle");
+  unwrap->add_option("-o,--output", ba->output, "output folder")->required();
+  AddFormatsFlag(unwrap, &ba->formats);
+  unwrap->footer(
+      "Writes DIR/unwrap.csv (angle_deg,planner,seed,success,failure_reason,collision_checks,\n"
+      "narrow_phase_calls,time_s,path_length,reach_error_m,pole_offset_m) and\n"
+      "DIR/unwrap.png (three panels over the angle, log scale: collision checks, narrow-phase\n"
+      "calls, wall time; median and interquartile band over the seeds, one colour per planner,\n"
+      "crosses where a run failed; --formats adds unwrap.svg/.pdf). time_s is wall-clock;\n"
+      "everything else is deterministic. Exit 0 when the benchmark ran (failed runs are data, not "
+      "errors).\n"
+      "--ompl-log FILE: FILE with _<angle>deg before its extension per angle, in OMPL's\n"
+      "benchmark log format (one planner per topoplan planner, one run per seed).");
+  commands->push_back(
+      {unwrap, [ba, unwrap]() {
+         planning::UnwrapBenchmarkOptions options;
+         options.angles_deg = ParseRange(ba->angles, "--angles");
+         options.planners = ParsePlanners(ba->planners);
+         options.scenario_path = ResolveScenarioPath("unwrap");
+         options.search_roots = {AssetRoot()};
+         options.seeds = ba->seeds;
+         options.rrt_budget = ba->budget;
+         if (!(ba->perturb >= 0.0 && ba->perturb <= kMaxPerturbM)) {
+           throw std::invalid_argument("--perturb: expected a distance in metres in [0, 1]");
+         }
+         const long runs = static_cast<long>(options.angles_deg.size()) *
+                           static_cast<long>(options.planners.size()) * ba->seeds;
+         if (runs > kMaxBenchRuns) {
+           throw std::invalid_argument("--seeds: " + std::to_string(runs) +
+                                       " runs (angles x planners x seeds), more than " +
+                                       std::to_string(kMaxBenchRuns));
+         }
+         options.perturb_m = ba->perturb;
+         options.aico_stop_when_solved = ParseAicoStop(ba->aico_stop);
+         OutputDir out(ba->output, "-o");  // checked before any work
+         std::unique_ptr<OutputDir> log_dir;
+         OmplLogInfo log_info;
+         if (unwrap->count("--ompl-log") > 0) {  // "" is refused, not ignored
+           CheckOutputFile(ba->ompl_log, "--ompl-log");
+           const fs::path folder = fs::path(ba->ompl_log).parent_path();
+           log_dir =
+               std::make_unique<OutputDir>(folder.empty() ? "." : folder.string(), "--ompl-log");
+           log_info = BenchLogInfo(options);
+         }
+         const StopCheck stop(ba->timeout);
+         planning::UnwrapBenchmarkResult finished;  // the runs completed so far
+         options.progress = [&](int done, int total, const planning::UnwrapRun& run) {
+           char what[96];
+           std::snprintf(what, sizeof(what), "%s @ %.0f deg seed %d",
+                         planning::PlannerName(run.planner), run.angle_deg, run.seed);
+           ProgressBar(done, total, what);
+           finished.runs.push_back(run);
+           if (done < total) stop.Poll();  // after the last run the sweep is complete
+         };
+         const int total = static_cast<int>(runs);
+         ProgressBar(0, total, "");
+         planning::UnwrapBenchmarkResult result;
+         try {
+           result = planning::RunUnwrapBenchmark(options);
+         } catch (const StopRequested& e) {
+           // Keep the finished rows under a name that says so (no figure of a partial sweep);
+           // unwrap.csv and unwrap.png of an earlier complete run in DIR stay as they were.
+           WriteFileAtomic((fs::path(out.staging()) / "unwrap.partial.csv").string(),
+                           UnwrapCsv(finished));
+           out.Commit();
+           std::fprintf(stderr, "\n%s: wrote %s/unwrap.partial.csv (%zu of %d runs)\n", e.what(),
+                        ba->output.c_str(), finished.runs.size(), total);
+           return e.timeout ? kExitFailed : kExitInterrupted;
+         }
+         WriteFileAtomic((fs::path(out.staging()) / "unwrap.csv").string(), UnwrapCsv(result));
+         if (const auto figure = UnwrapFigure(result)) {
+           const std::string png = (fs::path(out.staging()) / "unwrap.png").string();
+           render::WriteFigure(png, *figure);
+           WriteVectorFormats(png, *figure, ba->formats);
+         }
+         if (log_dir) {
+           for (size_t a = 0; a < result.angles_deg.size(); ++a) {
+             const std::string name =
+                 fs::path(OmplLogPath(ba->ompl_log, result.angles_deg[a])).filename().string();
+             WriteFileAtomic((fs::path(log_dir->staging()) / name).string(),
+                             OmplBenchmarkLog(result, a, log_info));
+           }
+         }
+         out.Commit();
+         if (log_dir) {
+           log_dir->Commit();
+           std::printf("wrote %zu OMPL benchmark logs %s\n", result.angles_deg.size(),
+                       OmplLogPath(ba->ompl_log, result.angles_deg.front()).c_str());
+         }
+         std::printf("wrote %s/unwrap.csv and %s/unwrap.png (%d runs)\n", ba->output.c_str(),
+                     ba->output.c_str(), total);
+         return kExitOk;
+       }});
+}
+
+}  // namespace app

@@ -1,0 +1,60 @@
+// Subcommand plumbing shared by every `topoplan` command: exit codes, error kinds, registration.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <functional>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "planning/json_reader.h"
+#include "render/offscreen_context.h"
+
+namespace app {
+
+// Exit codes: 0 success; 1 ran but the task failed (no path, not converged, unstable
+// grasp, images differ) or hit its --timeout; 2 bad input or usage; 3 environment error (no GL
+// context, missing asset); 130 stopped by SIGINT/SIGTERM (app/cli/io.h StopCheck).
+enum ExitCode : int {
+  kExitOk = 0,
+  kExitFailed = 1,
+  kExitBadInput = 2,
+  kExitEnvironment = 3,
+  kExitInterrupted = 130
+};
+
+// Environment problems (no GL context, no system font, a missing installed asset): exit code 3.
+// The one class is render's (where a GL context fails); app code throws and RunGuarded catches it
+// under this name. Every other exception that reaches RunGuarded (std::invalid_argument from
+// loaders, ...) is bad input: exit code 2.
+using render::EnvironmentError;
+
+// A registered subcommand: `run` is called when `sub` was parsed and returns the exit code.
+struct Command {
+  CLI::App* sub = nullptr;
+  std::function<int()> run;
+};
+using CommandList = std::vector<Command>;
+
+// Registration functions, one per command family (app/cmd_*.cc).
+void AddTopologyCommands(CLI::App* root, CommandList* commands);  // writhe, winding
+void AddDemoCommand(CLI::App* root, CommandList* commands);       // demo
+void AddRenderCommands(CLI::App* root, CommandList* commands);    // render, heatmap, diff
+void AddGraspCommands(CLI::App* root, CommandList* commands);     // grasp synthesize|transfer
+void AddRobotCommands(CLI::App* root, CommandList* commands);     // fk, check
+void AddPlanCommands(CLI::App* root, CommandList* commands);      // plan, bench unwrap
+void AddViewCommand(CLI::App* root, CommandList* commands);       // view (app/viewer/cmd_view.cc)
+
+// Calls parse() and prefixes any std::invalid_argument it throws with the flag's name
+// ("--method: unknown transfer method 'x' (...)"): the library names values, the CLI names flags.
+template <typename F>
+auto ParseFlag(const std::string& flag, F&& parse) -> decltype(parse()) {
+  return planning::PrefixErrors(flag, std::forward<F>(parse));
+}
+
+// Runs `run`, mapping exceptions to exit codes and printing "topoplan <name>: error: ..." to
+// stderr.
+int RunGuarded(const std::string& name, const std::function<int()>& run);
+
+}  // namespace app

@@ -1,4 +1,0 @@
-// topoplan: topology-based motion planning and grasp transfer, with offscreen rendering.
-#include "app/cli.h"
-
-int main(int argc, char** argv) { return app::RunCommandLine(argc, argv); }

@@ -1,0 +1,376 @@
+#include "planning/motion/planner.h"
+
+#include <cassert>
+#include <chrono>
+#include <cmath>
+#include <random>
+#include <stdexcept>
+
+#include "planning/collision/collision.h"
+#include "planning/enum_names.h"
+#include "planning/motion/internal/ompl_planners.h"
+#include "planning/robot/kinematics.h"
+#include "planning/motion/rrt.h"
+#include "topology/winding.h"
+
+namespace planning {
+
+inline constexpr EnumName<Planner> kPlannerNames[] = {
+    {Planner::kAico, "aico"},
+    {Planner::kRrt, "rrt"},
+    {Planner::kBiRrt, "birrt"},
+    {Planner::kOmplRrt, "ompl-rrt"},
+    {Planner::kOmplRrtConnect, "ompl-rrtconnect"},
+};
+constexpr std::span<const EnumName<Planner>> EnumNames(Planner) { return kPlannerNames; }
+
+namespace {
+
+// RRT iterations between two polls (about 20 validity checks each at most).
+constexpr std::int64_t kRrtPollIterations = 16;
+
+bool NeedsOmpl(Planner p) { return p == Planner::kOmplRrt || p == Planner::kOmplRrtConnect; }
+
+}  // namespace
+
+ValidityFn ValidityChecker(const Scenario& s, CollisionData* coll, KinematicsData* kin) {
+  const Eigen::VectorXd lo = LowerLimits(s.robot), hi = UpperLimits(s.robot);
+  return [&s, coll, kin, lo, hi](const Eigen::VectorXd& q) {
+    for (Eigen::Index k = 0; k < q.size(); ++k) {
+      if (q[k] < lo[k] || q[k] > hi[k]) return false;
+    }
+    ForwardKinematics(s.robot, q, kin);
+    return !InCollision(s.robot, *kin, coll);
+  };
+}
+
+RrtProblem ScenarioRrtProblem(const Scenario& s) {
+  RrtProblem rp;
+  rp.lower = LowerLimits(s.robot);
+  rp.upper = UpperLimits(s.robot);
+  for (Eigen::Index k = 0; k < rp.lower.size(); ++k) {  // continuous joints: one turn
+    if (!std::isfinite(rp.lower[k])) rp.lower[k] = s.problem.q0[k] - M_PI;
+    if (!std::isfinite(rp.upper[k])) rp.upper[k] = s.problem.q0[k] + M_PI;
+  }
+  rp.start = s.problem.q0;
+  rp.goal = s.goal_q;
+  return rp;
+}
+
+std::vector<Planner> AvailablePlanners() {
+  std::vector<Planner> out;
+  for (const EnumName<Planner>& e : kPlannerNames) {
+    if (!NeedsOmpl(e.value) || OmplAvailable()) out.push_back(e.value);
+  }
+  return out;
+}
+
+Planner ParsePlanner(const std::string& name) {
+  const Planner p = ParseEnum<Planner>(name, "planner");
+  if (NeedsOmpl(p) && !OmplAvailable()) {
+    throw std::invalid_argument("planner '" + name +
+                                "': topoplan was built without OMPL (apt-get install "
+                                "libompl-dev, then re-run cmake)");
+  }
+  return p;
+}
+
+bool OmplAvailable() {
+#ifdef TOPOPLAN_HAVE_OMPL
+  return true;
+#else
+  return false;
+#endif
+}
+
+const char* PlannerName(Planner planner) { return ToName(planner); }
+
+inline constexpr EnumName<FailureReason> kFailureReasonNames[] = {
+    {FailureReason::kNone, "none"},
+    {FailureReason::kJointLimits, "joint_limits"},
+    {FailureReason::kCollision, "collision"},
+    {FailureReason::kTunnelled, "tunnelled"},
+    {FailureReason::kWritheNotReached, "writhe_not_reached"},
+    {FailureReason::kReachError, "reach_error"},
+    {FailureReason::kBudgetExhausted, "budget_exhausted"},
+    {FailureReason::kDiverged, "diverged"},
+    {FailureReason::kInvalidInput, "invalid_input"},
+};
+constexpr std::span<const EnumName<FailureReason>> EnumNames(FailureReason) {
+  return kFailureReasonNames;
+}
+
+const char* FailureReasonName(FailureReason reason) { return ToName(reason); }
+
+PlanVerdict JudgePlan(const Scenario& s, const Trajectory& path) {
+  if (path.num_points() == 0) throw std::invalid_argument("JudgePlan: empty path");
+  const SuccessCriteria& c = s.success;
+  PlanVerdict v;
+  CollisionData coll(s.robot, s.env, s.collision);
+  KinematicsData kin(s.robot);
+  const Eigen::VectorXd lo = LowerLimits(s.robot), hi = UpperLimits(s.robot);
+  const bool winding = c.winding_max_jump > 0.0 || c.winding_final_below > 0.0;
+  const topology::Axis axis = winding ? ReportAxis(s) : topology::Axis{};
+  Eigen::Matrix3Xd points;
+  std::vector<ProximityPair> pairs;
+  const Trajectory dense = Densify(path, s.check_resolution);
+  const auto fail = [&v](FailureReason reason, int k) {
+    if (v.reason != FailureReason::kNone) return;
+    v.reason = reason;
+    v.step = k;
+  };
+  double w_prev = 0.0;
+  int tunnel_step = -1;  // first resampled state after a winding jump
+  for (int k = 0; k < dense.num_points(); ++k) {
+    const auto q = dense.q.col(k);
+    if (((q.array() < lo.array()) || (q.array() > hi.array())).any()) {
+      fail(FailureReason::kJointLimits, k);
+      v.collision_free = false;
+    }
+    ForwardKinematics(s.robot, q, &kin);
+    if (InCollision(s.robot, kin, &coll)) {
+      fail(FailureReason::kCollision, k);
+      v.collision_free = false;
+      v.min_clearance_m = std::min(v.min_clearance_m, 0.0);
+    } else {  // (no penetration-depth queries: FCL's EPA can abort on degenerate contacts)
+      ComputeProximity(s.robot, kin, 0.2, &coll, &pairs);
+      for (const ProximityPair& p : pairs) {
+        v.min_clearance_m = std::min(v.min_clearance_m, p.distance);
+      }
+    }
+    if (!winding) continue;
+    ChainPoints(s.robot, kin, s.report_chain, &points);
+    const double w = topology::WindingNumber(points, axis);
+    if (k > 0) {
+      const double jump = std::abs(w - w_prev);
+      v.max_winding_jump_turns = std::max(v.max_winding_jump_turns, jump);
+      if (c.winding_max_jump > 0.0 && jump >= c.winding_max_jump && tunnel_step < 0)
+        tunnel_step = k;
+    }
+    w_prev = w;
+  }
+  // A winding jump means the arm passed through the pole (or off its end): name that, not the
+  // collision of the states on the way through.
+  if (tunnel_step >= 0 &&
+      (v.reason == FailureReason::kNone || v.reason == FailureReason::kCollision)) {
+    v.reason = FailureReason::kTunnelled;
+    v.step = tunnel_step;
+  }
+  v.final_winding_turns = w_prev;
+  const EndState end = CheckEndState(s, path.q.col(path.num_points() - 1), false);
+  v.final_writhe_total = end.writhe_total;
+  v.writhe_peak_row = end.writhe_peak_row;
+  v.writhe_peak_col = end.writhe_peak_col;
+  v.writhe_peak_value = end.writhe_peak_value;
+  if (!end.writhe_reached) fail(FailureReason::kWritheNotReached, -1);
+  v.reach_error_m = end.reach_error_m;
+  if (!end.reached) fail(FailureReason::kReachError, -1);
+  return v;
+}
+
+PlanResult RunPlanner(const Scenario& s, Planner planner, unsigned seed,
+                      const AicoCallback& callback, const PollFn& poll) {
+  PlanResult out;
+  PlanReport& rep = out.report;
+  rep.planner = PlannerName(planner);
+  CollisionData coll(s.robot, s.env, s.collision);
+  KinematicsData kin(s.robot);
+  const ValidityFn valid = ValidityChecker(s, &coll, &kin);
+  const auto t0 = std::chrono::steady_clock::now();
+  bool found = false;
+  bool judged = false;  // AICO: the report holds the last attempt's verdict
+  if (planner == Planner::kAico) {
+    out = RunAicoAttempts(s, callback);
+    judged = true;
+    found = out.trajectory.num_points() > 0;
+  } else {
+    const RrtProblem rp = ScenarioRrtProblem(s);
+    RrtResult r;
+    switch (planner) {
+      case Planner::kRrt:
+      case Planner::kBiRrt: {
+        // In chunks of iterations, polling between them (same result as one PlanRrt call).
+        RrtSolver solver(rp, s.rrt, valid, std::mt19937(seed), planner == Planner::kBiRrt);
+        while (!solver.done()) {
+          solver.Step(kRrtPollIterations);
+          if (poll) poll();
+        }
+        r = solver.result();
+        break;
+      }
+      case Planner::kOmplRrt:
+      case Planner::kOmplRrtConnect:
+#ifdef TOPOPLAN_HAVE_OMPL
+        r = internal::PlanOmpl(planner == Planner::kOmplRrt ? internal::OmplPlanner::kRrt
+                                                            : internal::OmplPlanner::kRrtConnect,
+                               rp, s.rrt, valid, seed);
+        break;
+#else
+        throw std::invalid_argument(std::string("planner '") + PlannerName(planner) +
+                                    "': topoplan was built without OMPL");
+#endif
+      case Planner::kAico:
+        break;
+    }
+    rep.status = r.status;
+    rep.iterations = r.iterations;
+    rep.collision_checks = coll.queries;
+    rep.narrow_phase_calls = coll.narrow_phase_calls;
+    out.trajectory = r.path;
+    found = r.status == SolveStatus::kConverged;
+    // RRT paths are checked edge by edge while planning; re-check at the scenario's resolution
+    // (on a separate, uncounted collision state).
+    if (found && out.trajectory.num_points() > 0) {
+      CollisionData recheck(s.robot, s.env, s.collision);
+      rep.path_collision_free =
+          PathIsValid(out.trajectory, s.check_resolution, ValidityChecker(s, &recheck, &kin));
+    }
+  }
+  rep.time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+
+  // Report quantities (not counted).
+  rep.start_writhe_total = ReportWritheTotal(s, s.problem.q0);
+  if (!judged) rep.final_writhe_total = rep.start_writhe_total;
+  rep.success = false;
+  if (out.trajectory.num_points() > 0) {
+    if (!judged) ApplyVerdict(JudgePlan(s, out.trajectory), &rep);
+    rep.path_length = PathLength(out.trajectory);
+    if (planner != Planner::kAico) rep.cost = rep.path_length;
+    rep.success = found && rep.path_collision_free && rep.failure_reason == FailureReason::kNone;
+  } else {
+    // No path: the arm stays at its start. The end quantities are those of q0 (so a failed run
+    // does not report the zeros of an unwrapped arm); the failure is named below from the status.
+    Trajectory start;
+    start.q = s.problem.q0;
+    ApplyVerdict(JudgePlan(s, start), &rep);
+    rep.failure_reason = FailureReason::kNone;
+    rep.failure_step = -1;
+  }
+  NameFailure(&rep);
+  return out;
+}
+
+void ApplyVerdict(const PlanVerdict& v, PlanReport* rep) {
+  rep->final_writhe_total = v.final_writhe_total;
+  rep->min_clearance_m = v.min_clearance_m;
+  rep->failure_reason = v.reason;
+  rep->failure_step = v.step;
+  rep->reach_error_m = v.reach_error_m;
+  rep->max_winding_jump_turns = v.max_winding_jump_turns;
+  rep->final_winding_turns = v.final_winding_turns;
+  rep->writhe_peak_row = v.writhe_peak_row;
+  rep->writhe_peak_col = v.writhe_peak_col;
+  rep->writhe_peak_value = v.writhe_peak_value;
+}
+
+namespace {
+
+// The test of an AICO trajectory as a finished plan: the counted validation at check_resolution
+// (a plan is only usable once checked), then, if `judge_invalid` or the path is valid, JudgePlan.
+struct AicoPathCheck {
+  bool valid = false;
+  bool judged = false;
+  PlanVerdict verdict;
+  long queries = 0, narrow_phase_calls = 0;
+  bool success() const { return valid && judged && verdict.reason == FailureReason::kNone; }
+};
+
+AicoPathCheck CheckAicoPath(const Scenario& s, const Trajectory& path, bool invalid_input,
+                            bool judge_invalid) {
+  AicoPathCheck c;
+  CollisionData coll(s.robot, s.env, s.collision);
+  KinematicsData kin(s.robot);
+  c.valid =
+      !invalid_input && PathIsValid(path, s.check_resolution, ValidityChecker(s, &coll, &kin));
+  c.queries = coll.queries;
+  c.narrow_phase_calls = coll.narrow_phase_calls;
+  if (c.valid || judge_invalid) {
+    c.verdict = JudgePlan(s, path);
+    c.judged = true;
+  }
+  return c;
+}
+
+bool FoldAicoAttempt(const AicoResult& r, const AicoPathCheck& check, PlanResult* out) {
+  assert(check.judged);
+  PlanReport& rep = out->report;
+  rep.status = r.status;
+  rep.iterations += r.iterations;
+  rep.cost = r.cost;
+  rep.cost_history = r.cost_history;
+  rep.collision_checks += r.collision_queries + check.queries;
+  rep.narrow_phase_calls += r.narrow_phase_calls + check.narrow_phase_calls;
+  out->trajectory = r.trajectory;
+  rep.path_collision_free = check.valid;
+  ApplyVerdict(check.verdict, &rep);
+  rep.path_length = PathLength(out->trajectory);
+  rep.success = rep.path_collision_free && rep.failure_reason == FailureReason::kNone;
+  return rep.success;
+}
+
+}  // namespace
+
+bool AddAicoAttempt(const Scenario& s, const AicoResult& r, PlanResult* out) {
+  const bool invalid_input = r.status == SolveStatus::kInvalidInput;
+  return FoldAicoAttempt(r, CheckAicoPath(s, r.trajectory, invalid_input, true), out);
+}
+
+PlanResult RunAicoAttempts(const Scenario& s, const AicoCallback& callback) {
+  PlanResult out;
+  PlanReport& rep = out.report;
+  rep.planner = PlannerName(Planner::kAico);
+  rep.attempts = 0;
+  for (int k = 0; k < static_cast<int>(s.aico_attempts.size()); ++k) {
+    const MotionProblem later = k > 0 ? AttemptProblem(s, k) : MotionProblem{};
+    ++rep.attempts;
+    AicoSolver solver(k > 0 ? later : s.problem, AttemptOptions(s, k));
+    long probe_queries = 0, probe_narrow = 0;  // validations of trajectories that were no success
+    bool solved = false;
+    while (!solver.done()) {
+      const AicoStep step = solver.Step();
+      if (callback) callback(step.sweep, step.cost, step.accepted, solver.trajectory());
+      if (!s.stop_when_solved || !step.accepted || solver.done()) continue;
+      const Trajectory& path = solver.trajectory();
+      if (!CheckEndState(s, path.q.col(path.num_points() - 1), false).ok()) continue;
+      const AicoPathCheck check = CheckAicoPath(s, path, false, false);
+      if (!check.success()) {
+        probe_queries += check.queries;
+        probe_narrow += check.narrow_phase_calls;
+        continue;
+      }
+      AicoResult r = solver.result();
+      r.status = SolveStatus::kSolved;
+      solved = FoldAicoAttempt(r, check, &out);
+      break;
+    }
+    if (!solved) solved = AddAicoAttempt(s, solver.result(), &out);
+    rep.collision_checks += probe_queries;
+    rep.narrow_phase_calls += probe_narrow;
+    if (solved) break;
+  }
+  return out;
+}
+
+void NameFailure(PlanReport* rep) {
+  if (rep->success) return;
+  switch (rep->status) {
+    case SolveStatus::kDiverged:
+      rep->failure_reason = FailureReason::kDiverged;
+      break;
+    case SolveStatus::kInvalidInput:
+      rep->failure_reason = FailureReason::kInvalidInput;
+      break;
+    case SolveStatus::kBudgetExhausted:
+      rep->failure_reason = FailureReason::kBudgetExhausted;
+      break;
+    case SolveStatus::kConverged:
+    case SolveStatus::kMaxIterations:
+    case SolveStatus::kSolved:
+      if (rep->failure_reason == FailureReason::kNone) {
+        rep->failure_reason = FailureReason::kBudgetExhausted;  // no path within the limits
+      }
+      break;
+  }
+}
+
+}  // namespace planning

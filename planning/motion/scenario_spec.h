@@ -1,0 +1,324 @@
+// Planning scenario files (assets/scenarios/*.json) as plain data: the one place that documents
+// every key. ParseScenarioSpec only reads and checks the file; planning/motion/scenario.h turns a spec
+// into a runnable Scenario (robot, objects, start, goal, MotionProblem).
+//
+// Units: angles in radians (except wrap_deg), lengths in metres, time in seconds. Unknown keys
+// anywhere are errors ("unknown key 'wrapdeg' (did you mean 'wrap_deg'?)"). Every error is a
+// std::invalid_argument "<file>: <JSON path>: <what>".
+//
+// Relative file paths (robot, objects[].urdf) are looked up next to the scenario file first, then
+// under each search root with leading "../" segments removed ("../robots/a.urdf" -> "<root>/robots/
+// a.urdf"); when none exists the error lists every path tried.
+//
+// Root object:
+//   name            string   default: the file's stem
+//   description     string   free text, ignored by the planner
+//   robot           string   URDF path (required; its "<stem>.chains.json" sidecar is loaded too)
+//   srdf            string   SRDF path (planning/robot/srdf.h): its disable_collisions pairs are added to
+//                            collision.disabled_pairs and its group_states are start poses.
+//                            Default: the robot's NAME.srdf or ../srdf/NAME.srdf if one exists
+//   package_paths   [string] extra roots for package:// mesh URIs of the robot (relative ones
+//                            are relative to the scenario's folder), tried before the defaults
+//   objects         array    of objects, default []:
+//     name          string   required, unique
+//     urdf          string   URDF path (required)
+//     xyz           [3]      position, m, default [0, 0, 0]
+//     rpy           [3]      roll, pitch, yaw, rad (R = Rz·Ry·Rx), default [0, 0, 0]
+//     collide       bool     default true; false: chains and rendering only
+//     capsules      object   collide with capsules along a chain of the object instead of its
+//                            geometry: {chain: string (required), radius: number, m (required)}
+//   robot_chains    array    extra robot chains appended to the URDF's (format: chain_json.h)
+//   collision       object   self: bool (default true); disabled_pairs: [[link_a, link_b], ...];
+//                            disabled_groups: [[prefix, ...], ...] (no self-collision checks
+//                            between any two links whose names start with prefixes of one group);
+//                            analytic_capsules: bool (default false): capsule–capsule distances
+//                            in closed form (CollisionOptions::analytic_capsules)
+//   writhe_report   object   the writhe report pair: {chain: robot chain, object: object name,
+//                            object_chain: chain of that object} (all strings, required)
+//   start           object   required; exactly one of
+//     q             [n] | "zero"   the start configuration
+//     pose          string   a group_state of the robot's SRDF
+//     coil          object   writhe continuation from q = 0 (needs writhe_report): small damped
+//                            Gauss–Newton steps that move the report pair's total writhe by `step`
+//                            under collision and joint-limit tasks until 360°·|writhe| = wrap_deg.
+//                            wrap_deg: number, degrees in [0, 2000], default 720;
+//                            step: number, default 0.05; margin: collision margin, m, default 0.05
+//   problem         object   T: integer 1..10000, default 50 (time steps); duration: s, default 2;
+//                            dynamic: bool, default true; h_rate: default 0.1; w_rate: default
+//                            1; q_rate: default 1e-10 (see MotionProblem, task.h)
+//   tasks           array    required; each:
+//     name          string   default "task"
+//     feature       object   {type, ...}, see "Features" below (required)
+//     order         integer  0 (position term, default) or 1 (velocity term)
+//     target        object   default {"type": "zero"}; type: "zero" | "value" (default when
+//                            "target" is given) | "interpolate" (linear from y(q0) to value) |
+//                            "final_pose" (linear from y(q0) to y(goal)) | "unwinding" (y along
+//                            the unwinding path: the coil continued from q0 to writhe 0, resampled
+//                            at equal joint-space arc length over t = 0..T; needs a coil start);
+//                            value: number (every component) or [dim] (for "value" and
+//                            "interpolate"); reach_at: number in (0, 1], default 1 (for
+//                            "interpolate" and "final_pose"): the target moves linearly from
+//                            y(q0) to its end value until t = reach_at·T and holds it after
+//     precision     number   ρ for t < T, >= 0, default 0
+//     final_precision number ρ at t = T, >= 0, default = precision
+//     final_steps   integer  K in 1..T, default 1: final_precision on the last K slices
+//                            t = T − K + 1..T (a settling phase at the end of the motion)
+//     between       integer  K in 0..64, default 0 (order-0 tasks): AICO also evaluates the task
+//                            at the K states interpolated between neighbouring slices (Task)
+//     max_jump      number   > 0 (order-0 tasks of dim 1): AICO rejects sweeps that add jumps of
+//                            the feature by max_jump or more between neighbouring states (Task)
+//   final_pose      object   the goal q̂_T (thesis §4.2.2; also the RRT goal), default: the start.
+//                            tasks: [task names] (required); alpha: default 0.05; prior_scale:
+//                            default 1; init: "start" (default) | "unwrapped" (the coil
+//                            continued to writhe 0; needs a coil start) | [n] configuration
+//   success         object   what a plan must meet (every planner alike; planner.h JudgePlan).
+//                            Always: the path resampled at check_resolution is collision-free and
+//                            within the joint limits. writhe_total_below: |total writhe of the
+//                            report pair| at the end (default: not checked); position: {task: name
+//                            (required), tolerance: m, default 0.05}: distance of the task's
+//                            feature to its final target; inside_box: name of a "box" task whose
+//                            point must end inside its box (centre ± half_extent; the task's
+//                            margin is for planning); winding (needs writhe_report): {max_jump:
+//                            turns > 0, default 0.1; final_below: turns > 0, default 0.1}: the
+//                            winding of the report chain about the line of the object chain (its
+//                            first to last point), along the resampled path, changes by less than
+//                            max_jump between neighbouring states (no tunnelling through the pole,
+//                            no coil slipping off its end) and ends below final_below in modulus
+//   aico            object   max_iterations: integer >= 1, default 20; tolerance: default 0.01;
+//                            damping: default 1; sweep_mode: "forwardly" (default) | "symmetric"
+//                            | "local_gauss_newton"; max_step: rad, default 1;
+//                            max_relocations: integer in [1, 100], default 5;
+//                            relocation_damping: in [1e-6, 1], default 0.3; rollout_init:
+//                            bool, default false; rollout_prior: default 100;
+//                            rollout_iterations: integer >= 1, default 10 (see aico.h);
+//                            stop_when_solved: bool, default false: after every accepted sweep
+//                            whose last slice meets the end conditions, validate and judge the
+//                            trajectory (as a finished plan, counted) and stop at the first that
+//                            is a success (status "solved"; planner.h RunAicoAttempts)
+//     retry         object   a second attempt when the first fails validation or the success
+//                            criteria: precision_scale: {task name: factor > 0, ...} (default
+//                            {}); max_iterations: integer >= 1, default aico.max_iterations
+//   rrt             object   range: rad, default 0 (auto); resolution: rad, default 0 (auto);
+//                            goal_bias: default 0.1; max_checks: integer >= 1, default 100000
+//   check_resolution number  edge resolution (rad) for validating output paths, default
+//                            rrt.resolution if > 0, else 0.02
+//
+// Value limits (checked when read; the message names the JSON path): every number is finite;
+// check_resolution and a non-zero rrt.resolution >= 1e-6 (check_resolution <= 10); rrt.range and
+// rrt.resolution <= 1000; goal_bias in [0, 1]; max_checks <= 1e9; aico max_iterations and
+// rollout_iterations <= 100000; precisions, rates, damping, priors and retry factors <= 1e12
+// (h_rate, w_rate >= 1e-12); duration in [1e-3, 1e4]; coil step in [1e-3, 10]; radii, margins and
+// tolerances in [0, 10]; aico tolerance in [1e-12, 1e6], max_step in [1e-9, 1000].
+//
+// Features (the keys besides "type"):
+//   position        link (required), offset [3] (default 0)
+//   axis_alignment  link (required), axis [3] (default [0, 0, 1]), direction [3] (required)
+//   joint_limits    margin (rad, default 0)
+//   joint_position  (none)
+//   box             link (required), offset [3] (default 0), center [3], half_extent [3]
+//                   (required), margin (m, default 0)
+//   writhe          chain, object, object_chain (required), output: "matrix" (default) | "total"
+//   winding         chain (required), and either axis_point [3] and axis_direction [3], or
+//                   object and object_chain (the line through that chain's first and last point)
+//   collision       margin (m, default 0.05)
+//   line_clearance  chain, object, object_chain (required), margin (m, default 0.05): the robot
+//                   chain's segments kept `margin` off the line through the first and last point
+//                   of the object chain (MakeLineClearanceFeature)
+#pragma once
+
+#include <Eigen/Core>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "planning/motion/aico.h"
+#include "planning/robot/chain_json.h"
+#include "planning/enum_names.h"
+#include "planning/features/feature.h"
+#include "planning/motion/final_pose.h"
+#include "planning/motion/rrt.h"
+
+namespace planning {
+
+// A name read from the file (link, chain, object, task) and where: "<file>: <JSON path>".
+struct SpecName {
+  std::string name;
+  std::string where;
+};
+
+struct ObjectSpec {
+  std::string name;
+  std::string urdf;  // resolved path (exists)
+  std::string where;
+  Eigen::Vector3d xyz = Eigen::Vector3d::Zero();
+  Eigen::Vector3d rpy = Eigen::Vector3d::Zero();
+  bool collide = true;
+  std::optional<SpecName> capsule_chain;  // set: collide with capsules along this chain
+  double capsule_radius = 0.0;
+};
+
+struct CollisionSpec {
+  bool self = true;
+  std::vector<std::pair<std::string, std::string>> disabled_pairs;
+  std::vector<std::vector<std::string>> disabled_groups;  // link-name prefixes
+  bool analytic_capsules = false;
+  std::string where;  // empty: no "collision" key
+};
+
+struct WritheReportSpec {
+  SpecName chain, object, object_chain;
+};
+
+enum class StartKind { kQ, kZero, kCoil, kPose };
+struct StartSpec {
+  StartKind kind = StartKind::kZero;
+  Eigen::VectorXd q;  // kQ (size checked against the robot at set-up)
+  std::string pose;   // kPose: group_state name (checked against the SRDF at set-up)
+  double wrap_deg = 720.0;
+  double step = 0.05;
+  double margin = 0.05;
+  std::string where;  // of "start" ("start.q" for kQ)
+};
+
+struct ProblemSpec {
+  int num_steps = 50;
+  double duration = 2.0;
+  bool dynamic = true;
+  double h_rate = 0.1;
+  double w_rate = 1.0;
+  double q_rate = 1e-10;
+};
+
+enum class FeatureType {
+  kPosition,
+  kAxisAlignment,
+  kJointLimits,
+  kJointPosition,
+  kBox,
+  kWrithe,
+  kWinding,
+  kCollision,
+  kLineClearance
+};
+inline constexpr EnumName<FeatureType> kFeatureTypeNames[] = {
+    {FeatureType::kPosition, "position"},
+    {FeatureType::kAxisAlignment, "axis_alignment"},
+    {FeatureType::kJointLimits, "joint_limits"},
+    {FeatureType::kJointPosition, "joint_position"},
+    {FeatureType::kBox, "box"},
+    {FeatureType::kWrithe, "writhe"},
+    {FeatureType::kWinding, "winding"},
+    {FeatureType::kCollision, "collision"},
+    {FeatureType::kLineClearance, "line_clearance"},
+};
+constexpr std::span<const EnumName<FeatureType>> EnumNames(FeatureType) {
+  return kFeatureTypeNames;
+}
+
+struct FeatureSpec {
+  FeatureType type = FeatureType::kJointPosition;
+  std::string where;
+  SpecName link, chain, object, object_chain;  // as the type needs
+  Eigen::Vector3d offset = Eigen::Vector3d::Zero();
+  Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();
+  Eigen::Vector3d direction = Eigen::Vector3d::Zero();
+  Eigen::Vector3d center = Eigen::Vector3d::Zero();
+  Eigen::Vector3d half_extent = Eigen::Vector3d::Zero();
+  Eigen::Vector3d axis_point = Eigen::Vector3d::Zero();
+  Eigen::Vector3d axis_direction = Eigen::Vector3d::Zero();
+  double margin = 0.0;  // the type's default when absent (collision: 0.05)
+  WritheOutput output = WritheOutput::kMatrix;
+};
+
+enum class TargetKind { kZero, kValue, kInterpolate, kFinalPose, kUnwinding };
+inline constexpr EnumName<TargetKind> kTargetKindNames[] = {
+    {TargetKind::kZero, "zero"},
+    {TargetKind::kValue, "value"},
+    {TargetKind::kInterpolate, "interpolate"},
+    {TargetKind::kFinalPose, "final_pose"},
+    {TargetKind::kUnwinding, "unwinding"},
+};
+constexpr std::span<const EnumName<TargetKind>> EnumNames(TargetKind) { return kTargetKindNames; }
+
+struct TargetSpec {
+  TargetKind kind = TargetKind::kZero;
+  Eigen::VectorXd value;  // kValue / kInterpolate
+  bool scalar = false;    // value was one number: every component
+  double reach_at = 1.0;  // kInterpolate / kFinalPose: fraction of T at which y_T is reached
+  std::string where;      // of "target"
+  std::string value_where;
+};
+
+struct TaskSpec {
+  std::string name = "task";
+  FeatureSpec feature;
+  int order = 0;
+  int between = 0;
+  double max_jump = 0.0;
+  double precision = 0.0;
+  double final_precision = 0.0;
+  int final_steps = 1;  // final_precision on the last final_steps slices (<= T, checked at set-up)
+  std::string final_steps_where;  // of "final_steps" (empty: not given)
+  TargetSpec target;
+  std::string where;
+};
+
+enum class FinalPoseInit { kStart, kUnwrapped, kQ };
+struct FinalPoseSpec {
+  std::vector<SpecName> tasks;  // empty: the goal is the start
+  FinalPoseOptions options;
+  FinalPoseInit init = FinalPoseInit::kStart;
+  Eigen::VectorXd init_q;
+  std::string init_where;
+};
+
+struct SuccessSpec {
+  double writhe_total_below = -1.0;  // < 0: not checked
+  std::optional<SpecName> position_task;
+  double position_tolerance = 0.05;
+  std::optional<SpecName> box_task;
+  double winding_max_jump = -1.0;     // turns; < 0: not checked
+  double winding_final_below = -1.0;  // turns; < 0: not checked
+  std::string winding_where;          // of "success.winding" (empty: not given)
+};
+
+// One AICO attempt: task precisions scaled by name, and its iteration limit.
+struct AicoAttemptSpec {
+  std::vector<std::pair<SpecName, double>> precision_scale;
+  int max_iterations = 20;
+};
+
+struct ScenarioSpec {
+  std::string name;
+  std::string source;  // the scenario file
+  std::string robot;   // resolved URDF path
+  std::string srdf;    // resolved SRDF path; empty: FindSrdf(robot) at set-up
+  // Resolved "package_paths".
+  std::vector<std::string> package_paths;
+  std::vector<ObjectSpec> objects;
+  std::vector<ChainDescription> robot_chains;
+  CollisionSpec collision;
+  std::optional<WritheReportSpec> writhe_report;
+  StartSpec start;
+  ProblemSpec problem;
+  std::vector<TaskSpec> tasks;
+  FinalPoseSpec final_pose;
+  SuccessSpec success;
+  AicoOptions aico;
+  std::vector<AicoAttemptSpec> aico_attempts;  // [0]: plain; [1]: "aico.retry" when given
+  bool aico_stop_when_solved = false;
+  RrtOptions rrt;
+  double check_resolution = 0.02;
+};
+
+// Reads and checks a scenario file (see above). Throws std::invalid_argument.
+ScenarioSpec ParseScenarioSpec(const std::string& path,
+                               const std::vector<std::string>& search_roots = {});
+
+// A relative `file` next to `base_dir`, else under each search root (leading "../" removed);
+// absolute paths as given. Throws "<where>: cannot find '<file>' (tried: a, b, ...)".
+std::string ResolveDataFile(const std::string& file, const std::string& base_dir,
+                            const std::vector<std::string>& search_roots, const std::string& where);
+
+}  // namespace planning

@@ -1,0 +1,157 @@
+// SRDF reading (planning/robot/srdf.h): TinyXML after the depth pre-scan.
+#include "planning/robot/srdf.h"
+
+#include <tinyxml.h>
+
+#include <filesystem>
+#include <set>
+#include <stdexcept>
+
+#include "planning/robot/internal/xml_text.h"
+#include "topology/input_limits.h"
+
+namespace planning {
+namespace {
+
+namespace fs = std::filesystem;
+using internal::XmlAttr;
+
+[[noreturn]] void Fail(const std::string& source, int line, const std::string& message) {
+  throw std::invalid_argument(source + (line > 0 ? ":" + std::to_string(line) : "") + ": " +
+                              message);
+}
+
+}  // namespace
+
+Srdf ParseSrdf(const std::string& xml, const std::string& source) {
+  internal::CheckXmlUtf8(xml, source);
+  internal::CheckXmlDepth(xml, source);
+  TiXmlDocument doc;
+  doc.Parse(xml.c_str());
+  if (doc.Error()) Fail(source, doc.ErrorRow(), std::string("XML error: ") + doc.ErrorDesc());
+  const TiXmlElement* robot = doc.RootElement();
+  if (!robot || std::string(robot->Value()) != "robot") {
+    Fail(source, robot ? robot->Row() : 0, "the root element of an SRDF must be <robot>");
+  }
+  Srdf s;
+  s.source = source;
+  s.robot_name = XmlAttr(robot, "name");
+  std::set<std::string> pose_names;
+  for (const TiXmlElement* e = robot->FirstChildElement(); e; e = e->NextSiblingElement()) {
+    const std::string tag = e->Value();
+    if (tag == "disable_collisions") {
+      SrdfPair p{XmlAttr(e, "link1"), XmlAttr(e, "link2"), e->Row()};
+      if (p.link1.empty() || p.link2.empty()) {
+        Fail(source, e->Row(), "<disable_collisions> needs link1= and link2=");
+      }
+      s.disabled_pairs.push_back(p);
+    } else if (tag == "group_state") {
+      SrdfPose pose{XmlAttr(e, "name"), XmlAttr(e, "group"), {}, e->Row()};
+      if (pose.name.empty()) Fail(source, e->Row(), "<group_state> without a name");
+      if (!pose_names.insert(pose.name).second) {
+        Fail(source, e->Row(), "duplicate group_state '" + pose.name + "'");
+      }
+      for (const TiXmlElement* j = e->FirstChildElement("joint"); j;
+           j = j->NextSiblingElement("joint")) {
+        SrdfJointValue v{XmlAttr(j, "name"), 0.0, j->Row()};
+        if (v.joint.empty())
+          Fail(source, j->Row(), "group_state '" + pose.name + "': <joint> without a name");
+        std::vector<double> numbers;
+        if (!internal::ParseNumbers(XmlAttr(j, "value"), 0, &numbers)) {
+          Fail(source, j->Row(),
+               "group_state '" + pose.name + "' joint '" + v.joint +
+                   "': value= must be finite numbers, got '" + XmlAttr(j, "value") + "'");
+        }
+        v.value = numbers[0];  // multi-valued joints are virtual ones, skipped in NamedPose
+        pose.joints.push_back(v);
+      }
+      s.poses.push_back(pose);
+    } else if (tag == "passive_joint") {
+      s.passive_joints.push_back(XmlAttr(e, "name"));
+    } else if (tag == "virtual_joint") {
+      s.virtual_joints.push_back(XmlAttr(e, "name"));
+    }
+  }
+  return s;
+}
+
+Srdf LoadSrdf(const std::string& path) {
+  return ParseSrdf(topology::ReadFileBounded(path, "SRDF"), path);
+}
+
+void CheckSrdf(const Srdf& srdf, const Robot& robot) {
+  std::set<std::string> links, joints;
+  for (const Link& l : robot.links) links.insert(l.name);
+  for (const Joint& j : robot.joints) joints.insert(j.name);
+  const std::set<std::string> virtuals(srdf.virtual_joints.begin(), srdf.virtual_joints.end());
+  std::string unknown;
+  int first_line = 0;
+  auto note = [&](const std::string& what, int line) {
+    if (first_line == 0) first_line = line;
+    if (unknown.size() < 2000) {
+      unknown += (unknown.empty() ? "" : ", ") + what + " (line " + std::to_string(line) + ")";
+    }
+  };
+  for (const SrdfPair& p : srdf.disabled_pairs) {
+    for (const std::string* l : {&p.link1, &p.link2}) {
+      if (!links.count(*l)) note("link '" + *l + "'", p.line);
+    }
+  }
+  for (const SrdfPose& pose : srdf.poses) {
+    for (const SrdfJointValue& v : pose.joints) {
+      if (!joints.count(v.joint) && !virtuals.count(v.joint)) {
+        note("joint '" + v.joint + "' in group_state '" + pose.name + "'", v.line);
+      }
+    }
+  }
+  if (!unknown.empty()) {
+    Fail(srdf.source, first_line,
+         "names that robot '" + robot.name + "' (" + robot.source + ") does not have: " + unknown);
+  }
+}
+
+std::vector<std::pair<std::string, std::string>> DisabledPairs(const Srdf& srdf) {
+  std::vector<std::pair<std::string, std::string>> out;
+  out.reserve(srdf.disabled_pairs.size());
+  for (const SrdfPair& p : srdf.disabled_pairs) out.emplace_back(p.link1, p.link2);
+  return out;
+}
+
+Eigen::VectorXd NamedPose(const Robot& robot, const Srdf& srdf, const std::string& name) {
+  const SrdfPose* pose = nullptr;
+  std::string names;
+  for (const SrdfPose& p : srdf.poses) {
+    if (p.name == name) pose = &p;
+    names += (names.empty() ? "" : ", ") + p.name;
+  }
+  if (!pose) {
+    throw std::invalid_argument(srdf.source + ": no group_state named '" + name + "' (" +
+                                (names.empty() ? "the SRDF has none" : "have: " + names) + ")");
+  }
+  Eigen::VectorXd q = Eigen::VectorXd::Zero(num_dofs(robot));
+  const std::set<std::string> virtuals(srdf.virtual_joints.begin(), srdf.virtual_joints.end());
+  for (const SrdfJointValue& v : pose->joints) {
+    if (virtuals.count(v.joint)) continue;
+    const Joint& j = robot.joints[FindJoint(robot, v.joint)];
+    if (j.is_mimic || j.dof < 0) continue;
+    if (v.value < j.limits.lower || v.value > j.limits.upper) {
+      Fail(srdf.source, v.line,
+           "group_state '" + name + "' joint '" + v.joint + "': value " + std::to_string(v.value) +
+               " outside its limits [" + std::to_string(j.limits.lower) + ", " +
+               std::to_string(j.limits.upper) + "]");
+    }
+    q[j.dof] = v.value;
+  }
+  return q;
+}
+
+std::string FindSrdf(const std::string& urdf_path) {
+  const fs::path urdf(urdf_path);
+  const std::string name = urdf.stem().string() + ".srdf";
+  for (const fs::path& p : {urdf.parent_path() / name, urdf.parent_path() / ".." / "srdf" / name}) {
+    if (fs::is_regular_file(p)) return p.lexically_normal().string();
+  }
+  return "";
+}
+
+}  // namespace planning

@@ -1,0 +1,85 @@
+// SRDF (the semantic robot description of MoveIt) for a robot loaded from URDF: which link pairs
+// are never collision-checked and named configurations.
+//
+// Read:
+//   <disable_collisions link1="A" link2="B" reason=".."/>  the pair (A, B) is never checked
+//                                                          (CollisionOptions::disabled_pairs);
+//   <group_state name="ready" group="arm">                 a named configuration: each <joint
+//     <joint name="j1" value="0.3"/> ...                   name= value=> sets that joint of q;
+//   </group_state>                                         joints it does not name stay 0;
+//   <passive_joint name="j"/>                              listed (Srdf::passive_joints) only: the
+//                                                          joint stays in q like any other;
+//   <virtual_joint name= type= parent_frame= child_link=>  listed only: the robot's root link stays
+//                                                          the world frame (the URDF has no free
+//                                                          base), and a group_state value for it
+//                                                          is skipped.
+// Ignored: <group>, <end_effector>, <disable_default_collisions>, <enable_collisions>,
+// <link_sphere_approximations> and any other element.
+//
+// Errors (std::invalid_argument, "FILE:LINE: ..."): unreadable file, XML errors, XML nested
+// deeper than 100 elements, a root other than <robot>, a <disable_collisions> without link1/link2,
+// a <group_state> without a name or with a duplicate name, a <joint> without name or whose value
+// is not a finite number. CheckSrdf (against a robot) lists every unknown link and joint name.
+//
+// Where an SRDF comes from when none is given (FindSrdf): NAME.srdf next to NAME.urdf, else
+// ../srdf/NAME.srdf (the sibling srdf/ folder of the URDF's folder).
+#pragma once
+
+#include <Eigen/Core>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "planning/robot/robot.h"
+
+namespace planning {
+
+struct SrdfPair {
+  std::string link1, link2;
+  int line = 0;
+};
+
+struct SrdfJointValue {
+  std::string joint;
+  double value = 0.0;  // rad or m
+  int line = 0;
+};
+
+struct SrdfPose {  // a <group_state>
+  std::string name, group;
+  std::vector<SrdfJointValue> joints;
+  int line = 0;
+};
+
+struct Srdf {
+  std::string source;      // file name for messages
+  std::string robot_name;  // <robot name=>
+  std::vector<SrdfPair> disabled_pairs;
+  std::vector<SrdfPose> poses;
+  std::vector<std::string> passive_joints;  // read, not used (see the file comment)
+  std::vector<std::string> virtual_joints;  // read, not used (see the file comment)
+};
+
+// Parses SRDF text; `source` names it in messages.
+Srdf ParseSrdf(const std::string& xml, const std::string& source);
+
+// Reads and parses an SRDF file.
+Srdf LoadSrdf(const std::string& path);
+
+// Throws std::invalid_argument "FILE:LINE: unknown link(s) ..." naming every link of a disabled
+// pair and every group_state joint (other than virtual joints) that `robot` does not have.
+void CheckSrdf(const Srdf& srdf, const Robot& robot);
+
+// The disabled pairs as (link1, link2) names, for CollisionOptions::disabled_pairs.
+std::vector<std::pair<std::string, std::string>> DisabledPairs(const Srdf& srdf);
+
+// Configuration q (size num_dofs) of the group_state `name`: zeros, with each named independent
+// joint set to its value (mimic and fixed joints are skipped: they follow q). Throws
+// std::invalid_argument listing the available names when there is no such pose, and naming the
+// joint when a value lies outside its limits.
+Eigen::VectorXd NamedPose(const Robot& robot, const Srdf& srdf, const std::string& name);
+
+// NAME.srdf next to `urdf_path` (NAME.urdf), else ../srdf/NAME.srdf; "" when neither exists.
+std::string FindSrdf(const std::string& urdf_path);
+
+}  // namespace planning

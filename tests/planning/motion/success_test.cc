@@ -1,0 +1,237 @@
+// The success criterion every planner is judged by (JudgePlan, planner.h): a path that tunnels
+// through the pole between time slices is rejected with `tunnelled`, a 0.1 m miss of the target
+// with `reach_error`, an exact hit passes; the winding keys of "success" are checked on load.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+
+#include "planning/robot/kinematics.h"
+#include "planning/motion/planner.h"
+#include "planning/motion/scenario.h"
+
+namespace planning {
+namespace {
+
+const std::string kAssets = TOPOPLAN_SOURCE_DIR "/assets/";
+
+std::string WriteTemp(const std::string& name, const std::string& text) {
+  const std::filesystem::path dir = std::filesystem::path(TOPOPLAN_BINARY_DIR) / "success_test_tmp";
+  std::filesystem::create_directories(dir);
+  const std::string path = (dir / name).string();
+  std::ofstream(path) << text;
+  return path;
+}
+
+// The shipped unwrap scenario from `wrap_deg`.
+std::unique_ptr<Scenario> Unwrap(double wrap_deg) {
+  ScenarioOverrides o;
+  o.start_wrap_deg = wrap_deg;
+  return LoadScenario(kAssets + "scenarios/unwrap.json", o);
+}
+
+TEST(JudgePlan, APathThatTunnelsThroughThePoleBetweenSlicesIsRejected) {
+  const auto s = Unwrap(360.0);
+  const auto unwrapped = Unwrap(0.0);
+  // Judged without the collision checker, so that only the winding criterion can see the arm
+  // passing through the pole (as it cannot when the pass falls between resampled states).
+  s->collision.self_collision = false;
+  s->collision.environment = false;
+  // Two slices: the coil (one turn about the pole) and the unwrapped pose. Straight-line
+  // interpolation in joint space pulls the arm through the pole instead of around its end.
+  Trajectory path;
+  path.q.resize(s->problem.q0.size(), 2);
+  path.q.col(0) = s->problem.q0;
+  path.q.col(1) = unwrapped->problem.q0;
+  EXPECT_NEAR(std::abs(ReportWinding(*s, path.q.col(0))), 1.0, 0.2);
+  EXPECT_LT(std::abs(ReportWinding(*s, path.q.col(1))), 0.2);
+  const PlanVerdict v = JudgePlan(*s, path);
+  EXPECT_EQ(v.reason, FailureReason::kTunnelled) << FailureReasonName(v.reason);
+  EXPECT_GT(v.step, 0);
+  EXPECT_GT(v.max_winding_jump_turns, 0.5);  // a whole turn lost in one resampled step
+}
+
+// With the collision checker on, the resampled states inside the pole collide, but the verdict
+// names the cause: the winding jump (tunnelled), not the collision.
+TEST(JudgePlan, TunnellingIsNamedBeforeTheCollisionOnTheWayThrough) {
+  const auto s = Unwrap(360.0);
+  const auto unwrapped = Unwrap(0.0);
+  Trajectory path;
+  path.q.resize(s->problem.q0.size(), 2);
+  path.q.col(0) = s->problem.q0;
+  path.q.col(1) = unwrapped->problem.q0;
+  const PlanVerdict v = JudgePlan(*s, path);
+  EXPECT_FALSE(v.collision_free);
+  EXPECT_EQ(v.reason, FailureReason::kTunnelled) << FailureReasonName(v.reason);
+  EXPECT_GT(v.step, 0);
+  EXPECT_GT(v.max_winding_jump_turns, 0.5);
+}
+
+// A 7-dof arm whose link-7 origin must reach `target`; the path is the single state q = 0.
+std::unique_ptr<Scenario> ReachScenario(const std::string& name, double miss_m) {
+  const std::string robot = R"({"robot": ")" + kAssets + R"(robots/lwr4_sdh.urdf",
+      "start": {"q": "zero"}, "problem": {"T": 5}, )";
+  const auto probe = LoadScenario(
+      WriteTemp("probe.json", robot + R"("tasks": [{"feature": {"type": "joint_position"}}]})"));
+  KinematicsData kin(probe->robot);
+  ForwardKinematics(probe->robot, probe->problem.q0, &kin);
+  const int link = FindLink(probe->robot, "lwr_link_7");
+  const Eigen::Vector3d p = kin.world_from_link[link].translation() + Eigen::Vector3d(miss_m, 0, 0);
+  char target[160];
+  std::snprintf(target, sizeof(target), "[%.17g, %.17g, %.17g]", p.x(), p.y(), p.z());
+  return LoadScenario(WriteTemp(name, robot + R"("tasks": [{"name": "reach",
+      "feature": {"type": "position", "link": "lwr_link_7"}, "target": {"value": )" +
+                                          target +
+                                          R"(}}],
+      "success": {"position": {"task": "reach", "tolerance": 0.05}}})"));
+}
+
+TEST(JudgePlan, TheReachCriterionRejectsATenCentimetreMiss) {
+  for (const double miss : {0.0, 0.1}) {
+    const auto s = ReachScenario("reach.json", miss);
+    Trajectory path;
+    path.q = s->problem.q0;
+    const PlanVerdict v = JudgePlan(*s, path);
+    SCOPED_TRACE("miss " + std::to_string(miss));
+    EXPECT_NEAR(v.reach_error_m, miss, 1e-5);
+    EXPECT_EQ(v.reason, miss > 0.05 ? FailureReason::kReachError : FailureReason::kNone)
+        << FailureReasonName(v.reason);
+  }
+}
+
+TEST(JudgePlan, WindingCriterionNeedsAReportPairAndPositiveBounds) {
+  const std::string base = R"({"robot": ")" + kAssets + R"(robots/lwr4_sdh.urdf",
+      "start": {"q": "zero"}, "tasks": [{"feature": {"type": "joint_position"}}], "success": )";
+  for (const auto& [success, fragment] :
+       {std::pair<std::string, std::string>{R"({"winding": {}})", "needs writhe_report"},
+        {R"({"winding": {"max_jump": 0}})", "must be > 0"},
+        {R"({"winding": {"jump": 0.1}})", "unknown key"}}) {
+    try {
+      LoadScenario(WriteTemp("winding.json", base + success + "}"));
+      ADD_FAILURE() << "expected an error for " << success;
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("success.winding"), std::string::npos) << e.what();
+    }
+  }
+}
+
+// The goal q̂_T (the RRT baselines' goal, the end of AICO's final-pose targets) meets the same end
+// conditions as a successful plan: within the limits, collision-free, |writhe| < 0.05, winding
+// near 0, grasp point within 0.05 m of the cylinder.
+TEST(FinalPoseGoal, MeetsTheEndConditionsOfTheSuccessCriterion) {
+  for (const double wrap : {90.0, 360.0, 720.0, 1080.0}) {
+    const auto s = Unwrap(wrap);
+    SCOPED_TRACE("start wrap " + std::to_string(wrap));
+    const EndState e = CheckEndState(*s, s->goal_q, true);
+    EXPECT_TRUE(e.within_limits);
+    EXPECT_TRUE(e.collision_free);
+    EXPECT_LT(std::abs(e.writhe_total), 0.05);
+    EXPECT_LT(std::abs(e.winding_turns), 0.1);
+    EXPECT_GE(e.reach_error_m, 0.0);
+    EXPECT_LE(e.reach_error_m, 0.05);
+    EXPECT_TRUE(e.ok());
+    EXPECT_EQ(e.violation, 0.0);
+    std::printf("GOAL wrap %g reach %g writhe %g winding %g\n", wrap, e.reach_error_m,
+                e.writhe_total, e.winding_turns);
+    // The JudgePlan verdict of the one-state path at the goal agrees.
+    Trajectory at_goal;
+    at_goal.q = s->goal_q;
+    EXPECT_EQ(JudgePlan(*s, at_goal).reason, FailureReason::kNone);
+  }
+}
+
+// The "unwinding" target kind: the shipped unwrap scenario plus a joint-space reference task along
+// the unwinding path (the coil continued from q0 to writhe 0, resampled over t = 0..T). That path
+// starts at q0, is collision-free and does not tunnel through the pole (JudgePlan on it), and its
+// targets are its states.
+TEST(UnwindingTarget, FollowsACollisionFreePathWithoutTunnelling) {
+  std::ifstream in(kAssets + "scenarios/unwrap.json");
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  for (const std::string dir : {"robots", "objects"}) {
+    const std::string from = "\"../" + dir + "/", to = "\"" + kAssets + dir + "/";
+    for (size_t at = text.find(from); at != std::string::npos; at = text.find(from, at))
+      text.replace(at, from.size(), to);
+  }
+  const std::string qdot = R"({"name": "qdot")";
+  text.replace(text.find(qdot), 0,
+               R"({"name": "unwind", "feature": {"type": "joint_position"},
+                   "target": {"type": "unwinding"}, "precision": 10, "final_precision": 0},)");
+  ScenarioOverrides o;
+  o.start_wrap_deg = 720.0;
+  const auto s = LoadScenario(WriteTemp("unwinding.json", text), o);
+  const int T = s->problem.num_steps;
+  ASSERT_EQ(s->unwinding.cols(), T + 1);
+  EXPECT_TRUE(s->unwinding.col(0).isApprox(s->problem.q0));
+  EXPECT_LT(std::abs(ReportWritheTotal(*s, s->unwinding.col(T))), 0.05);
+  const Task* unwind = nullptr;
+  for (const Task& t : s->problem.tasks) {
+    if (t.name == "unwind") unwind = &t;
+  }
+  ASSERT_NE(unwind, nullptr);
+  EXPECT_EQ(unwind->target, s->unwinding);
+  Trajectory path;
+  path.q = s->unwinding;
+  const PlanVerdict v = JudgePlan(*s, path);
+  EXPECT_TRUE(v.collision_free);
+  EXPECT_LT(v.max_winding_jump_turns, 0.1);
+  EXPECT_NE(v.reason, FailureReason::kTunnelled);
+  EXPECT_NE(v.reason, FailureReason::kCollision);
+  // Set up again from the resolved poses (no continuation, no final-pose estimate): the same
+  // start, unwinding targets and goal, so the same AICO problem and plan.
+  const ResolvedPoses poses = ResolvedPosesOf(*s);
+  const auto again =
+      SetUpScenario(ParseScenarioSpec(WriteTemp("unwinding.json", text)), {}, &poses);
+  EXPECT_EQ(again->problem.q0, s->problem.q0);
+  EXPECT_EQ(again->goal_q, s->goal_q);
+  EXPECT_EQ(again->unwinding, s->unwinding);
+  ASSERT_EQ(again->problem.tasks.size(), s->problem.tasks.size());
+  for (size_t i = 0; i < s->problem.tasks.size(); ++i)
+    EXPECT_EQ(again->problem.tasks[i].target, s->problem.tasks[i].target) << i;
+  // Wrong sizes are refused.
+  ResolvedPoses bad = poses;
+  bad.unwinding.resize(0, 0);
+  EXPECT_THROW(SetUpScenario(ParseScenarioSpec(WriteTemp("unwinding.json", text)), {}, &bad),
+               std::invalid_argument);
+  // Without a coil start there is no unwinding path.
+  try {
+    LoadScenario(WriteTemp("unwinding_q.json", R"({"robot": ")" + kAssets +
+                                                   R"(robots/lwr4_sdh.urdf", "start": {"q": "zero"},
+        "tasks": [{"feature": {"type": "joint_position"}, "target": {"type": "unwinding"}}]})"));
+    ADD_FAILURE() << "expected an error";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("need a coil start"), std::string::npos) << e.what();
+  }
+}
+
+TEST(FailureReasons, NamesAreStable) {
+  EXPECT_STREQ(FailureReasonName(FailureReason::kTunnelled), "tunnelled");
+  EXPECT_STREQ(FailureReasonName(FailureReason::kReachError), "reach_error");
+  EXPECT_STREQ(FailureReasonName(FailureReason::kWritheNotReached), "writhe_not_reached");
+  EXPECT_STREQ(FailureReasonName(FailureReason::kBudgetExhausted), "budget_exhausted");
+}
+
+// A run without a path reports the end quantities of the start it stayed in (not the zeros of an
+// unwrapped arm at the target): at 720° the winding about the pole is about −2 turns (the coil),
+// the grasp point is far from the cylinder, and the failure is the budget.
+TEST(RunPlanner, ARunWithoutAPathReportsTheStartItStayedIn) {
+  auto s = Unwrap(720.0);
+  s->rrt.max_checks = 50;
+  const PlanResult r = RunPlanner(*s, Planner::kBiRrt, 0);
+  ASSERT_EQ(r.trajectory.num_points(), 0);
+  EXPECT_FALSE(r.report.success);
+  EXPECT_EQ(r.report.failure_reason, FailureReason::kBudgetExhausted);
+  EXPECT_EQ(r.report.failure_step, -1);
+  EXPECT_NEAR(std::abs(r.report.final_winding_turns), 2.0, 0.25);
+  EXPECT_NEAR(r.report.final_writhe_total, r.report.start_writhe_total, 1e-12);
+  EXPECT_GT(r.report.reach_error_m, 0.5);
+  EXPECT_EQ(r.report.max_winding_jump_turns, 0.0);
+  EXPECT_GT(r.report.min_clearance_m, 0.0);  // the start coil is collision-free
+}
+
+}  // namespace
+}  // namespace planning

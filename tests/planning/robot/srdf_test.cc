@@ -1,0 +1,222 @@
+// SRDF reading and its effect on collision checks; URDF input limits (nesting depth, size,
+// geometry urdfdom would drop, package:// confinement).
+#include "planning/robot/srdf.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "planning/collision/collision.h"
+#include "planning/robot/kinematics.h"
+#include "planning/robot/robot_io.h"
+#include "tests/planning/robot/robot_test_util.h"
+
+namespace planning {
+namespace {
+
+namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+
+// Two boxes, base and tip, two joints apart (mid has a small sphere far above, so base and tip
+// are not adjacent): near q = 0 they overlap.
+const char* kTwoBoxes = R"(<robot name="two">
+  <link name="base"><collision><geometry><box size="0.1 0.1 0.1"/></geometry></collision></link>
+  <link name="mid"><collision><origin xyz="0 0 1"/><geometry><sphere radius="0.01"/></geometry>
+  </collision></link>
+  <link name="tip"><collision><geometry><box size="0.1 0.1 0.1"/></geometry></collision></link>
+  <joint name="slide" type="prismatic"><parent link="base"/><child link="mid"/>
+    <axis xyz="1 0 0"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+  <joint name="turn" type="revolute"><parent link="mid"/><child link="tip"/>
+    <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+</robot>)";
+
+const char* kTwoBoxesSrdf = R"(<?xml version="1.0"?>
+<robot name="two">
+  <virtual_joint name="world_joint" type="fixed" parent_frame="world" child_link="base"/>
+  <group name="all"><chain base_link="base" tip_link="tip"/></group>
+  <group_state name="apart" group="all">
+    <joint name="slide" value="0.5"/>
+    <joint name="turn" value="-0.25"/>
+    <joint name="world_joint" value="0 0 0 0 0 0 1"/>
+  </group_state>
+  <passive_joint name="turn"/>
+  <disable_collisions link1="base" link2="tip" reason="Never"/>
+</robot>)";
+
+Robot TwoBoxes() { return ParseRobot(kTwoBoxes, "two.urdf", ""); }
+
+std::string Message(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const std::invalid_argument& e) {
+    return e.what();
+  }
+  return "(no exception)";
+}
+
+TEST(Srdf, ParsesPairsPosesAndListsIgnoredJoints) {
+  const Srdf s = ParseSrdf(kTwoBoxesSrdf, "two.srdf");
+  EXPECT_EQ(s.robot_name, "two");
+  ASSERT_EQ(s.disabled_pairs.size(), 1u);
+  EXPECT_EQ(s.disabled_pairs[0].link1, "base");
+  EXPECT_EQ(s.disabled_pairs[0].link2, "tip");
+  EXPECT_EQ(s.disabled_pairs[0].line, 11);
+  ASSERT_EQ(s.poses.size(), 1u);
+  EXPECT_EQ(s.poses[0].name, "apart");
+  EXPECT_EQ(s.poses[0].joints.size(), 3u);
+  EXPECT_EQ(s.passive_joints, std::vector<std::string>{"turn"});
+  EXPECT_EQ(s.virtual_joints, std::vector<std::string>{"world_joint"});
+  const Robot robot = TwoBoxes();
+  CheckSrdf(s, robot);
+  const Eigen::VectorXd q = NamedPose(robot, s, "apart");
+  ASSERT_EQ(q.size(), 2);
+  EXPECT_DOUBLE_EQ(q[0], 0.5);
+  EXPECT_DOUBLE_EQ(q[1], -0.25);
+  EXPECT_THAT(Message([&] { NamedPose(robot, s, "home"); }),
+              HasSubstr("no group_state named 'home' (have: apart)"));
+}
+
+TEST(Srdf, MalformedAndUnknownNamesAreErrorsWithLines) {
+  EXPECT_THAT(Message([] { ParseSrdf("<robot>\n<disable_collisions link1=\"a\"/>", "m.srdf"); }),
+              HasSubstr("m.srdf:"));
+  EXPECT_THAT(
+      Message([] { ParseSrdf("<robot>\n<disable_collisions link1=\"a\"/>\n</robot>", "m.srdf"); }),
+      HasSubstr("m.srdf:2: <disable_collisions> needs link1= and link2="));
+  EXPECT_THAT(Message([] {
+                ParseSrdf(
+                    "<robot>\n<group_state name=\"p\">\n<joint name=\"j\" value=\"abc\"/>"
+                    "</group_state></robot>",
+                    "m.srdf");
+              }),
+              HasSubstr("m.srdf:3: group_state 'p' joint 'j': value= must be finite numbers"));
+  const Srdf bad = ParseSrdf(
+      "<robot>\n<disable_collisions link1=\"base\" link2=\"nose\"/>\n"
+      "<group_state name=\"p\"><joint name=\"elbow\" value=\"1\"/></group_state></robot>",
+      "bad.srdf");
+  const std::string m = Message([&] { CheckSrdf(bad, TwoBoxes()); });
+  EXPECT_THAT(m, HasSubstr("bad.srdf:2:"));
+  EXPECT_THAT(m, HasSubstr("link 'nose' (line 2)"));
+  EXPECT_THAT(m, HasSubstr("joint 'elbow' in group_state 'p' (line 3)"));
+}
+
+TEST(Srdf, DisabledPairIsNotReported) {
+  const Robot robot = TwoBoxes();
+  const Srdf s = ParseSrdf(kTwoBoxesSrdf, "two.srdf");
+  KinematicsData kin(robot);
+  ForwardKinematics(robot, Eigen::Vector2d(0.05, 0.0), &kin);
+  CollisionData plain(robot, Environment{});
+  ProximityPair hit;
+  ASSERT_TRUE(InCollision(robot, kin, &plain, &hit));
+  EXPECT_EQ(robot.links[hit.link_a].name + robot.links[hit.link_b].name == "basetip" ||
+                robot.links[hit.link_a].name + robot.links[hit.link_b].name == "tipbase",
+            true);
+  CollisionOptions options;
+  options.disabled_pairs = DisabledPairs(s);
+  CollisionData with_srdf(robot, Environment{}, options);
+  std::vector<ProximityPair> pairs;
+  ComputeProximity(robot, kin, 1.0, &with_srdf, &pairs);
+  EXPECT_TRUE(pairs.empty());
+  EXPECT_FALSE(InCollision(robot, kin, &with_srdf));
+}
+
+TEST(Srdf, FindSrdfNextToUrdfOrInSiblingFolder) {
+  const fs::path dir = fs::temp_directory_path() / "topoplan_srdf_find";
+  fs::remove_all(dir);
+  fs::create_directories(dir / "urdf");
+  fs::create_directories(dir / "srdf");
+  std::ofstream(dir / "urdf" / "r.urdf") << kTwoBoxes;
+  EXPECT_EQ(FindSrdf((dir / "urdf" / "r.urdf").string()), "");
+  std::ofstream(dir / "srdf" / "r.srdf") << kTwoBoxesSrdf;
+  EXPECT_EQ(FindSrdf((dir / "urdf" / "r.urdf").string()), (dir / "srdf" / "r.srdf").string());
+  std::ofstream(dir / "urdf" / "r.srdf") << kTwoBoxesSrdf;
+  EXPECT_EQ(FindSrdf((dir / "urdf" / "r.urdf").string()), (dir / "urdf" / "r.srdf").string());
+  fs::remove_all(dir);
+}
+
+// ---- URDF limits (issue 16)
+// ----------------------------------------------------------------------
+
+TEST(UrdfLimits, DeepNestingIsRefusedBeforeParsing) {
+  std::string xml = "<robot name=\"deep\">\n<link name=\"a\">";
+  for (int i = 0; i < 100000; ++i) xml += "<x>";
+  const std::string m = Message([&] { ParseRobot(xml, "deep.urdf", ""); });
+  EXPECT_THAT(m, HasSubstr("deep.urdf:2: XML elements nested deeper than 100 levels"));
+  // Comments and quoted '>' do not confuse the scan.
+  EXPECT_NO_THROW(
+      ParseRobot("<robot name=\"c\"><!-- <a><b> --><link name=\"a>b\"/></robot>", "c.urdf", ""));
+}
+
+TEST(UrdfLimits, LongChainLoads) {
+  std::string xml = "<robot name=\"long\">\n";
+  const int n = 10000;
+  for (int i = 0; i < n; ++i) xml += "<link name=\"l" + std::to_string(i) + "\"/>\n";
+  for (int i = 1; i < n; ++i) {
+    xml += "<joint name=\"j" + std::to_string(i) + "\" type=\"continuous\"><parent link=\"l" +
+           std::to_string(i - 1) + "\"/><child link=\"l" + std::to_string(i) +
+           "\"/><axis xyz=\"0 0 1\"/></joint>\n";
+  }
+  xml += "</robot>\n";
+  const Robot robot = ParseRobot(xml, "long.urdf", "");
+  EXPECT_EQ(robot.links.size(), static_cast<size_t>(n));
+  EXPECT_EQ(num_dofs(robot), n - 1);
+  // A cycle below the root is still found.
+  std::string cyc =
+      "<robot name=\"c\"><link name=\"r\"/><link name=\"a\"/><link name=\"b\"/>"
+      "<joint name=\"j1\" type=\"fixed\"><parent link=\"a\"/><child link=\"b\"/></joint>"
+      "<joint name=\"j2\" type=\"fixed\"><parent link=\"b\"/><child link=\"a\"/></joint>"
+      "</robot>";
+  EXPECT_THAT(Message([&] { ParseRobot(cyc, "c.urdf", ""); }), HasSubstr("kinematic cycle"));
+}
+
+TEST(UrdfLimits, GeometryUrdfdomWouldDropIsAnError) {
+  auto robot_with = [](const std::string& geometry) {
+    return "<robot name=\"g\">\n<link name=\"a\">\n<collision name=\"c\">\n<geometry>\n" +
+           geometry + "\n</geometry></collision></link></robot>";
+  };
+  EXPECT_THAT(Message([&] { ParseRobot(robot_with("<box size=\"0.2 0.2 abc\"/>"), "g.urdf", ""); }),
+              HasSubstr("g.urdf:5: link 'a' collision 0: <box size=\"0.2 0.2 abc\">: expected 3 "
+                        "finite numbers"));
+  EXPECT_THAT(Message([&] { ParseRobot(robot_with("<sphere radius=\"1e400\"/>"), "g.urdf", ""); }),
+              HasSubstr("expected a finite number"));
+  EXPECT_THAT(Message([&] { ParseRobot(robot_with("<capsule radius=\"1\"/>"), "g.urdf", ""); }),
+              HasSubstr("unknown geometry <capsule>"));
+  EXPECT_THAT(Message([&] { ParseRobot(robot_with(""), "g.urdf", ""); }),
+              HasSubstr("<geometry> is empty"));
+  const std::string neg =
+      "<robot name=\"g\"><link name=\"a\"><collision name=\"capsule_x\"><geometry>"
+      "<cylinder radius=\"-0.1\" length=\"1\"/></geometry></collision></link></robot>";
+  EXPECT_THAT(Message([&] { ParseRobot(neg, "g.urdf", ""); }),
+              HasSubstr("a capsule needs a radius > 0"));
+  Geometry cap;
+  cap.kind = Geometry::Kind::kCapsule;
+  cap.size = Eigen::Vector3d(-0.1, 1.0, 0.0);
+  EXPECT_THROW(MakePrimitiveObject("c", cap), std::invalid_argument);
+}
+
+TEST(UrdfLimits, PackageUriStaysInsideItsPackage) {
+  const std::string base = TestDataFile("fake_pkg/urdf");
+  auto with_mesh = [](const std::string& uri) {
+    return "<robot name=\"p\"><link name=\"a\"><collision><geometry><mesh filename=\"" + uri +
+           "\"/></geometry></collision></link></robot>";
+  };
+  EXPECT_NO_THROW(ParseRobot(with_mesh("package://fake_pkg/meshes/box.stl"), "p.urdf", base));
+  EXPECT_THAT(Message([&] {
+                ParseRobot(with_mesh("package://fake_pkg/../../../../../../etc/passwd"), "p.urdf",
+                           base);
+              }),
+              HasSubstr("leaves its package 'fake_pkg'"));
+  // Inside the package after normalisation: allowed.
+  EXPECT_NO_THROW(
+      ParseRobot(with_mesh("package://fake_pkg/urdf/../meshes/box.stl"), "p.urdf", base));
+  // The package exists but not the file: the message names the file tried.
+  const std::string m =
+      Message([&] { ParseRobot(with_mesh("package://fake_pkg/meshes/nope.stl"), "p.urdf", base); });
+  EXPECT_THAT(m, HasSubstr("no file "));
+  EXPECT_THAT(m, HasSubstr("fake_pkg/meshes/nope.stl"));
+  EXPECT_THAT(m, ::testing::Not(HasSubstr("not under any search root")));
+}
+
+}  // namespace
+}  // namespace planning
