@@ -5,7 +5,7 @@
 #       -> find_package(topoplan) gives topoplan::topology, topoplan::render, topoplan::planning
 #          and topoplan::physics (the ODE grasp simulation, target planning_physics here)
 #   P/bin/topoplan and its assets in P/share/topoplan (found relative to the binary, see
-#   app/assets.cc AssetRoot()).
+#   base/assets.cc AssetRoot()).
 #
 # The libraries are static, so the consumer links their private dependencies too. The package
 # config finds each of them again: the list is derived below from the libraries' link interfaces,
@@ -17,7 +17,7 @@ set(TOPOPLAN_INSTALL_CMAKEDIR ${CMAKE_INSTALL_LIBDIR}/cmake/topoplan)
 set(TOPOPLAN_INSTALL_ASSETDIR ${CMAKE_INSTALL_DATADIR}/topoplan)
 
 set(_topoplan_exported)
-foreach(t topology render planning planning_physics)
+foreach(t base topology render planning planning_physics)
   if(TARGET ${t})
     list(APPEND _topoplan_exported ${t})
   endif()
@@ -103,7 +103,7 @@ list(JOIN _topoplan_dependency_lines "\n" TOPOPLAN_CONFIG_DEPENDENCIES)
 install(TARGETS ${_topoplan_exported} EXPORT topoplanTargets
   ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
   INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
-foreach(module topology render planning)
+foreach(module base topology render planning)
   if(TARGET ${module})
     install(DIRECTORY ${PROJECT_SOURCE_DIR}/${module}/
       DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/${module}
@@ -130,5 +130,5 @@ install(TARGETS topoplan RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/assets/ DESTINATION ${TOPOPLAN_INSTALL_ASSETDIR})
 file(RELATIVE_PATH _topoplan_asset_rel ${CMAKE_INSTALL_FULL_BINDIR}
      ${CMAKE_INSTALL_FULL_DATADIR}/topoplan)
-target_compile_definitions(app_core PRIVATE
+target_compile_definitions(base PRIVATE
   TOPOPLAN_INSTALLED_ASSET_DIR="${_topoplan_asset_rel}")

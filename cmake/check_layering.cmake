@@ -1,9 +1,12 @@
 # Layering check, run by CTest as `cmake -DROOT=<repo> -P check_layering.cmake`.
 # Fails when a file includes a header of a module above it (docs/architecture.md §1):
-#   topology/  -> Eigen and the standard library only
+#   base/      -> the standard library, Eigen, nlohmann-json only (the lowest layer)
+#   topology/  -> base/, Eigen and the standard library only
 #   render/    -> render/ only; no planning, topology, app, ImGui
 #   planning/  -> planning/, topology/; no render, app, GL, ImGui, ODE (ODE only in planning/physics/)
+#   visualize/ -> planning/, render/, topology/, base/; no app, GL windows or CLI
 #   app/       -> everything, but ImGui only inside app/viewer/
+#   python/    -> the libraries, never app/
 #   planning/<sub>/ -> only the planning sub-layers before it: robot, collision, features, motion,
 #                      grasp, physics
 if(NOT ROOT)
@@ -30,10 +33,13 @@ function(check_dir dir forbidden_regex)
 endfunction()
 
 set(GUI "[<\"](imgui|GLFW/|GL/|EGL/|backends/)")
-check_dir(topology "[<\"](planning|render|app)/|[<\"](imgui|GLFW|GL|EGL|ode|fcl|urdf|assimp|nlohmann|CLI)")
-check_dir(render "[<\"](planning|topology|app)/|[<\"]imgui")
-check_dir(planning "[<\"](render|app)/|${GUI}|[<\"]ode/|\"planning/physics/" "^planning/physics/")
-check_dir(planning/physics "[<\"](render|app)/|${GUI}")
+check_dir(base "[<\"](topology|render|planning|visualize|app)/|[<\"](imgui|GLFW|GL|EGL|ode|fcl|urdf|assimp|CLI)")
+check_dir(topology "[<\"](planning|render|visualize|app)/|[<\"](imgui|GLFW|GL|EGL|ode|fcl|urdf|assimp|nlohmann|CLI)")
+check_dir(render "[<\"](planning|topology|visualize|app)/|[<\"]imgui")
+check_dir(planning "[<\"](render|visualize|app)/|${GUI}|[<\"]ode/|\"planning/physics/" "^planning/physics/")
+check_dir(planning/physics "[<\"](render|visualize|app)/|${GUI}")
+check_dir(visualize "[<\"]app/|${GUI}|[<\"](CLI)/")
+check_dir(python "\"app/")
 # Inside planning/, sub-layers in order: each folder uses only the folders before it.
 set(planning_order robot collision features motion grasp physics)
 list(LENGTH planning_order n)

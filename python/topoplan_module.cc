@@ -25,13 +25,15 @@
 #include <string>
 #include <vector>
 
-#include "app/assets.h"
-#include "app/figures.h"
-#include "app/grasp_inputs.h"
-#include "app/present/reports.h"
-#include "app/robot_scene.h"
-#include "app/scene_builder.h"
-#include "app/scene_json.h"
+#include "base/assets.h"
+#include "visualize/figures.h"
+#include "planning/grasp/grasp_inputs.h"
+#include "planning/motion/report.h"
+#include "planning/physics/grasp_report.h"
+#include "visualize/report_figures.h"
+#include "planning/motion/robot_scene.h"
+#include "visualize/scene_builder.h"
+#include "visualize/scene_file.h"
 #include "planning/collision/collision.h"
 #include "planning/grasp/grasp_object.h"
 #include "planning/grasp/grasp_quality.h"
@@ -278,7 +280,7 @@ struct PyRobot {
     for (const fs::path& p : package_path_list) package_paths.push_back(p.string());
     PyRobot r;
     planning::RobotLoadOptions options;
-    options.package_paths = app::PackagePaths(package_paths);
+    options.package_paths = planning::PackagePaths(package_paths);
     r.robot = planning::LoadRobot(urdf, options);
     r.kin = std::make_unique<planning::KinematicsData>(r.robot);
     return r;
@@ -401,7 +403,7 @@ py::tuple PlanPy(PyScenario& s, const std::string& planner_name, unsigned seed,
     PyErr_SetObject(exc.get_type().ptr(), exc.ptr());
     throw py::error_already_set();
   }
-  const nlohmann::json report = app::PlanReportJson(*s.scenario, result.report, seed);
+  const nlohmann::json report = planning::PlanReportJson(*s.scenario, result.report, seed);
   return py::make_tuple(Eigen::MatrixXd(result.trajectory.q.transpose()), JsonToPython(report));
 }
 
@@ -409,9 +411,9 @@ render::Image RenderScenario(const planning::Scenario& s, const Eigen::VectorXd&
                              int height) {
   planning::KinematicsData kin(s.robot);
   planning::ForwardKinematics(s.robot, q, &kin);
-  app::SceneMeshCache cache;
-  const render::Scene scene = app::BuildRobotScene(s.robot, kin, s.objects, {}, &cache);
-  return RenderScene(scene, app::FrameSceneCamera(scene), width, height);
+  visualize::SceneMeshCache cache;
+  const render::Scene scene = visualize::BuildRobotScene(s.robot, kin, s.objects, {}, &cache);
+  return RenderScene(scene, visualize::FrameSceneCamera(scene), width, height);
 }
 
 py::array_t<std::uint8_t> RenderPy(const py::handle& what, const py::handle& q,
@@ -434,19 +436,19 @@ py::array_t<std::uint8_t> RenderPy(const py::handle& what, const py::handle& q,
     py::gil_scoped_release release;
     planning::KinematicsData kin(r.robot);
     planning::ForwardKinematics(r.robot, qv, &kin);
-    app::SceneMeshCache cache;
-    const render::Scene scene = app::BuildRobotScene(r.robot, kin, r.env, {}, &cache);
-    image = RenderScene(scene, app::FrameSceneCamera(scene), width, height);
+    visualize::SceneMeshCache cache;
+    const render::Scene scene = visualize::BuildRobotScene(r.robot, kin, r.env, {}, &cache);
+    image = RenderScene(scene, visualize::FrameSceneCamera(scene), width, height);
   } else if (py::isinstance<py::str>(what) || py::hasattr(what, "__fspath__")) {
     const std::string path = py::str(py::module_::import("os").attr("fspath")(what));
     RequireFile(path, "scene");
-    if (!app::IsRobotSceneFile(path)) {
+    if (!planning::IsRobotSceneFile(path)) {
       // A plain scene file (shapes, camera, lights: `topoplan render SCENE.json`).
       if (fs::path(path).extension() != ".json") {
         ThrowValue("scene: " + path + " is not a robot .urdf, a scenario .json or a scene .json");
       }
       if (!q.is_none()) ThrowValue("q: only for a robot .urdf or a scenario");
-      const app::SceneDocument doc = Named("scene", [&] { return app::LoadSceneFile(path); });
+      const visualize::SceneDocument doc = Named("scene", [&] { return visualize::LoadSceneFile(path); });
       {
         py::gil_scoped_release release;
         image = RenderScene(doc.scene, doc.camera, width, height);
@@ -463,9 +465,9 @@ py::array_t<std::uint8_t> RenderPy(const py::handle& what, const py::handle& q,
       }
     }
     py::gil_scoped_release release;
-    app::SceneDocument doc;
+    visualize::SceneDocument doc;
     try {
-      doc = app::RobotSceneDocument(path, q_text);
+      doc = visualize::RobotSceneDocument(path, q_text);
     } catch (const std::invalid_argument& e) {
       // The shared code names the CLI's --q; here the argument is q.
       std::string what = e.what();
@@ -754,10 +756,10 @@ PYBIND11_MODULE(_core, m) {
           ThrowValue("start_wrap: must be in [0, 2000] degrees");
         }
         const std::string path = Named(
-            "path_or_name", [&] { return app::ResolveScenarioPath(arg); }, PyExc_FileNotFoundError);
+            "path_or_name", [&] { return base::ResolveScenarioPath(arg); }, PyExc_FileNotFoundError);
         planning::ScenarioOverrides overrides;
         overrides.start_wrap_deg = start_wrap;
-        overrides.search_roots = {app::AssetRoot()};
+        overrides.search_roots = {base::AssetRoot()};
         std::map<std::string, Eigen::Vector3d> offsets;
         for (const auto& [name, xyz] : move_objects) {
           offsets[name] = ToVector(xyz, "move_objects['" + name + "']", 3);
@@ -812,14 +814,14 @@ PYBIND11_MODULE(_core, m) {
       "unwrap_perturbation",
       [](const fs::path& arg_path, int seeds, double perturb) {
         const std::string path = Named(
-            "path_or_name", [&] { return app::ResolveScenarioPath(arg_path.string()); },
+            "path_or_name", [&] { return base::ResolveScenarioPath(arg_path.string()); },
             PyExc_FileNotFoundError);
         if (seeds < 1) ThrowValue("seeds: must be >= 1");
         if (!(perturb >= 0.0) || !std::isfinite(perturb)) ThrowValue("perturb: must be >= 0");
         planning::UnwrapPerturbation p;
         {
           py::gil_scoped_release release;
-          const planning::ScenarioSpec spec = planning::ParseScenarioSpec(path, {app::AssetRoot()});
+          const planning::ScenarioSpec spec = planning::ParseScenarioSpec(path, {base::AssetRoot()});
           p = planning::MakeUnwrapPerturbation(spec, 0.0, seeds, perturb);
         }
         Eigen::MatrixXd offsets(seeds, 3);
@@ -848,7 +850,7 @@ PYBIND11_MODULE(_core, m) {
          std::pair<int, int> size, const std::string& title, bool signed_values) {
         CheckSize(size);
         const Eigen::MatrixXd W = ToMatrix(w, "W");
-        return ImageArray(app::WritheHeatmapFigure(W, a_name, b_name, size.first, size.second,
+        return ImageArray(visualize::WritheHeatmapFigure(W, a_name, b_name, size.first, size.second,
                                                    title, signed_values));
       },
       py::arg("W"), py::arg("a_name") = "A", py::arg("b_name") = "B",
@@ -898,7 +900,7 @@ PYBIND11_MODULE(_core, m) {
          const std::vector<std::string>& planners, int seeds) -> py::object {
         if (seeds < 1) ThrowValue("seeds: must be >= 1");
         const auto result = UnwrapResultFromRows(rows, angles, planners, seeds);
-        const auto figure = app::UnwrapFigure(result);
+        const auto figure = visualize::UnwrapFigure(result);
         if (!figure) return py::none();
         return ImageArray(figure->Raster());
       },
@@ -919,7 +921,7 @@ PYBIND11_MODULE(_core, m) {
         const planning::TransferMethod tm =
             Named("method", [&] { return planning::ParseTransferMethod(method); });
         const std::vector<std::string> files = Named(
-            "grasp", [&] { return app::SelectGraspFiles(grasp); }, PyExc_FileNotFoundError);
+            "grasp", [&] { return planning::SelectGraspFiles(grasp); }, PyExc_FileNotFoundError);
         if (files.size() != 1) ThrowValue("grasp: name one grasp (a name or a file), not 'all'");
         nlohmann::json report;
         {
@@ -928,7 +930,7 @@ PYBIND11_MODULE(_core, m) {
           // from several Python threads (a multi-threaded Dask worker) take turns here.
           static std::mutex ode_mutex;
           const std::lock_guard<std::mutex> lock(ode_mutex);
-          const app::GraspInputs in = app::LoadGraspInputs(files);
+          const planning::GraspInputs in = planning::LoadGraspInputs(files);
           const planning::physics::OdeRuntime ode;
           planning::physics::GraspTrialsOptions options;
           options.mu = mu;
@@ -937,7 +939,7 @@ PYBIND11_MODULE(_core, m) {
           options.close_by = close_by;
           const auto result = planning::physics::RunGraspTrials(
               ode, in.human, in.lwr_sdh, in.objects, in.grasps, {tm}, options);
-          report = app::GraspReportJson(result);
+          report = planning::physics::GraspReportJson(result);
         }
         return JsonToPython(report["grasps"][0]);
       },
@@ -955,7 +957,7 @@ PYBIND11_MODULE(_core, m) {
       "available_grasps",
       [] {
         std::vector<std::string> names;
-        for (const std::string& f : app::SelectGraspFiles("all")) {
+        for (const std::string& f : planning::SelectGraspFiles("all")) {
           names.push_back(fs::path(f).stem().string());
         }
         return names;
@@ -992,6 +994,6 @@ PYBIND11_MODULE(_core, m) {
         return names;
       },
       "Names of the planners of this build (aico, rrt, birrt, and ompl-* with OMPL).");
-  m.def("asset_root", &app::AssetRoot,
+  m.def("asset_root", &base::AssetRoot,
         "Root of the asset tree ($TOPOPLAN_ASSETS, else the installed or source assets/).");
 }

@@ -14,7 +14,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "render/internal/file_read.h"
+#include "base/file_read.h"
 
 namespace render {
 namespace {
@@ -138,11 +138,15 @@ Image DecodePng(const std::string& bytes, const std::string& source_name) {
 
 Image ReadPng(const std::string& path) {
   // Bounded: DecodePng refuses more than kMaxPngFileBytes.
-  std::string bytes;
-  if (!internal::ReadFileUpTo(path, kMaxPngFileBytes, &bytes)) {
+  base::FileBytes file = base::ReadFileLimited(path, kMaxPngFileBytes);
+  if (file.status == base::ReadStatus::kTooLarge) {
+    throw std::invalid_argument(path + ": PNG larger than " + std::to_string(kMaxPngFileBytes) +
+                                " bytes (limit)");
+  }
+  if (file.status != base::ReadStatus::kOk) {
     throw std::invalid_argument(path + ": cannot open (missing file?)");
   }
-  return DecodePng(bytes, path);
+  return DecodePng(file.bytes, path);
 }
 
 Image Downscale(const Image& image, int w, int h) {

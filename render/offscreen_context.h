@@ -17,14 +17,13 @@
 #include <stdexcept>
 #include <string>
 
+#include "base/errors.h"
+
 namespace render {
 
 // Something the machine lacks rather than bad input: no GL context, a missing system font. The
 // CLI maps it (and ContextError) to exit code 3 (environment error).
-class EnvironmentError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
+using base::EnvironmentError;
 
 // No usable GL context (library missing, context creation failed, GL too old).
 class ContextError : public EnvironmentError {

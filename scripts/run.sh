@@ -51,7 +51,7 @@ case "$cmd" in
         -DTOPOPLAN_BUILD_PYTHON=OFF "${werror[@]}" "${launcher[@]}" >/dev/null
       # The unit and property test programs of the numeric libraries (topology, planning,
       # planning/physics): the code that reads files and numbers and runs the solvers; no GL.
-      sanitized=(topology_test robot_io_test kinematics_test collision_test srdf_test
+      sanitized=(base_test topology_test robot_io_test kinematics_test collision_test srdf_test
         mesh_collision_test mesh_limits_test planning_rrt_test planning_aico_test
         planning_aico_step_test planning_rrt_step_test planning_feature_test
         planning_scenario_test planning_grasp_test grasp_quality_test planning_success_test

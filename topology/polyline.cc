@@ -8,7 +8,8 @@
 #include <stdexcept>
 #include <vector>
 
-#include "topology/input_limits.h"
+#include "base/file_read.h"
+#include "base/numbers.h"
 
 namespace topology {
 namespace {
@@ -40,7 +41,7 @@ Chain ParseChainCsv(std::istream& in, const std::string& source_name) {
     while (std::getline(fields, field, ',')) {
       field = Trim(field);
       if (++count > 3) Fail(source_name, line_no, "expected 3 comma-separated numbers x,y,z");
-      const std::optional<double> v = ParseFiniteDouble(field);
+      const std::optional<double> v = base::ParseFiniteDouble(field);
       if (!v) {
         char* end = nullptr;  // a whole-field number that is not finite (nan, inf, 1e400)?
         std::strtod(field.c_str(), &end);
@@ -67,7 +68,7 @@ Chain ParseChainCsv(std::istream& in, const std::string& source_name) {
 }
 
 Chain ReadChainCsv(const std::string& path) {
-  std::istringstream in(ReadFileBounded(path, "chain"));
+  std::istringstream in(base::ReadFileBounded(path, "chain"));
   return ParseChainCsv(in, path);
 }
 

@@ -11,12 +11,12 @@
 #include <sstream>
 #include <thread>
 
-#include "app/assets.h"
+#include "base/assets.h"
 #include "app/cli/cli.h"
 #include "app/cli/command.h"
-#include "app/figures.h"
+#include "visualize/figures.h"
 #include "app/present/grasp_frames.h"
-#include "app/grasp_inputs.h"
+#include "planning/grasp/grasp_inputs.h"
 #include "app/cli/io.h"
 #include "app/present/reports.h"
 #include "planning/physics/grasp_trials.h"
@@ -149,8 +149,8 @@ class Demo {
     std::ostringstream rows;
     int rc = 0;
     for (const ChainPair& p : kPairs) {
-      const std::string a = AssetPath(std::string("chains/") + p.a);
-      const std::string b = AssetPath(std::string("chains/") + p.b);
+      const std::string a = base::AssetPath(std::string("chains/") + p.a);
+      const std::string b = base::AssetPath(std::string("chains/") + p.b);
       const Eigen::MatrixXd w =
           topology::WritheMatrix(topology::ReadChainCsv(a), topology::ReadChainCsv(b));
       nlohmann::ordered_json j;
@@ -200,7 +200,7 @@ class Demo {
       const std::function<void(const render::Image&, const render::Image*)>& on_frame = {}) {
     std::printf("  plan %s with aico -> %s\n", name.c_str(), dir.string().c_str());
     std::fflush(stdout);
-    const auto scenario = LoadScenarioArg(name);
+    const auto scenario = planning::LoadScenarioArg(name);
     const planning::PlanResult result =
         planning::RunPlanner(*scenario, planning::Planner::kAico, /*seed=*/0);
     *report = WritePlanOutputs(*scenario, result, /*seed=*/0, dir.string());
@@ -208,7 +208,7 @@ class Demo {
       *frames = WritePlanFrames(*scenario, result.trajectory, dir.string(), on_frame, nullptr,
                                 PlanFrameOptions{.formats = args_.formats});
     }
-    std::printf("  %s\n", PlanSummaryLine(*scenario, result.report).c_str());
+    std::printf("  %s\n", planning::PlanSummaryLine(*scenario, result.report).c_str());
     return result.report.success ? kExitOk : kExitFailed;
   }
 
@@ -277,8 +277,8 @@ class Demo {
   int Bench() {
     const fs::path dir = out_ / "bench";
     planning::UnwrapBenchmarkOptions options;
-    options.scenario_path = ResolveScenarioPath("unwrap");
-    options.search_roots = {AssetRoot()};
+    options.scenario_path = base::ResolveScenarioPath("unwrap");
+    options.search_roots = {base::AssetRoot()};
     // Reduced: 0..900 deg every 90 deg, 1 seed; full: 0..1080 deg every 15 deg, 3 seeds.
     const double max_angle = args_.full ? 1080.0 : 900.0, step = args_.full ? 15.0 : 90.0;
     for (int k = 0; k * step <= max_angle + 1e-9; ++k) options.angles_deg.push_back(k * step);
@@ -291,10 +291,10 @@ class Demo {
       if (done == total) EndProgress();
     };
     const planning::UnwrapBenchmarkResult result = planning::RunUnwrapBenchmark(options);
-    WriteFileAtomic((dir / "unwrap.csv").string(), UnwrapCsv(result));
-    if (const auto figure = UnwrapFigure(result)) {
+    WriteFileAtomic((dir / "unwrap.csv").string(), planning::UnwrapCsv(result));
+    if (const auto figure = visualize::UnwrapFigure(result)) {
       render::WriteFigure((dir / "unwrap.png").string(), *figure);
-      WriteVectorFormats((dir / "unwrap.png").string(), *figure, args_.formats);
+      visualize::WriteVectorFormats((dir / "unwrap.png").string(), *figure, args_.formats);
     }
     // Planners that fail at large angles are the figure's point, not a demo failure.
     html_ << "<h2>4. Collision checks vs angle to unwrap (Fig. 4.5)</h2>\n"
@@ -315,7 +315,7 @@ class Demo {
   int Grasp() {
     const fs::path dir = out_ / "grasp";
     namespace phys = planning::physics;
-    const GraspInputs in = LoadGraspInputs(SelectGraspFiles("all"));
+    const planning::GraspInputs in = planning::LoadGraspInputs(planning::SelectGraspFiles("all"));
     const std::vector<planning::TransferMethod> methods = planning::AllTransferMethods();
     phys::OdeRuntime ode;
     GraspFrameWriter frames;

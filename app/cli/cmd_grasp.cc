@@ -8,11 +8,11 @@
 #include <optional>
 #include <thread>
 
-#include "app/assets.h"
+#include "base/assets.h"
 #include "app/cli/command.h"
-#include "app/figures.h"
+#include "visualize/figures.h"
 #include "app/present/grasp_frames.h"
-#include "app/grasp_inputs.h"
+#include "planning/grasp/grasp_inputs.h"
 #include "app/cli/io.h"
 #include "app/present/reports.h"
 #include "planning/grasp/grasp.h"
@@ -34,8 +34,8 @@ struct SynthesizeArgs {
 int RunSynthesize(const SynthesizeArgs& a) {
   if (a.out_given) CheckOutputFile(a.out_path, "-o");  // before any work; "" is refused
   const std::vector<planning::GraspObject> objects =
-      planning::LoadGraspObjects(AssetPath("grasps/objects.json"));
-  planning::Robot human = planning::LoadRobot(AssetPath("robots/human_hand.urdf"));
+      planning::LoadGraspObjects(base::AssetPath("grasps/objects.json"));
+  planning::Robot human = planning::LoadRobot(base::AssetPath("robots/human_hand.urdf"));
   planning::HumanGrasp grasp = planning::LoadHumanGrasp(a.spec_path);
   const planning::GraspObject& object = planning::FindGraspObject(objects, grasp.object);
   const double clearance = planning::SynthesizeGrasp(human, object, &grasp);
@@ -102,7 +102,7 @@ int RunTransfer(const TransferArgs& a) {
   OutputDir out(a.out_dir, "-o");  // checked before any work
   const StopCheck stop(a.timeout);
   // Load everything first so that a bad file fails before any simulation runs.
-  const GraspInputs in = LoadGraspInputs(SelectGraspFiles(a.grasp));
+  const planning::GraspInputs in = planning::LoadGraspInputs(planning::SelectGraspFiles(a.grasp));
 
   namespace phys = planning::physics;
   phys::OdeRuntime ode;
@@ -130,7 +130,7 @@ int RunTransfer(const TransferArgs& a) {
   const phys::GraspTrialsResult result = phys::RunGraspTrials(ode, in.human, in.lwr_sdh, in.objects,
                                                               in.grasps, methods, options, hooks);
   if (stopped) {
-    WriteGraspOutputs(result, out.staging(), StoppedReportJson(*stopped, GraspReportJson(result)),
+    WriteGraspOutputs(result, out.staging(), StoppedReportJson(*stopped, planning::physics::GraspReportJson(result)),
                       a.formats);
     out.Commit();
     std::fprintf(stderr, "%s: wrote %s/report.json (%zu of %zu grasps)\n", stopped->what(),

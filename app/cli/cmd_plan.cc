@@ -13,13 +13,14 @@
 #include <optional>
 #include <sstream>
 
-#include "app/assets.h"
+#include "base/assets.h"
 #include "app/cli/command.h"
-#include "app/figures.h"
+#include "visualize/figures.h"
 #include "app/cli/io.h"
+#include "app/cli/robot_flags.h"
 #include "app/present/ompl_log.h"
 #include "app/present/reports.h"
-#include "app/robot_scene.h"
+#include "planning/motion/robot_scene.h"
 #include "planning/motion/planner.h"
 #include "planning/motion/replan.h"
 #include "planning/motion/scenario.h"
@@ -40,7 +41,7 @@ struct PlanArgs {
   double timeout = 0.0;
   bool frames = false, json = false;
   bool no_stamp = false;                      // --no-stamp: frames without scenario name and time
-  RobotInputOptions robot_input;              // --package-path, --srdf
+  planning::RobotInputOptions robot_input;              // --package-path, --srdf
   std::vector<render::FigureFormat> formats;  // --formats
   // Re-planning with a moving object (planning/motion/replan.h).
   std::string moving_object, object_path;
@@ -89,7 +90,7 @@ std::vector<double> ParseRange(const std::string& text, const std::string& flag)
     }
     std::string t = text;
     std::replace(t.begin(), t.end(), ':', ',');
-    return ParseNumberList(t, flag, 3);
+    return base::ParseNumberList(t, flag, 3);
   }();
   if (!(v[2] > 0.0) || !(v[1] >= v[0]) || !(v[0] >= 0.0) || !(v[1] <= 2000.0)) {
     throw std::invalid_argument(flag + ": expected a:b:step with 0 <= a <= b <= 2000, step > 0");
@@ -232,7 +233,7 @@ ExitCode RunMovingObjectPlan(const PlanArgs& pa, const planning::ScenarioOverrid
   OutputDir out(pa.output, "-o");  // checked before any work
   const planning::ObjectPath path =
       ParseFlag("--object-path", [&] { return planning::ReadObjectPath(pa.object_path); });
-  const auto scenario = LoadScenarioArg(pa.scenario, overrides);
+  const auto scenario = planning::LoadScenarioArg(pa.scenario, overrides);
   ParseFlag("--moving-object", [&] {  // unknown names list the valid ones
     const std::vector<std::string> names = planning::ObjectNames(*scenario);
     if (std::find(names.begin(), names.end(), pa.moving_object) == names.end()) {
@@ -262,7 +263,7 @@ ExitCode RunMovingObjectPlan(const PlanArgs& pa, const planning::ScenarioOverrid
   }
   EndProgress();
   const planning::PlanReport rep = ReplanPlanReport(r);
-  nlohmann::json report = PlanReportJson(*scenario, rep, pa.seed);
+  nlohmann::json report = planning::PlanReportJson(*scenario, rep, pa.seed);
   nlohmann::json replans = nlohmann::json::array();
   for (const planning::ReplanStep& step : r.replans) {
     replans.push_back(
@@ -291,7 +292,7 @@ ExitCode RunMovingObjectPlan(const PlanArgs& pa, const planning::ScenarioOverrid
                           {"replans", replans}};
   const std::string dir = out.staging();
   WriteFileAtomic((fs::path(dir) / "trajectory.csv").string(),
-                  TrajectoryCsv(*scenario, r.executed));
+                  planning::TrajectoryCsv(*scenario, r.executed));
   WriteFileAtomic((fs::path(dir) / "object_path.csv").string(), ObjectPositionsCsv(r));
   WriteFileAtomic((fs::path(dir) / "report.json").string(), report.dump(2) + "\n");
   if (pa.frames) {
@@ -307,7 +308,7 @@ ExitCode RunMovingObjectPlan(const PlanArgs& pa, const planning::ScenarioOverrid
   if (pa.json) {
     std::printf("%s\n", report.dump(2).c_str());
   } else {
-    std::printf("%s\n", PlanSummaryLine(*scenario, rep).c_str());
+    std::printf("%s\n", planning::PlanSummaryLine(*scenario, rep).c_str());
     std::printf(
         "re-planning: %zu re-plans every %.3f s, %.1f per CPU second, %.1f per wall second "
         "(median %.1f ms, max %.1f ms CPU), %s the %s\n",
@@ -380,14 +381,14 @@ void AddPlanCommands(CLI::App* root, CommandList* commands) {
          overrides.stop_when_solved = ParseAicoStop(pa->aico_stop);
          const planning::Planner planner =
              ParseFlag("--planner", [&] { return planning::ParsePlanner(pa->planner); });
-         overrides.package_paths = PackagePaths(pa->robot_input.package_paths);
+         overrides.package_paths = planning::PackagePaths(pa->robot_input.package_paths);
          overrides.srdf = pa->robot_input.srdf;
          if (!pa->moving_object.empty() || !pa->object_path.empty()) {
            return RunMovingObjectPlan(*pa, overrides, planner);
          }
          OutputDir out(pa->output, "-o");  // checked before any work
          const StopCheck stop(pa->timeout);
-         const auto scenario = LoadScenarioArg(pa->scenario, overrides);
+         const auto scenario = planning::LoadScenarioArg(pa->scenario, overrides);
          planning::PlanResult result;
          try {
            result = planning::RunPlanner(
@@ -424,7 +425,7 @@ void AddPlanCommands(CLI::App* root, CommandList* commands) {
          if (pa->json) {
            std::printf("%s\n", report.dump(2).c_str());
          } else {
-           std::printf("%s\n", PlanSummaryLine(*scenario, result.report).c_str());
+           std::printf("%s\n", planning::PlanSummaryLine(*scenario, result.report).c_str());
            std::printf("wrote %s/trajectory.csv, %s/report.json\n", pa->output.c_str(),
                        pa->output.c_str());
          }
@@ -480,8 +481,8 @@ void AddPlanCommands(CLI::App* root, CommandList* commands) {
          planning::UnwrapBenchmarkOptions options;
          options.angles_deg = ParseRange(ba->angles, "--angles");
          options.planners = ParsePlanners(ba->planners);
-         options.scenario_path = ResolveScenarioPath("unwrap");
-         options.search_roots = {AssetRoot()};
+         options.scenario_path = base::ResolveScenarioPath("unwrap");
+         options.search_roots = {base::AssetRoot()};
          options.seeds = ba->seeds;
          options.rrt_budget = ba->budget;
          if (!(ba->perturb >= 0.0 && ba->perturb <= kMaxPerturbM)) {
@@ -525,17 +526,17 @@ void AddPlanCommands(CLI::App* root, CommandList* commands) {
            // Keep the finished rows under a name that says so (no figure of a partial sweep);
            // unwrap.csv and unwrap.png of an earlier complete run in DIR stay as they were.
            WriteFileAtomic((fs::path(out.staging()) / "unwrap.partial.csv").string(),
-                           UnwrapCsv(finished));
+                           planning::UnwrapCsv(finished));
            out.Commit();
            std::fprintf(stderr, "\n%s: wrote %s/unwrap.partial.csv (%zu of %d runs)\n", e.what(),
                         ba->output.c_str(), finished.runs.size(), total);
            return e.timeout ? kExitFailed : kExitInterrupted;
          }
-         WriteFileAtomic((fs::path(out.staging()) / "unwrap.csv").string(), UnwrapCsv(result));
-         if (const auto figure = UnwrapFigure(result)) {
+         WriteFileAtomic((fs::path(out.staging()) / "unwrap.csv").string(), planning::UnwrapCsv(result));
+         if (const auto figure = visualize::UnwrapFigure(result)) {
            const std::string png = (fs::path(out.staging()) / "unwrap.png").string();
            render::WriteFigure(png, *figure);
-           WriteVectorFormats(png, *figure, ba->formats);
+           visualize::WriteVectorFormats(png, *figure, ba->formats);
          }
          if (log_dir) {
            for (size_t a = 0; a < result.angles_deg.size(); ++a) {

@@ -8,10 +8,11 @@
 #include <nlohmann/json.hpp>
 
 #include "app/cli/command.h"
-#include "app/figures.h"
+#include "visualize/figures.h"
 #include "app/cli/io.h"
-#include "app/scene_builder.h"
-#include "app/scene_json.h"
+#include "app/cli/robot_flags.h"
+#include "visualize/scene_builder.h"
+#include "visualize/scene_file.h"
 #include "render/diff.h"
 #include "render/figure.h"
 #include "render/image.h"
@@ -27,7 +28,7 @@ namespace fs = std::filesystem;
 
 struct RenderArgs {
   std::string input, output, size, camera, gl, q, pose;
-  RobotInputOptions robot_input;
+  planning::RobotInputOptions robot_input;
   int msaa = 0;
   bool no_shadows = false;
 };
@@ -47,13 +48,13 @@ struct DiffArgs {
 // What `render` can draw. Dispatch is by extension and content so that other inputs can be
 // added here: a scene file (JSON object with "shapes"/"camera"/...); issue 4 adds URDF robots
 // (".urdf") and scenario files (JSON with a "robot" key).
-SceneDocument LoadRenderInput(const std::string& path, const std::string& q, const RenderArgs& a) {
+visualize::SceneDocument LoadRenderInput(const std::string& path, const std::string& q, const RenderArgs& a) {
   if (!fs::is_regular_file(path)) throw std::invalid_argument(path + ": file not found");
   const std::string ext = fs::path(path).extension().string();
-  if (IsRobotSceneFile(path)) return RobotSceneDocument(path, q, a.pose, a.robot_input);
+  if (planning::IsRobotSceneFile(path)) return visualize::RobotSceneDocument(path, q, a.pose, a.robot_input);
   if (!a.pose.empty()) throw std::invalid_argument("--pose: only for a robot or scenario input");
   if (!q.empty()) throw std::invalid_argument("--q: only for a robot .urdf or scenario input");
-  if (ext == ".json") return LoadSceneFile(path);
+  if (ext == ".json") return visualize::LoadSceneFile(path);
   throw std::invalid_argument(
       path + ": don't know how to render '" + ext +
       "' files (expected a scene .json, a robot .urdf or a scenario .json)");
@@ -94,11 +95,11 @@ void AddRenderCommands(CLI::App* root, CommandList* commands) {
   commands->push_back(
       {render_cmd, [ra]() {
          CheckOutputFile(ra->output, "-o");
-         SceneDocument doc = LoadRenderInput(ra->input, ra->q, *ra);
+         visualize::SceneDocument doc = LoadRenderInput(ra->input, ra->q, *ra);
          int width = doc.width > 0 ? doc.width : 640, height = doc.height > 0 ? doc.height : 480;
-         if (!ra->size.empty()) ParseImageSize(ra->size, "--size", &width, &height);
+         if (!ra->size.empty()) visualize::ParseImageSize(ra->size, "--size", &width, &height);
          if (!ra->camera.empty()) {
-           const std::vector<double> c = ParseNumberList(ra->camera, "--camera", 7, 1e6);
+           const std::vector<double> c = base::ParseNumberList(ra->camera, "--camera", 7, 1e6);
            doc.camera.eye = Eigen::Vector3d(c[0], c[1], c[2]).cast<float>();
            doc.camera.target = Eigen::Vector3d(c[3], c[4], c[5]).cast<float>();
            doc.camera.fovy_deg = static_cast<float>(c[6]);
@@ -151,7 +152,7 @@ void AddRenderCommands(CLI::App* root, CommandList* commands) {
   commands->push_back(
       {heatmap, [ha]() {
          int width = 0, height = 0;
-         ParseImageSize(ha->size, "--size", &width, &height);
+         visualize::ParseImageSize(ha->size, "--size", &width, &height);
          CheckOutputFile(ha->output, "-o");
          render::FigureFormatForPath(ha->output, "-o");  // the format, checked before the work
          const topology::Chain a = topology::ReadChainCsv(ha->a_path);
@@ -160,7 +161,7 @@ void AddRenderCommands(CLI::App* root, CommandList* commands) {
          topology::WritheOptions options;
          if (ha->unsigned_variant) options.variant = topology::WritheVariant::kUnsignedSolidAngle;
          const Eigen::MatrixXd w = topology::WritheMatrix(a, b, options);
-         WritheFigureOptions f;
+         visualize::WritheFigureOptions f;
          f.width = width;
          f.height = height;
          f.title = ha->title;
@@ -169,7 +170,7 @@ void AddRenderCommands(CLI::App* root, CommandList* commands) {
          f.col_label = ha->col_label;
          f.limit = ha->clim;
          f.mark_peak = ha->mark_peak;
-         render::WriteFigure(ha->output, WritheFigure(w, Stem(ha->a_path), Stem(ha->b_path), f));
+         render::WriteFigure(ha->output, visualize::WritheFigure(w, Stem(ha->a_path), Stem(ha->b_path), f));
          std::printf("wrote %s (%ldx%ld writhe matrix, total %.6f)\n", ha->output.c_str(),
                      static_cast<long>(w.rows()), static_cast<long>(w.cols()), w.sum());
          return kExitOk;

@@ -9,7 +9,8 @@
 
 #include "app/cli/command.h"
 #include "app/cli/io.h"
-#include "app/robot_scene.h"
+#include "app/cli/robot_flags.h"
+#include "planning/motion/robot_scene.h"
 #include "planning/collision/collision.h"
 #include "planning/robot/kinematics.h"
 #include "planning/robot/robot_io.h"
@@ -29,26 +30,26 @@ Json Rows(const Eigen::Matrix3d& r) {
 
 struct FkArgs {
   std::string urdf, q, pose;
-  RobotInputOptions input;
+  planning::RobotInputOptions input;
   bool json = false;
 };
 
 struct CheckArgs {
   std::string input, q, pose;
-  RobotInputOptions robot_input;
+  planning::RobotInputOptions robot_input;
   std::vector<std::string> objects;
   bool json = false, no_self = false;
   double margin = 0.0;
 };
 
-std::string PairName(const RobotScene& s, const planning::Environment& env,
+std::string PairName(const planning::RobotScene& s, const planning::Environment& env,
                      const planning::ProximityPair& p) {
   const std::string a = s.robot.links[p.link_a].name;
   if (p.object >= 0) return a + " vs object '" + env.objects[p.object].name + "'";
   return a + " vs " + s.robot.links[p.link_b].name;
 }
 
-Json PairJson(const RobotScene& s, const planning::Environment& env,
+Json PairJson(const planning::RobotScene& s, const planning::Environment& env,
               const planning::ProximityPair& p, bool with_geometry) {
   Json j;
   j["link_a"] = s.robot.links[p.link_a].name;
@@ -85,9 +86,9 @@ void AddRobotCommands(CLI::App* root, CommandList* commands) {
       "lists them. Poses are in the world frame = the root link's frame; \"rotation\" is the 3x3\n"
       "matrix, row-major. A --q of the wrong length is an error (exit 2).");
   commands->push_back({fk, [fa]() {
-                         const RobotScene scene = LoadRobotScene(fa->urdf, fa->input);
+                         const planning::RobotScene scene = planning::LoadRobotScene(fa->urdf, fa->input);
                          const planning::Robot& robot = scene.robot;
-                         const Eigen::VectorXd q = ChooseQ(scene, fa->q, fa->pose);
+                         const Eigen::VectorXd q = planning::ChooseQ(scene, fa->q, fa->pose);
                          planning::KinematicsData kin(robot);
                          planning::ForwardKinematics(robot, q, &kin);
                          if (fa->json) {
@@ -144,13 +145,13 @@ void AddRobotCommands(CLI::App* root, CommandList* commands) {
       "the configuration is collision-free, 1 when it collides, 2 on bad input.");
   commands->push_back(
       {check, [ca]() {
-         RobotScene scene = LoadRobotScene(ca->input, ca->robot_input);
-         for (const std::string& spec : ca->objects) AddObjectSpec(spec, &scene);
-         scene.q = ChooseQ(scene, ca->q, ca->pose);
+         planning::RobotScene scene = planning::LoadRobotScene(ca->input, ca->robot_input);
+         for (const std::string& spec : ca->objects) planning::AddObjectSpec(spec, &scene);
+         scene.q = planning::ChooseQ(scene, ca->q, ca->pose);
          planning::CollisionOptions options = scene.collision_options;
          options.self_collision = options.self_collision && !ca->no_self;
          planning::KinematicsData kin(scene.robot);
-         const planning::Environment env = CollisionEnvironment(scene);
+         const planning::Environment env = planning::CollisionEnvironment(scene);
          planning::CollisionData coll(scene.robot, env, options);
          planning::ForwardKinematics(scene.robot, scene.q, &kin);
          planning::ProximityPair hit, closest;

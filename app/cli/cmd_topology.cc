@@ -6,7 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/cli/command.h"
-#include "app/figures.h"
+#include "visualize/figures.h"
 #include "app/cli/io.h"
 #include "render/figure.h"
 #include "topology/polyline.h"
@@ -84,7 +84,7 @@ void AddTopologyCommands(CLI::App* root, CommandList* commands) {
          CheckWrithePairs(a.cols(), b.cols());
          int width = 0, height = 0;
          if (writhe->count("--heatmap") > 0) {  // "" is refused
-           ParseImageSize(wa->heatmap_size, "--heatmap-size", &width, &height);
+           visualize::ParseImageSize(wa->heatmap_size, "--heatmap-size", &width, &height);
            CheckOutputFile(wa->heatmap_path, "--heatmap");
            render::FigureFormatForPath(wa->heatmap_path, "--heatmap");
          }
@@ -109,12 +109,12 @@ void AddTopologyCommands(CLI::App* root, CommandList* commands) {
            const auto stem = [](const std::string& p) {
              return std::filesystem::path(p).stem().string();
            };
-           WritheFigureOptions f;
+           visualize::WritheFigureOptions f;
            f.width = width;
            f.height = height;
            f.signed_values = !wa->unsigned_variant;
            render::WriteFigure(wa->heatmap_path,
-                               WritheFigure(w, stem(wa->a_path), stem(wa->b_path), f), "--heatmap");
+                               visualize::WritheFigure(w, stem(wa->a_path), stem(wa->b_path), f), "--heatmap");
            std::fprintf(stderr, "wrote %s\n", wa->heatmap_path.c_str());
          }
          return kExitOk;
@@ -136,7 +136,7 @@ void AddTopologyCommands(CLI::App* root, CommandList* commands) {
   commands->push_back(
       {winding, [na]() {
          // Coordinates up to 1e6 keep |direction|² and the chain's offsets finite.
-         const std::vector<double> ax = ParseNumberList(na->axis_text, "--axis", 6, 1e6);
+         const std::vector<double> ax = base::ParseNumberList(na->axis_text, "--axis", 6, 1e6);
          topology::Axis axis{{ax[0], ax[1], ax[2]}, {ax[3], ax[4], ax[5]}};
          if (!(axis.direction.norm() >= 1e-9)) {
            throw std::invalid_argument("--axis: direction dx,dy,dz must be non-zero (|d| >= 1e-9)");

@@ -8,7 +8,7 @@
 #include <utility>
 #include <vector>
 
-#include "planning/json_reader.h"
+#include "base/json_reader.h"
 #include "render/offscreen_context.h"
 
 namespace app {
@@ -50,7 +50,7 @@ void AddViewCommand(CLI::App* root, CommandList* commands);       // view (app/v
 // ("--method: unknown transfer method 'x' (...)"): the library names values, the CLI names flags.
 template <typename F>
 auto ParseFlag(const std::string& flag, F&& parse) -> decltype(parse()) {
-  return planning::PrefixErrors(flag, std::forward<F>(parse));
+  return base::PrefixErrors(flag, std::forward<F>(parse));
 }
 
 // Runs `run`, mapping exceptions to exit codes and printing "topoplan <name>: error: ..." to

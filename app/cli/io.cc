@@ -12,7 +12,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "topology/input_limits.h"
+#include "base/file_read.h"
 
 namespace app {
 
@@ -65,36 +65,12 @@ void WriteFileAtomic(const std::string& path, const std::string& contents) {
   }
 }
 
-std::vector<double> ParseNumberList(const std::string& text, const std::string& flag,
-                                    int expected_size, double max_abs) {
-  std::vector<double> values;
-  std::stringstream ss(text);
-  std::string field;
-  while (std::getline(ss, field, ',')) {
-    const std::optional<double> v = topology::ParseFiniteDouble(field);
-    if (!v) throw std::invalid_argument(flag + ": '" + field + "' is not a finite number");
-    if (std::fabs(*v) > max_abs) {
-      std::ostringstream limit;
-      limit << max_abs;
-      throw std::invalid_argument(flag + ": '" + field +
-                                  "' is out of range (|value| <= " + limit.str() + ")");
-    }
-    values.push_back(*v);
-  }
-  if (!text.empty() && text.back() == ',') throw std::invalid_argument(flag + ": trailing comma");
-  if (expected_size >= 0 && static_cast<int>(values.size()) != expected_size) {
-    throw std::invalid_argument(flag + ": expected " + std::to_string(expected_size) +
-                                " comma-separated numbers, got " + std::to_string(values.size()));
-  }
-  return values;
-}
-
 CLI::Validator FiniteIn(double lo, double hi) {
   std::ostringstream range;
   range << "[" << lo << ", " << hi << "]";
   return CLI::Validator(
       [lo, hi, r = range.str()](std::string& text) -> std::string {
-        const std::optional<double> v = topology::ParseFiniteDouble(text);
+        const std::optional<double> v = base::ParseFiniteDouble(text);
         if (!v) return "'" + text + "' is not a finite number";
         if (*v < lo || *v > hi) return "'" + text + "' is out of range " + r;
         return "";
@@ -232,6 +208,25 @@ void StopCheck::Poll() const {
 void AddTimeoutFlag(CLI::App* command, double* seconds) {
   command->add_option("--timeout", *seconds, "stop after SECONDS (exit 1, status \"timeout\")")
       ->check(FiniteIn(0.0, 1e6));
+}
+
+void AddFormatsFlag(CLI::App* command, std::vector<render::FigureFormat>* formats) {
+  *formats = {render::FigureFormat::kPng};
+  command
+      ->add_option_function<std::string>(
+          "--formats",
+          [formats](const std::string& list) {
+            *formats = render::ParseFigureFormats(list, "--formats");
+          },
+          "figure formats, a comma-separated subset of png,svg,pdf (default png)")
+      ->check([](const std::string& list) {
+        try {
+          render::ParseFigureFormats(list, "--formats");
+        } catch (const std::invalid_argument& e) {
+          return std::string(e.what()).substr(std::string("--formats: ").size());
+        }
+        return std::string();
+      });
 }
 
 }  // namespace app

@@ -2,6 +2,9 @@
 // checked flag parsing, interrupts and time limits.
 #pragma once
 
+#include "base/numbers.h"  // ParseNumberList, ParseFiniteDouble
+#include "render/figure.h"
+
 #include <CLI/CLI.hpp>
 #include <Eigen/Core>
 #include <chrono>
@@ -23,11 +26,6 @@ void EndProgress();
 // std::runtime_error naming the path on failure.
 void WriteFileAtomic(const std::string& path, const std::string& contents);
 
-// Parses "v1,v2,...,vn" into doubles. Throws std::invalid_argument naming `flag` when a field is
-// not a finite number (topology::ParseFiniteDouble: 1e-310 is one, nan/inf/1e400 are not), when
-// |value| > max_abs or, if expected_size >= 0, when the count differs.
-std::vector<double> ParseNumberList(const std::string& text, const std::string& flag,
-                                    int expected_size = -1, double max_abs = 1e300);
 
 // CLI11 check of a number flag: the text is a finite number (as ParseNumberList) in [lo, hi].
 // "--start-wrap nan" or "--threshold 2" fail at parsing with exit code 2.
@@ -101,5 +99,9 @@ class StopCheck {
 
 // --timeout SECONDS on a command (0 = none, at most 1e6 s).
 void AddTimeoutFlag(CLI::App* command, double* seconds);
+
+// --formats LIST on a command that writes several figures: "png,svg,pdf" or a subset (default
+// png). The parsed list is checked at parse time (exit 2 for an unknown name).
+void AddFormatsFlag(CLI::App* command, std::vector<render::FigureFormat>* formats);
 
 }  // namespace app

@@ -5,7 +5,7 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "app/grasp_scene.h"
+#include "visualize/grasp_scene.h"
 #include "planning/robot/kinematics.h"
 
 namespace app {
@@ -25,20 +25,20 @@ void GraspFrameWriter::Transfer(const std::string& dir, const planning::Transfer
   fo.prefix = "transfer_";
   fo.video = false;
   render::FrameWriter writer(dir, fo);
-  SceneBuildOptions opt;
+  visualize::SceneBuildOptions opt;
   opt.grid = false;
   opt.chains = true;
   // Human grasp.
   planning::KinematicsData hk(setup.human);
   planning::ForwardKinematics(setup.human, setup.human_q, &hk);
   render::Scene human;
-  AddRobotShapes(setup.human, hk, Eigen::Isometry3d::Identity(), opt, &cache_, &human);
-  AddGraspObjectShapes(setup.object, setup.grasp.world_from_object, &human);
+  visualize::AddRobotShapes(setup.human, hk, Eigen::Isometry3d::Identity(), opt, &cache_, &human);
+  visualize::AddGraspObjectShapes(setup.object, setup.grasp.world_from_object, &human);
   // Look at the palm from the object's side: along the SDH placement's z (palm normal), offset
   // sideways so fingers and object separate.
   const Eigen::Matrix3d rs = setup.sdh_placement.linear();
   view_ = (rs * Eigen::Vector3d(0.5, 0.6, 1.0)).cast<float>();
-  camera_ = FrameSceneCamera(human, view_, 40.0f);
+  camera_ = visualize::FrameSceneCamera(human, view_, 40.0f);
   const std::string human_label = setup.grasp.name + ": human grasp";
   render::Image human_frame = renderer_.Render(human, camera_, kFrameWidth, kFrameHeight);
   render::DrawStamp(&human_frame, {human_label});
@@ -48,9 +48,9 @@ void GraspFrameWriter::Transfer(const std::string& dir, const planning::Transfer
   for (int c = 0; c < t.trajectory.q.cols(); ++c) {
     planning::ForwardKinematics(setup.sdh, t.trajectory.q.col(c), &sk);
     render::Scene scene;
-    AddRobotShapes(setup.sdh, sk, Eigen::Isometry3d::Identity(), opt, &cache_, &scene);
-    AddGraspObjectShapes(setup.object, setup.grasp.world_from_object, &scene);
-    if (c == 0) camera_ = FrameSceneCamera(scene, view_, 40.0f);
+    visualize::AddRobotShapes(setup.sdh, sk, Eigen::Isometry3d::Identity(), opt, &cache_, &scene);
+    visualize::AddGraspObjectShapes(setup.object, setup.grasp.world_from_object, &scene);
+    if (c == 0) camera_ = visualize::FrameSceneCamera(scene, view_, 40.0f);
     // AICO time slices of the approach: their time when the trajectory has one, else the index.
     char label[64];
     if (t.trajectory.dt > 0.0) {
@@ -76,7 +76,7 @@ render::Image GraspFrameWriter::SideBySide(const render::Scene& left, const rend
   render::Scene both = left;
   both.shapes.insert(both.shapes.end(), right.shapes.begin(), right.shapes.end());
   both.tubes.insert(both.tubes.end(), right.tubes.begin(), right.tubes.end());
-  const render::Camera camera = FrameSceneCamera(both, view, 40.0f);
+  const render::Camera camera = visualize::FrameSceneCamera(both, view, 40.0f);
   const render::Image a = renderer_.Render(left, camera, kFrameWidth, kFrameHeight);
   const render::Image b = renderer_.Render(right, camera, kFrameWidth, kFrameHeight);
   render::Image out(2 * kFrameWidth + kGap, kFrameHeight, 255, 255, 255);
@@ -126,9 +126,9 @@ void GraspFrameWriter::AddStabilityFrame(int phase, const phys::SimState& state)
     g[(phase - 1) / 2] = ((phase - 1) % 2 == 0 ? 1.0 : -1.0) * stability_.gravity;
     g = state.world_from_link[0].linear() * g;
   }
-  const render::Scene scene = GraspSimScene(*hand_, *object_, state, g);
+  const render::Scene scene = visualize::GraspSimScene(*hand_, *object_, state, g);
   if (!camera_set_) {
-    camera_ = FrameSceneCamera(scene, view_, 40.0f);
+    camera_ = visualize::FrameSceneCamera(scene, view_, 40.0f);
     camera_set_ = true;
   }
   char time[48];

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "app/scene_builder.h"
+#include "visualize/scene_builder.h"
 #include "planning/grasp/grasp_transfer.h"
 #include "planning/physics/grasp_trials.h"
 #include "render/frames.h"
@@ -52,7 +52,7 @@ class GraspFrameWriter {
 
   render::OffscreenContext context_;
   render::Renderer renderer_;
-  SceneMeshCache cache_;
+  visualize::SceneMeshCache cache_;
   render::Camera camera_;
   Eigen::Vector3f view_ = Eigen::Vector3f(1.0f, 1.3f, 0.8f);
   bool camera_set_ = false;

@@ -3,8 +3,9 @@
 #include <stdexcept>
 
 #include "app/cli/command.h"
-#include "app/figures.h"
+#include "visualize/figures.h"
 #include "app/cli/io.h"
+#include "app/cli/robot_flags.h"
 #include "app/viewer/viewer.h"
 
 namespace app {
@@ -50,7 +51,7 @@ void AddViewCommand(CLI::App* root, CommandList* commands) {
                          if (view->count("--screenshot") > 0) {
                            CheckOutputFile(o->screenshot, "--screenshot");
                          }
-                         ParseImageSize(*size, "--size", &o->width, &o->height);
+                         visualize::ParseImageSize(*size, "--size", &o->width, &o->height);
                          if (o->width < 64 || o->height < 64) {
                            throw std::invalid_argument(
                                "--size: the viewer needs each side >= 64, got '" + *size + "'");

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "app/grasp_scene.h"
+#include "visualize/grasp_scene.h"
 
 namespace app {
 namespace {
@@ -11,25 +11,25 @@ constexpr float kDegToRad = 3.14159265358979f / 180.0f;
 }
 
 render::Scene BuildFrameScene(const Session& session, const Settings& settings,
-                              SceneMeshCache* cache) {
+                              visualize::SceneMeshCache* cache) {
   if (settings.grasp.active && session.grasp() && !session.grasp()->frames.empty()) {
     const GraspReplay& g = *session.grasp();
     const int f = std::clamp(settings.grasp.frame, 0, static_cast<int>(g.frames.size()) - 1);
     planning::physics::SimState state = g.frames[f].state;
     if (!settings.view.contacts) state.contacts.clear();
-    render::Scene scene = GraspSimScene(g.hand, g.object, state, session.GraspGravity(f));
+    render::Scene scene = visualize::GraspSimScene(g.hand, g.object, state, session.GraspGravity(f));
     scene.grid.enabled = false;
     return scene;
   }
   const planning::Robot& robot = session.robot();
   planning::KinematicsData kin(robot);
   planning::ForwardKinematics(robot, session.ShownQ(settings), &kin);
-  SceneBuildOptions options;
+  visualize::SceneBuildOptions options;
   options.visuals = !settings.view.collision_geometry;
   options.chains = settings.view.chains;
   options.grid = settings.view.grid;
-  render::Scene scene = BuildRobotScene(robot, kin, session.objects(), options, cache);
-  if (session.scenario()) AddTaskBoxes(session.scenario()->spec, &scene);
+  render::Scene scene = visualize::BuildRobotScene(robot, kin, session.objects(), options, cache);
+  if (session.scenario()) visualize::AddTaskBoxes(session.scenario()->spec, &scene);
   return scene;
 }
 
@@ -46,7 +46,7 @@ render::Camera OrbitToCamera(const OrbitCamera& o) {
 
 void FrameOrbit(const render::Scene& scene, OrbitCamera* orbit) {
   const render::Camera framed =
-      FrameSceneCamera(scene, Eigen::Vector3f(1.0f, -1.3f, 0.8f), orbit->fovy_deg);
+      visualize::FrameSceneCamera(scene, Eigen::Vector3f(1.0f, -1.3f, 0.8f), orbit->fovy_deg);
   const Eigen::Vector3f d = framed.eye - framed.target;
   orbit->target = framed.target;
   orbit->distance = 1.1f * d.norm();  // margin: planned motions leave the start pose

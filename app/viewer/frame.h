@@ -2,7 +2,7 @@
 // its Settings. Both modes call these, so a scripted headless run reproduces the window.
 #pragma once
 
-#include "app/scene_builder.h"
+#include "visualize/scene_builder.h"
 #include "app/viewer/session.h"
 #include "app/viewer/settings.h"
 #include "render/scene.h"
@@ -13,7 +13,7 @@ namespace app {
 // or visual geometry, the scenario's box task regions (AddTaskBoxes), and the ground grid. Meshes
 // are converted once into `cache`.
 render::Scene BuildFrameScene(const Session& session, const Settings& settings,
-                              SceneMeshCache* cache);
+                              visualize::SceneMeshCache* cache);
 
 // The orbit camera as a render::Camera: eye = target + distance·(cos p cos y, cos p sin y, sin p)
 // with yaw y and pitch p in degrees, up = +z.

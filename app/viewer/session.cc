@@ -13,14 +13,15 @@
 #include <stdexcept>
 #include <utility>
 
-#include "app/assets.h"
-#include "app/grasp_inputs.h"
+#include "base/assets.h"
+#include "planning/grasp/grasp_inputs.h"
 #include "planning/grasp/grasp_object.h"
 #include "planning/grasp/grasp_transfer.h"
 #include "planning/physics/hand_builder.h"
 #include "planning/physics/ode_runtime.h"
 #include "planning/motion/replan.h"
-#include "topology/input_limits.h"
+#include "base/file_read.h"
+#include "base/numbers.h"
 
 namespace app {
 namespace {
@@ -33,7 +34,7 @@ bool IsPlanningScenario(const std::string& path) {
   if (path.size() < 5 || path.substr(path.size() - 5) != ".json") return false;
   std::string text;
   try {
-    text = topology::ReadFileBounded(path, "scenario");
+    text = base::ReadFileBounded(path, "scenario");
   } catch (const std::invalid_argument&) {
     return false;
   }
@@ -58,7 +59,7 @@ const planning::Environment& Session::objects() const {
 std::vector<std::string> Session::joint_names() const { return planning::DofNames(robot()); }
 
 void Session::Load(const std::string& arg, const Settings& settings) {
-  const std::string path = ResolveScenarioPath(arg);
+  const std::string path = base::ResolveScenarioPath(arg);
   result_.reset();
   horizon_.reset();
   sweeps_.clear();
@@ -69,14 +70,14 @@ void Session::Load(const std::string& arg, const Settings& settings) {
     if (settings.planner.start_wrap_deg >= 0) {
       overrides.start_wrap_deg = settings.planner.start_wrap_deg;
     }
-    overrides.package_paths = PackagePaths(settings.robot_input.package_paths);
+    overrides.package_paths = planning::PackagePaths(settings.robot_input.package_paths);
     overrides.srdf = settings.robot_input.srdf;
-    scenario_ = LoadScenarioArg(path, overrides);
+    scenario_ = planning::LoadScenarioArg(path, overrides);
     robot_scene_.reset();
     joint_q_ = scenario_->problem.q0;
     status_ = "loaded scenario " + scenario_->name;
   } else {
-    robot_scene_ = LoadRobotScene(path, settings.robot_input);
+    robot_scene_ = planning::LoadRobotScene(path, settings.robot_input);
     scenario_.reset();
     joint_q_ = robot_scene_->q;
     status_ = "loaded " + path;
@@ -380,7 +381,7 @@ void Session::StartGrasp(Settings* settings, long budget, bool phases) {
   const std::string name = settings->grasp.grasp;
   const planning::TransferMethod method = planning::ParseTransferMethod(settings->grasp.method);
   auto in =
-      std::make_shared<const GraspInputs>(LoadGraspInputs({AssetPath("grasps/" + name + ".json")}));
+      std::make_shared<const planning::GraspInputs>(planning::LoadGraspInputs({base::AssetPath("grasps/" + name + ".json")}));
   DropJob();
   auto out = std::make_shared<GraspOutput>();
   out->replay.grasp = name;
@@ -861,7 +862,7 @@ void CheckScriptArgs(const std::string& path, const ScriptLine& l, long long* to
   const std::string at = path + ":" + std::to_string(l.line) + ": ";
   const auto where = [&](size_t i) { return at + "'" + l.args[i] + "'"; };
   const auto number = [&](size_t i, double lo, double hi) {
-    const std::optional<double> v = topology::ParseFiniteDouble(l.args[i]);
+    const std::optional<double> v = base::ParseFiniteDouble(l.args[i]);
     if (!v) throw std::invalid_argument(where(i) + " is not a finite number");
     if (*v < lo || *v > hi) {
       std::ostringstream range;
@@ -941,7 +942,7 @@ const std::vector<std::string>& ScriptToggles() {
 }
 
 std::vector<ScriptLine> ParseScript(const std::string& path) {
-  std::istringstream in(topology::ReadFileBounded(path, "script"));
+  std::istringstream in(base::ReadFileBounded(path, "script"));
   const std::vector<VerbSpec>& verbs = ScriptVerbs();
   std::vector<ScriptLine> lines;
   std::string raw;

@@ -13,7 +13,7 @@
 #include <utility>
 #include <vector>
 
-#include "app/robot_scene.h"
+#include "planning/motion/robot_scene.h"
 #include "app/viewer/settings.h"
 #include "app/viewer/worker.h"
 #include "planning/robot/kinematics.h"
@@ -190,7 +190,7 @@ class Session {
   void ShowPlanResult(Settings* settings);
 
   std::shared_ptr<planning::Scenario> scenario_;
-  std::optional<RobotScene> robot_scene_;
+  std::optional<planning::RobotScene> robot_scene_;
   Eigen::VectorXd joint_q_;  // slider configuration
   std::optional<planning::PlanResult> result_;
   // The receding-horizon plan behind result_ after a `move` (its velocities and the scenario

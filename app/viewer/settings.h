@@ -7,7 +7,7 @@
 #include <Eigen/Core>
 #include <string>
 
-#include "app/robot_scene.h"
+#include "planning/motion/robot_scene.h"
 
 namespace app {
 
@@ -57,7 +57,7 @@ struct MoveSettings {
 
 struct Settings {
   std::string scenario_path;
-  RobotInputOptions robot_input;  // --package-path, --srdf: used by every load
+  planning::RobotInputOptions robot_input;  // --package-path, --srdf: used by every load
   PlannerSettings planner;
   ViewToggles view;
   OrbitCamera camera;

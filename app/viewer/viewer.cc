@@ -18,7 +18,7 @@
 #include <string>
 #include <vector>
 
-#include "app/assets.h"
+#include "base/assets.h"
 #include "app/viewer/frame.h"
 #include "app/viewer/session.h"
 #include "app/viewer/imgui_overlay.h"
@@ -28,7 +28,8 @@
 #include "render/offscreen_context.h"
 #include "render/overlay.h"
 #include "render/renderer.h"
-#include "topology/input_limits.h"
+#include "base/file_read.h"
+#include "base/numbers.h"
 
 namespace app::ui {
 namespace {
@@ -37,7 +38,7 @@ std::vector<std::string> ListGrasps() {
   std::vector<std::string> names;
   std::error_code ec;
   for (const auto& e :
-       std::filesystem::directory_iterator(std::filesystem::path(AssetRoot()) / "grasps", ec)) {
+       std::filesystem::directory_iterator(std::filesystem::path(base::AssetRoot()) / "grasps", ec)) {
     if (e.path().extension() == ".json" && e.path().filename() != "objects.json") {
       names.push_back(e.path().stem().string());
     }
@@ -50,7 +51,7 @@ std::vector<std::string> ListScenarios() {
   std::vector<std::string> names;
   std::error_code ec;
   for (const auto& e :
-       std::filesystem::directory_iterator(std::filesystem::path(AssetRoot()) / "scenarios", ec)) {
+       std::filesystem::directory_iterator(std::filesystem::path(base::AssetRoot()) / "scenarios", ec)) {
     if (e.path().extension() == ".json") names.push_back(e.path().stem().string());
   }
   std::sort(names.begin(), names.end());
@@ -165,7 +166,7 @@ class ScriptRunner {
     using K = SessionCommand::Kind;
     const auto arg = [&](size_t i) { return l.args.at(i); };
     const auto num = [&](size_t i) {  // checked by ParseScript
-      return topology::ParseFiniteDouble(arg(i)).value_or(0.0);
+      return base::ParseFiniteDouble(arg(i)).value_or(0.0);
     };
     const auto apply = [&](const SessionCommand& c) { session->Apply(c, settings); };
     if (l.verb == "quit") {
@@ -312,7 +313,7 @@ struct Viewer {
   std::vector<std::string> scenarios = ListScenarios();
   std::vector<std::string> grasps = ListGrasps();
   WidgetRects rects;
-  SceneMeshCache cache;
+  visualize::SceneMeshCache cache;
   render::Image atlas;
   render::Overlay overlay;
   std::vector<SessionCommand> commands;

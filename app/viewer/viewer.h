@@ -5,7 +5,7 @@
 
 #include <string>
 
-#include "app/robot_scene.h"
+#include "planning/motion/robot_scene.h"
 
 namespace app::ui {
 
@@ -21,7 +21,7 @@ struct ViewerOptions {
   // While the worker computes, the 3-D scene is rendered again at most this often [ms] (the
   // panels every frame); camera or size changes and screenshots render at once (ScenePacer).
   double preview_interval_ms = 200.0;
-  RobotInputOptions robot_input;  // --package-path, --srdf
+  planning::RobotInputOptions robot_input;  // --package-path, --srdf
 };
 
 // Runs the viewer; returns the process exit code (0 ok). Throws render::ContextError when no

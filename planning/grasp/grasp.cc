@@ -9,7 +9,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "planning/json_reader.h"
+#include "base/json_reader.h"
 #include "topology/winding.h"
 #include "topology/writhe.h"
 
@@ -19,7 +19,7 @@ namespace {
 using Json = nlohmann::json;
 
 // {"xyz": [x, y, z], "rpy": [r, p, y]} (both required).
-Eigen::Isometry3d ReadPose(const JsonNode& n) {
+Eigen::Isometry3d ReadPose(const base::JsonNode& n) {
   n.CheckKeys({"xyz", "rpy"});
   return PoseFromXyzRpy(n.At("xyz").Vec3(), n.At("rpy").Vec3());
 }
@@ -69,8 +69,8 @@ const std::vector<std::string>& SdhFingers() {
 }
 
 HumanGrasp LoadHumanGrasp(const std::string& path) {
-  const Json doc = ParseJsonFile(path, "grasp");
-  const JsonNode root(doc, path);
+  const Json doc = base::ParseJsonFile(path, "grasp");
+  const base::JsonNode root(doc, path);
   root.CheckKeys({"name", "type", "description", "object", "object_pose", "palm_pose", "joints",
                   "sdh_spread", "close"});
   HumanGrasp g;
@@ -83,7 +83,7 @@ HumanGrasp LoadHumanGrasp(const std::string& path) {
   g.world_from_palm = ReadPose(root.At("palm_pose"));
   for (const auto& [name, value] : root.At("joints").Members()) g.joints[name] = value.Number();
   if (root.Has("sdh_spread")) {
-    const JsonNode sn = root.At("sdh_spread");
+    const base::JsonNode sn = root.At("sdh_spread");
     g.sdh_spread = sn.Number();
     if (!(g.sdh_spread >= 0 && g.sdh_spread <= 1.5707963268)) sn.Fail("must be in [0, pi/2]");
   }

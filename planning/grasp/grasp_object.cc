@@ -6,7 +6,7 @@
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
-#include "planning/json_reader.h"
+#include "base/json_reader.h"
 
 namespace planning {
 namespace {
@@ -96,10 +96,10 @@ ReferenceCurve TransformReference(const ReferenceCurve& ref,
 
 namespace {
 
-GraspPrimitive ReadPrimitive(const JsonNode& pj) {
+GraspPrimitive ReadPrimitive(const base::JsonNode& pj) {
   pj.CheckKeys({"type", "size", "xyz", "rpy"});
   GraspPrimitive prim;
-  const JsonNode tn = pj.At("type");
+  const base::JsonNode tn = pj.At("type");
   const std::string type = tn.String();
   if (type == "sphere") {
     prim.kind = GraspPrimitive::Kind::kSphere;
@@ -114,7 +114,7 @@ GraspPrimitive ReadPrimitive(const JsonNode& pj) {
   } else {
     tn.Fail("'" + type + "' is not sphere|cylinder|box|capsule|torus");
   }
-  const JsonNode sn = pj.At("size");
+  const base::JsonNode sn = pj.At("size");
   prim.size = sn.Vec3();
   if (prim.size.cwiseAbs().maxCoeff() > 10.0) sn.Fail("sizes must be at most 10 m");
   if (prim.size.x() <= 0 || (prim.kind != GraspPrimitive::Kind::kSphere &&
@@ -132,7 +132,7 @@ GraspPrimitive ReadPrimitive(const JsonNode& pj) {
   return prim;
 }
 
-ReferenceCurve ReadReference(const JsonNode& r) {
+ReferenceCurve ReadReference(const base::JsonNode& r) {
   ReferenceCurve ref;
   const std::string type = r.String("type", "");
   if (type == "axis") {
@@ -144,7 +144,7 @@ ReferenceCurve ReadReference(const JsonNode& r) {
   } else if (type == "loop") {
     r.CheckKeys({"type", "points"});
     ref.kind = ReferenceCurve::Kind::kLoop;
-    const JsonNode pts = r.At("points");
+    const base::JsonNode pts = r.At("points");
     if (pts.Size() < 3 || pts.Size() > 100000) pts.Fail("need 3 to 100000 points");
     ref.loop.resize(3, static_cast<int>(pts.Size()) + 1);
     for (size_t k = 0; k < pts.Size(); ++k) ref.loop.col(k) = pts.At(k).Vec3();
@@ -177,13 +177,13 @@ ReferenceCurve ReadReference(const JsonNode& r) {
 }  // namespace
 
 std::vector<GraspObject> LoadGraspObjects(const std::string& path) {
-  const Json doc = ParseJsonFile(path, "object catalogue");
-  const JsonNode root(doc, path);
+  const Json doc = base::ParseJsonFile(path, "object catalogue");
+  const base::JsonNode root(doc, path);
   root.CheckKeys({"objects"});
-  const JsonNode list = root.At("objects");
+  const base::JsonNode list = root.At("objects");
   std::vector<GraspObject> objects;
   for (size_t i = 0; i < list.Size(); ++i) {
-    const JsonNode o = list.At(i);
+    const base::JsonNode o = list.At(i);
     o.CheckKeys({"name", "mass", "description", "primitives", "reference", "extra_references",
                  "main_reference_in_target"});
     GraspObject obj;
@@ -192,12 +192,12 @@ std::vector<GraspObject> LoadGraspObjects(const std::string& path) {
     obj.mass = o.At("mass").Number(0.0, 1000.0);
     if (!(obj.mass >= 1e-6)) o.At("mass").Fail("expected a mass in [1e-06, 1000] kg");
     obj.description = o.String("description", "");
-    const JsonNode prims = o.At("primitives");
+    const base::JsonNode prims = o.At("primitives");
     if (prims.Size() == 0) prims.Fail("missing or empty");
     for (size_t k = 0; k < prims.Size(); ++k) obj.primitives.push_back(ReadPrimitive(prims.At(k)));
     obj.reference = ReadReference(o.At("reference"));
     if (o.Has("extra_references")) {
-      const JsonNode extra = o.At("extra_references");
+      const base::JsonNode extra = o.At("extra_references");
       for (size_t k = 0; k < extra.Size(); ++k) {
         obj.extra_references.push_back(ReadReference(extra.At(k)));
       }

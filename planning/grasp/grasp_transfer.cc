@@ -441,7 +441,7 @@ TransferSetup MakeTransferSetup(const Robot& human_hand, const Robot& sdh_source
 
 std::vector<TransferMethod> AllTransferMethods() {
   std::vector<TransferMethod> out;
-  for (const EnumName<TransferMethod>& e : kTransferMethodNames) out.push_back(e.value);
+  for (const base::EnumName<TransferMethod>& e : kTransferMethodNames) out.push_back(e.value);
   return out;
 }
 

@@ -23,7 +23,7 @@
 #include <vector>
 
 #include "planning/motion/aico.h"
-#include "planning/enum_names.h"
+#include "base/enum_names.h"
 #include "planning/grasp/grasp.h"
 #include "planning/grasp/grasp_object.h"
 #include "planning/robot/robot.h"
@@ -50,19 +50,19 @@ enum class TransferMethod {
   kJointMapping,
   kHuman
 };
-inline constexpr EnumName<TransferMethod> kTransferMethodNames[] = {
+inline constexpr base::EnumName<TransferMethod> kTransferMethodNames[] = {
     {TransferMethod::kWinding, "winding"},          {TransferMethod::kWindingOnly, "winding_only"},
     {TransferMethod::kContactOnly, "contact_only"}, {TransferMethod::kFingertip, "fingertip"},
     {TransferMethod::kJointMapping, "joint"},       {TransferMethod::kHuman, "human"},
 };
-constexpr std::span<const EnumName<TransferMethod>> EnumNames(TransferMethod) {
+constexpr std::span<const base::EnumName<TransferMethod>> EnumNames(TransferMethod) {
   return kTransferMethodNames;
 }
-inline const char* ToString(TransferMethod method) { return ToName(method); }
+inline const char* ToString(TransferMethod method) { return base::ToName(method); }
 // One of the names above; throws std::invalid_argument "unknown transfer method 'x' (winding,
 // winding_only, ...)" otherwise.
 inline TransferMethod ParseTransferMethod(const std::string& text) {
-  return ParseEnum<TransferMethod>(text, "transfer method");
+  return base::ParseEnum<TransferMethod>(text, "transfer method");
 }
 // All six methods in the order above (`--method all`).
 std::vector<TransferMethod> AllTransferMethods();

@@ -6,7 +6,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "planning/random.h"
+#include "base/random.h"
 
 namespace planning {
 namespace {
@@ -170,7 +170,7 @@ FinalPoseSearchResult SearchFinalPose(const MotionProblem& p, const FinalPoseOpt
   for (int k = 0; k < search.random_starts; ++k) {
     Eigen::VectorXd init = inits[0];
     for (Eigen::Index j = 0; j < init.size(); ++j)
-      init[j] += search.spread * (2.0 * UniformUnit(&rng) - 1.0);
+      init[j] += search.spread * (2.0 * base::UniformUnit(&rng) - 1.0);
     run(init);
   }
   return out;

@@ -7,7 +7,7 @@
 #include <stdexcept>
 
 #include "planning/collision/collision.h"
-#include "planning/enum_names.h"
+#include "base/enum_names.h"
 #include "planning/motion/internal/ompl_planners.h"
 #include "planning/robot/kinematics.h"
 #include "planning/motion/rrt.h"
@@ -15,14 +15,14 @@
 
 namespace planning {
 
-inline constexpr EnumName<Planner> kPlannerNames[] = {
+inline constexpr base::EnumName<Planner> kPlannerNames[] = {
     {Planner::kAico, "aico"},
     {Planner::kRrt, "rrt"},
     {Planner::kBiRrt, "birrt"},
     {Planner::kOmplRrt, "ompl-rrt"},
     {Planner::kOmplRrtConnect, "ompl-rrtconnect"},
 };
-constexpr std::span<const EnumName<Planner>> EnumNames(Planner) { return kPlannerNames; }
+constexpr std::span<const base::EnumName<Planner>> EnumNames(Planner) { return kPlannerNames; }
 
 namespace {
 
@@ -59,14 +59,14 @@ RrtProblem ScenarioRrtProblem(const Scenario& s) {
 
 std::vector<Planner> AvailablePlanners() {
   std::vector<Planner> out;
-  for (const EnumName<Planner>& e : kPlannerNames) {
+  for (const base::EnumName<Planner>& e : kPlannerNames) {
     if (!NeedsOmpl(e.value) || OmplAvailable()) out.push_back(e.value);
   }
   return out;
 }
 
 Planner ParsePlanner(const std::string& name) {
-  const Planner p = ParseEnum<Planner>(name, "planner");
+  const Planner p = base::ParseEnum<Planner>(name, "planner");
   if (NeedsOmpl(p) && !OmplAvailable()) {
     throw std::invalid_argument("planner '" + name +
                                 "': topoplan was built without OMPL (apt-get install "
@@ -83,9 +83,9 @@ bool OmplAvailable() {
 #endif
 }
 
-const char* PlannerName(Planner planner) { return ToName(planner); }
+const char* PlannerName(Planner planner) { return base::ToName(planner); }
 
-inline constexpr EnumName<FailureReason> kFailureReasonNames[] = {
+inline constexpr base::EnumName<FailureReason> kFailureReasonNames[] = {
     {FailureReason::kNone, "none"},
     {FailureReason::kJointLimits, "joint_limits"},
     {FailureReason::kCollision, "collision"},
@@ -96,11 +96,11 @@ inline constexpr EnumName<FailureReason> kFailureReasonNames[] = {
     {FailureReason::kDiverged, "diverged"},
     {FailureReason::kInvalidInput, "invalid_input"},
 };
-constexpr std::span<const EnumName<FailureReason>> EnumNames(FailureReason) {
+constexpr std::span<const base::EnumName<FailureReason>> EnumNames(FailureReason) {
   return kFailureReasonNames;
 }
 
-const char* FailureReasonName(FailureReason reason) { return ToName(reason); }
+const char* FailureReasonName(FailureReason reason) { return base::ToName(reason); }
 
 PlanVerdict JudgePlan(const Scenario& s, const Trajectory& path) {
   if (path.num_points() == 0) throw std::invalid_argument("JudgePlan: empty path");

@@ -11,7 +11,7 @@
 #include <string>
 
 #include "planning/robot/kinematics.h"
-#include "topology/input_limits.h"
+#include "base/file_read.h"
 #include "topology/winding.h"
 
 namespace planning {
@@ -66,7 +66,7 @@ void ShiftTargets(const MotionProblem& base, int g, MotionProblem* window) {
 }  // namespace
 
 ObjectPath ReadObjectPath(const std::string& path) {
-  std::istringstream in(topology::ReadFileBounded(path, "object path"));
+  std::istringstream in(base::ReadFileBounded(path, "object path"));
   ObjectPath out;
   std::string line;
   int number = 0;

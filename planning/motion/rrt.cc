@@ -7,7 +7,7 @@
 #include <string>
 #include <utility>
 
-#include "planning/random.h"
+#include "base/random.h"
 
 namespace planning {
 namespace {
@@ -75,7 +75,7 @@ int Nearest(const std::vector<RrtNode>& tree, const Eigen::VectorXd& q) {
 
 void SampleUniform(const RrtProblem& p, std::mt19937* rng, Eigen::VectorXd* q) {
   for (Eigen::Index i = 0; i < q->size(); ++i) {
-    (*q)[i] = p.lower[i] + UniformUnit(rng) * (p.upper[i] - p.lower[i]);
+    (*q)[i] = p.lower[i] + base::UniformUnit(rng) * (p.upper[i] - p.lower[i]);
   }
 }
 
@@ -188,7 +188,7 @@ struct RrtSolver::Impl {
 void RrtSolver::Impl::IterateRrt() {
   std::vector<RrtNode>& tree = trees[0];
   ++iterations;
-  const bool to_goal = UniformUnit(&rng) < options.goal_bias;
+  const bool to_goal = base::UniformUnit(&rng) < options.goal_bias;
   if (to_goal) {
     setup.q_rand = problem.goal;
   } else {
@@ -214,8 +214,8 @@ void RrtSolver::Impl::IterateBiRrt() {
   std::vector<RrtNode>& a = trees[grow];
   std::vector<RrtNode>& b = trees[1 - grow];
   // Target: a random node of the other tree (goal_bias) or a uniform sample.
-  if (UniformUnit(&rng) < options.goal_bias) {
-    setup.q_rand = b[UniformIndex(&rng, static_cast<std::uint32_t>(b.size()))].q;
+  if (base::UniformUnit(&rng) < options.goal_bias) {
+    setup.q_rand = b[base::UniformIndex(&rng, static_cast<std::uint32_t>(b.size()))].q;
   } else {
     SampleUniform(problem, &rng, &setup.q_rand);
   }

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "base/assets.h"
 #include "planning/robot/kinematics.h"
 #include "planning/robot/pose.h"
 #include "planning/robot/robot_io.h"
@@ -20,11 +21,11 @@ namespace planning {
 namespace {
 
 int FindIn(const SpecName& n, int (*find)(const Robot&, const std::string&), const Robot& r) {
-  return PrefixErrors(n.where, [&] { return find(r, n.name); });
+  return base::PrefixErrors(n.where, [&] { return find(r, n.name); });
 }
 
 Eigen::Matrix3Xd ObjectChain(const Scenario& s, const SpecName& object, const SpecName& chain) {
-  const int o = PrefixErrors(object.where, [&] { return FindObject(s.objects, object.name); });
+  const int o = base::PrefixErrors(object.where, [&] { return FindObject(s.objects, object.name); });
   const int c = FindIn(chain, FindChain, s.objects.objects[o].model);
   return ObjectChainPoints(s.objects, o, c);
 }
@@ -42,7 +43,7 @@ std::unique_ptr<Feature> BuildFeature(const Scenario& s, const FeatureSpec& f) {
   const Robot& r = s.robot;
   auto link = [&] { return FindIn(f.link, FindLink, r); };
   auto chain = [&] { return FindIn(f.chain, FindChain, r); };
-  return PrefixErrors(f.where, [&]() -> std::unique_ptr<Feature> {
+  return base::PrefixErrors(f.where, [&]() -> std::unique_ptr<Feature> {
     switch (f.type) {
       case FeatureType::kPosition:
         return MakePositionFeature(r, link(), f.offset);
@@ -324,14 +325,14 @@ int TaskIndex(const Scenario& s, const SpecName& n) {
   std::vector<std::string> names;
   for (const TaskSpec& t : s.spec.tasks) names.push_back(t.name);
   throw std::invalid_argument(n.where + ": no task named '" + n.name + "'" +
-                              DidYouMean(n.name, names));
+                              base::DidYouMean(n.name, names));
 }
 
 void LoadObjects(Scenario* s) {
   for (const ObjectSpec& o : s->spec.objects) {
-    Robot model = PrefixErrors(o.where + ".urdf", [&] { return LoadRobot(o.urdf); });
+    Robot model = base::PrefixErrors(o.where + ".urdf", [&] { return LoadRobot(o.urdf); });
     const Eigen::Isometry3d pose = PoseFromXyzRpy(o.xyz, o.rpy);
-    PrefixErrors(o.where, [&] { AddObject(model, pose, o.name, &s->objects); });
+    base::PrefixErrors(o.where, [&] { AddObject(model, pose, o.name, &s->objects); });
     if (!o.collide) continue;
     if (!o.capsule_chain) {
       AddObject(model, pose, o.name, &s->env);
@@ -379,7 +380,7 @@ void SetUpCollision(Scenario* s) {
   }
   // Validate the options once (unknown link names throw here, with the JSON path).
   if (!c.where.empty())
-    PrefixErrors(c.where, [&] { CollisionData check(s->robot, s->env, s->collision); });
+    base::PrefixErrors(c.where, [&] { CollisionData check(s->robot, s->env, s->collision); });
 }
 
 }  // namespace
@@ -496,7 +497,7 @@ MotionProblem AttemptProblem(const Scenario& s, int k) {
     p.tasks.push_back(BuildTask(s, s.spec.tasks[i], p.q0, &s.goal_q));
     p.tasks.back().precision *= scale[static_cast<Eigen::Index>(i)];
   }
-  PrefixErrors(s.source, [&] { ValidateProblem(p); });
+  base::PrefixErrors(s.source, [&] { ValidateProblem(p); });
   return p;
 }
 
@@ -540,7 +541,7 @@ std::unique_ptr<Scenario> SetUpScenario(ScenarioSpec spec,
   s->source = sp.source;
   RobotLoadOptions load;
   load.package_paths = sp.package_paths;
-  s->robot = PrefixErrors(sp.source + ": robot", [&] { return LoadRobot(sp.robot, load); });
+  s->robot = base::PrefixErrors(sp.source + ": robot", [&] { return LoadRobot(sp.robot, load); });
   const std::string srdf_path = sp.srdf.empty() ? FindSrdf(sp.robot) : sp.srdf;
   std::optional<Srdf> srdf;
   if (!srdf_path.empty()) {
@@ -550,7 +551,7 @@ std::unique_ptr<Scenario> SetUpScenario(ScenarioSpec spec,
   if (sp.start.kind == StartKind::kPose) {
     if (!srdf) throw std::invalid_argument(sp.start.where + ": a pose start needs an SRDF");
     s->spec.start.q =
-        PrefixErrors(sp.start.where, [&] { return NamedPose(s->robot, *srdf, sp.start.pose); });
+        base::PrefixErrors(sp.start.where, [&] { return NamedPose(s->robot, *srdf, sp.start.pose); });
     s->spec.start.kind = StartKind::kQ;
   }
   LoadObjects(s.get());
@@ -663,6 +664,11 @@ std::unique_ptr<Scenario> LoadScenario(const std::string& path,
   if (!overrides.srdf.empty()) spec.srdf = overrides.srdf;
   if (overrides.stop_when_solved) spec.aico_stop_when_solved = *overrides.stop_when_solved;
   return SetUpScenario(std::move(spec), overrides.start_wrap_deg);
+}
+
+std::unique_ptr<Scenario> LoadScenarioArg(const std::string& arg, ScenarioOverrides overrides) {
+  overrides.search_roots = {base::AssetRoot()};
+  return LoadScenario(base::ResolveScenarioPath(arg), overrides);
 }
 
 }  // namespace planning

@@ -136,6 +136,13 @@ std::unique_ptr<Scenario> SetUpScenario(ScenarioSpec spec,
 std::unique_ptr<Scenario> LoadScenario(const std::string& path,
                                        const ScenarioOverrides& overrides = {});
 
+// A scenario argument as users give it: a file path, or a bare name looked up as
+// <assets>/scenarios/NAME.json (base::ResolveScenarioPath), loaded with the asset root as the
+// search root for its relative robot/object paths (so a copy of a shipped scenario loads from
+// any folder).
+std::unique_ptr<Scenario> LoadScenarioArg(const std::string& arg,
+                                          ScenarioOverrides overrides = {});
+
 // The MotionProblem of AICO attempt k (0 <= k < aico_attempts.size()): the scenario's tasks with
 // attempt k's precision multipliers (k = 0 gives a problem equal to `problem`).
 MotionProblem AttemptProblem(const Scenario& scenario, int k);

@@ -4,30 +4,30 @@
 #include <limits>
 #include <stdexcept>
 
-#include "planning/json_reader.h"
+#include "base/json_reader.h"
 
 namespace planning {
 
-inline constexpr EnumName<SweepMode> kSweepModeNames[] = {
+inline constexpr base::EnumName<SweepMode> kSweepModeNames[] = {
     {SweepMode::kForwardly, "forwardly"},
     {SweepMode::kSymmetric, "symmetric"},
     {SweepMode::kLocalGaussNewton, "local_gauss_newton"},
 };
-constexpr std::span<const EnumName<SweepMode>> EnumNames(SweepMode) { return kSweepModeNames; }
+constexpr std::span<const base::EnumName<SweepMode>> EnumNames(SweepMode) { return kSweepModeNames; }
 
-inline constexpr EnumName<WritheOutput> kWritheOutputNames[] = {
+inline constexpr base::EnumName<WritheOutput> kWritheOutputNames[] = {
     {WritheOutput::kMatrix, "matrix"},
     {WritheOutput::kTotal, "total"},
 };
-constexpr std::span<const EnumName<WritheOutput>> EnumNames(WritheOutput) {
+constexpr std::span<const base::EnumName<WritheOutput>> EnumNames(WritheOutput) {
   return kWritheOutputNames;
 }
 
-inline constexpr EnumName<FinalPoseInit> kFinalPoseInitNames[] = {
+inline constexpr base::EnumName<FinalPoseInit> kFinalPoseInitNames[] = {
     {FinalPoseInit::kStart, "start"},
     {FinalPoseInit::kUnwrapped, "unwrapped"},
 };
-constexpr std::span<const EnumName<FinalPoseInit>> EnumNames(FinalPoseInit) {
+constexpr std::span<const base::EnumName<FinalPoseInit>> EnumNames(FinalPoseInit) {
   return kFinalPoseInitNames;
 }
 
@@ -44,26 +44,26 @@ namespace fs = std::filesystem;
 
 // The enum named by a string node; the error (with the JSON path) lists the valid names.
 template <typename E>
-E Parse(const JsonNode& n, const std::string& what) {
-  return Located(n, [&] { return ParseEnum<E>(n.String(), what); });
+E Parse(const base::JsonNode& n, const std::string& what) {
+  return base::Located(n, [&] { return base::ParseEnum<E>(n.String(), what); });
 }
 
-SpecName Name(const JsonNode& n) { return {n.String(), n.Where()}; }
-SpecName Name(const JsonNode& n, const std::string& key) { return Name(n.At(key)); }
+SpecName Name(const base::JsonNode& n) { return {n.String(), n.Where()}; }
+SpecName Name(const base::JsonNode& n, const std::string& key) { return Name(n.At(key)); }
 
-ObjectSpec ReadObject(const JsonNode& n, const std::string& dir,
+ObjectSpec ReadObject(const base::JsonNode& n, const std::string& dir,
                       const std::vector<std::string>& roots) {
   n.CheckKeys({"name", "urdf", "xyz", "rpy", "collide", "capsules"});
   ObjectSpec o;
   o.where = n.Where();
   o.name = n.At("name").String();
-  const JsonNode un = n.At("urdf");
+  const base::JsonNode un = n.At("urdf");
   o.urdf = ResolveDataFile(un.String(), dir, roots, un.Where());
   o.xyz = n.Vec3("xyz", o.xyz);
   o.rpy = n.Vec3("rpy", o.rpy);
   o.collide = n.Bool("collide", true);
   if (n.Has("capsules")) {
-    const JsonNode cn = n.At("capsules");
+    const base::JsonNode cn = n.At("capsules");
     cn.CheckKeys({"chain", "radius"});
     o.capsule_chain = Name(cn, "chain");
     o.capsule_radius = cn.At("radius").Number(0.0, kMaxLength);
@@ -72,28 +72,28 @@ ObjectSpec ReadObject(const JsonNode& n, const std::string& dir,
   return o;
 }
 
-CollisionSpec ReadCollision(const JsonNode& n) {
+CollisionSpec ReadCollision(const base::JsonNode& n) {
   n.CheckKeys({"self", "disabled_pairs", "disabled_groups", "analytic_capsules"});
   CollisionSpec c;
   c.where = n.Where();
   c.self = n.Bool("self", true);
   c.analytic_capsules = n.Bool("analytic_capsules", false);
   if (n.Has("disabled_pairs")) {
-    const JsonNode dp = n.At("disabled_pairs");
+    const base::JsonNode dp = n.At("disabled_pairs");
     for (size_t i = 0; i < dp.Size(); ++i) {
-      const JsonNode pn = dp.At(i);
+      const base::JsonNode pn = dp.At(i);
       if (pn.Size() != 2) pn.Fail("expected [link_a, link_b]");
       c.disabled_pairs.emplace_back(pn.At(0).String(), pn.At(1).String());
     }
   }
   if (n.Has("disabled_groups")) {
-    const JsonNode gs = n.At("disabled_groups");
+    const base::JsonNode gs = n.At("disabled_groups");
     for (size_t g = 0; g < gs.Size(); ++g) c.disabled_groups.push_back(gs.At(g).Strings());
   }
   return c;
 }
 
-StartSpec ReadStart(const JsonNode& n) {
+StartSpec ReadStart(const base::JsonNode& n) {
   n.CheckKeys({"q", "coil", "pose"});
   StartSpec s;
   s.where = n.Where();
@@ -107,7 +107,7 @@ StartSpec ReadStart(const JsonNode& n) {
     return s;
   }
   if (n.Has("q")) {
-    const JsonNode qn = n.At("q");
+    const base::JsonNode qn = n.At("q");
     s.where = qn.Where();
     if (qn.IsString()) {
       if (qn.String() != "zero") qn.Fail("expected \"zero\" or a configuration");
@@ -118,7 +118,7 @@ StartSpec ReadStart(const JsonNode& n) {
     }
     return s;
   }
-  const JsonNode cn = n.At("coil");
+  const base::JsonNode cn = n.At("coil");
   cn.CheckKeys({"wrap_deg", "step", "margin"});
   s.kind = StartKind::kCoil;
   s.where = cn.Where();
@@ -129,7 +129,7 @@ StartSpec ReadStart(const JsonNode& n) {
   return s;
 }
 
-ProblemSpec ReadProblem(const JsonNode& n) {
+ProblemSpec ReadProblem(const base::JsonNode& n) {
   n.CheckKeys({"T", "duration", "dynamic", "h_rate", "w_rate", "q_rate"});
   ProblemSpec p;
   if (n.Has("T")) p.num_steps = static_cast<int>(n.At("T").Integer(1, 10000));
@@ -141,7 +141,7 @@ ProblemSpec ReadProblem(const JsonNode& n) {
   return p;
 }
 
-FeatureSpec ReadFeature(const JsonNode& n) {
+FeatureSpec ReadFeature(const base::JsonNode& n) {
   FeatureSpec f;
   f.where = n.Where();
   f.type = Parse<FeatureType>(n.At("type"), "feature type");
@@ -207,7 +207,7 @@ FeatureSpec ReadFeature(const JsonNode& n) {
   return f;
 }
 
-TaskSpec ReadTask(const JsonNode& n) {
+TaskSpec ReadTask(const base::JsonNode& n) {
   n.CheckKeys({"name", "feature", "order", "between", "max_jump", "target", "precision",
                "final_precision", "final_steps"});
   TaskSpec t;
@@ -228,7 +228,7 @@ TaskSpec ReadTask(const JsonNode& n) {
   }
   t.target.where = n.Where() + ".target";
   if (n.Has("target")) {
-    const JsonNode tn = n.At("target");
+    const base::JsonNode tn = n.At("target");
     tn.CheckKeys({"type", "value", "reach_at"});
     t.target.kind =
         tn.Has("type") ? Parse<TargetKind>(tn.At("type"), "target type") : TargetKind::kValue;
@@ -238,7 +238,7 @@ TaskSpec ReadTask(const JsonNode& n) {
       t.target.reach_at = tn.At("reach_at").Number(1e-6, 1.0);
     }
     if (t.target.kind == TargetKind::kValue || t.target.kind == TargetKind::kInterpolate) {
-      const JsonNode vn = tn.At("value");
+      const base::JsonNode vn = tn.At("value");
       t.target.value_where = vn.Where();
       t.target.scalar = vn.IsNumber();
       t.target.value = vn.IsNumber() ? Eigen::VectorXd::Constant(1, vn.Number()) : vn.Vector();
@@ -247,15 +247,15 @@ TaskSpec ReadTask(const JsonNode& n) {
   return t;
 }
 
-FinalPoseSpec ReadFinalPose(const JsonNode& n) {
+FinalPoseSpec ReadFinalPose(const base::JsonNode& n) {
   n.CheckKeys({"tasks", "alpha", "prior_scale", "init"});
   FinalPoseSpec f;
-  const JsonNode ln = n.At("tasks");
+  const base::JsonNode ln = n.At("tasks");
   for (size_t i = 0; i < ln.Size(); ++i) f.tasks.push_back(Name(ln.At(i)));
   f.options.alpha = n.Number("alpha", f.options.alpha);
   f.options.prior_scale = n.Number("prior_scale", f.options.prior_scale);
   if (n.Has("init")) {
-    const JsonNode in = n.At("init");
+    const base::JsonNode in = n.At("init");
     f.init_where = in.Where();
     if (in.IsArray()) {
       f.init = FinalPoseInit::kQ;
@@ -267,19 +267,19 @@ FinalPoseSpec ReadFinalPose(const JsonNode& n) {
   return f;
 }
 
-SuccessSpec ReadSuccess(const JsonNode& n) {
+SuccessSpec ReadSuccess(const base::JsonNode& n) {
   n.CheckKeys({"writhe_total_below", "position", "inside_box", "winding"});
   SuccessSpec s;
   s.writhe_total_below = n.Number("writhe_total_below", -1.0);
   if (n.Has("position")) {
-    const JsonNode pn = n.At("position");
+    const base::JsonNode pn = n.At("position");
     pn.CheckKeys({"task", "tolerance"});
     s.position_task = Name(pn, "task");
     s.position_tolerance = pn.Number("tolerance", s.position_tolerance, 0.0, kMaxLength);
   }
   if (n.Has("inside_box")) s.box_task = Name(n, "inside_box");
   if (n.Has("winding")) {
-    const JsonNode wn = n.At("winding");
+    const base::JsonNode wn = n.At("winding");
     wn.CheckKeys({"max_jump", "final_below"});
     s.winding_where = wn.Where();
     s.winding_max_jump = wn.Number("max_jump", 0.1);
@@ -291,7 +291,7 @@ SuccessSpec ReadSuccess(const JsonNode& n) {
   return s;
 }
 
-void ReadAico(const JsonNode& n, ScenarioSpec* spec) {
+void ReadAico(const base::JsonNode& n, ScenarioSpec* spec) {
   n.CheckKeys({"max_iterations", "tolerance", "damping", "sweep_mode", "max_step",
                "max_relocations", "relocation_damping", "rollout_init", "rollout_prior",
                "rollout_iterations", "stop_when_solved", "retry"});
@@ -315,7 +315,7 @@ void ReadAico(const JsonNode& n, ScenarioSpec* spec) {
   spec->aico_stop_when_solved = n.Bool("stop_when_solved", spec->aico_stop_when_solved);
   spec->aico_attempts[0].max_iterations = a.max_iterations;
   if (!n.Has("retry")) return;
-  const JsonNode rn = n.At("retry");
+  const base::JsonNode rn = n.At("retry");
   rn.CheckKeys({"precision_scale", "max_iterations"});
   AicoAttemptSpec retry;
   retry.max_iterations = a.max_iterations;
@@ -323,7 +323,7 @@ void ReadAico(const JsonNode& n, ScenarioSpec* spec) {
     retry.max_iterations = static_cast<int>(rn.At("max_iterations").Integer(1, kMax));
   }
   if (rn.Has("precision_scale")) {
-    const JsonNode sc = rn.At("precision_scale");
+    const base::JsonNode sc = rn.At("precision_scale");
     if (!sc.IsObject()) sc.Fail("expected {\"task name\": factor, ...}");
     for (const auto& [task, fn] : sc.Members()) {
       const double f = fn.Number(0.0, kMaxWeight);
@@ -334,7 +334,7 @@ void ReadAico(const JsonNode& n, ScenarioSpec* spec) {
   spec->aico_attempts.push_back(retry);
 }
 
-RrtOptions ReadRrt(const JsonNode& n) {
+RrtOptions ReadRrt(const base::JsonNode& n) {
   n.CheckKeys({"range", "resolution", "goal_bias", "max_checks"});
   RrtOptions r;
   r.range = n.Number("range", r.range, 0.0, 1e3);
@@ -378,8 +378,8 @@ std::string ResolveDataFile(const std::string& file, const std::string& base_dir
 
 ScenarioSpec ParseScenarioSpec(const std::string& path,
                                const std::vector<std::string>& search_roots) {
-  const nlohmann::json doc = ParseJsonFile(path, "scenario");
-  const JsonNode root(doc, path);
+  const nlohmann::json doc = base::ParseJsonFile(path, "scenario");
+  const base::JsonNode root(doc, path);
   root.CheckKeys({"name", "description", "robot", "srdf", "package_paths", "objects",
                   "robot_chains", "collision", "writhe_report", "start", "problem", "tasks",
                   "final_pose", "success", "aico", "rrt", "check_resolution"});
@@ -389,11 +389,11 @@ ScenarioSpec ParseScenarioSpec(const std::string& path,
   s.name = root.String("name", fs::path(path).stem().string());
   root.String("description", "");
   {
-    const JsonNode rn = root.At("robot");
+    const base::JsonNode rn = root.At("robot");
     s.robot = ResolveDataFile(rn.String(), dir, search_roots, rn.Where());
   }
   if (root.Has("srdf")) {
-    const JsonNode sn = root.At("srdf");
+    const base::JsonNode sn = root.At("srdf");
     s.srdf = ResolveDataFile(sn.String(), dir, search_roots, sn.Where());
   }
   if (root.Has("package_paths")) {
@@ -402,18 +402,18 @@ ScenarioSpec ParseScenarioSpec(const std::string& path,
     }
   }
   if (root.Has("objects")) {
-    const JsonNode objs = root.At("objects");
+    const base::JsonNode objs = root.At("objects");
     for (size_t i = 0; i < objs.Size(); ++i) {
       s.objects.push_back(ReadObject(objs.At(i), dir, search_roots));
     }
   }
   if (root.Has("robot_chains")) {
-    const JsonNode rc = root.At("robot_chains");
+    const base::JsonNode rc = root.At("robot_chains");
     for (size_t i = 0; i < rc.Size(); ++i) s.robot_chains.push_back(ReadChainDescription(rc.At(i)));
   }
   if (root.Has("collision")) s.collision = ReadCollision(root.At("collision"));
   if (root.Has("writhe_report")) {
-    const JsonNode wn = root.At("writhe_report");
+    const base::JsonNode wn = root.At("writhe_report");
     wn.CheckKeys({"chain", "object", "object_chain"});
     s.writhe_report =
         WritheReportSpec{Name(wn, "chain"), Name(wn, "object"), Name(wn, "object_chain")};
@@ -423,7 +423,7 @@ ScenarioSpec ParseScenarioSpec(const std::string& path,
     root.At("start").At("coil").Fail("a coil start needs \"writhe_report\"");
   }
   if (root.Has("problem")) s.problem = ReadProblem(root.At("problem"));
-  const JsonNode tasks = root.At("tasks");
+  const base::JsonNode tasks = root.At("tasks");
   for (size_t i = 0; i < tasks.Size(); ++i) s.tasks.push_back(ReadTask(tasks.At(i)));
   if (root.Has("final_pose")) {
     s.final_pose = ReadFinalPose(root.At("final_pose"));

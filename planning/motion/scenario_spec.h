@@ -134,7 +134,7 @@
 
 #include "planning/motion/aico.h"
 #include "planning/robot/chain_json.h"
-#include "planning/enum_names.h"
+#include "base/enum_names.h"
 #include "planning/features/feature.h"
 #include "planning/motion/final_pose.h"
 #include "planning/motion/rrt.h"
@@ -201,7 +201,7 @@ enum class FeatureType {
   kCollision,
   kLineClearance
 };
-inline constexpr EnumName<FeatureType> kFeatureTypeNames[] = {
+inline constexpr base::EnumName<FeatureType> kFeatureTypeNames[] = {
     {FeatureType::kPosition, "position"},
     {FeatureType::kAxisAlignment, "axis_alignment"},
     {FeatureType::kJointLimits, "joint_limits"},
@@ -212,7 +212,7 @@ inline constexpr EnumName<FeatureType> kFeatureTypeNames[] = {
     {FeatureType::kCollision, "collision"},
     {FeatureType::kLineClearance, "line_clearance"},
 };
-constexpr std::span<const EnumName<FeatureType>> EnumNames(FeatureType) {
+constexpr std::span<const base::EnumName<FeatureType>> EnumNames(FeatureType) {
   return kFeatureTypeNames;
 }
 
@@ -232,14 +232,14 @@ struct FeatureSpec {
 };
 
 enum class TargetKind { kZero, kValue, kInterpolate, kFinalPose, kUnwinding };
-inline constexpr EnumName<TargetKind> kTargetKindNames[] = {
+inline constexpr base::EnumName<TargetKind> kTargetKindNames[] = {
     {TargetKind::kZero, "zero"},
     {TargetKind::kValue, "value"},
     {TargetKind::kInterpolate, "interpolate"},
     {TargetKind::kFinalPose, "final_pose"},
     {TargetKind::kUnwinding, "unwinding"},
 };
-constexpr std::span<const EnumName<TargetKind>> EnumNames(TargetKind) { return kTargetKindNames; }
+constexpr std::span<const base::EnumName<TargetKind>> EnumNames(TargetKind) { return kTargetKindNames; }
 
 struct TargetSpec {
   TargetKind kind = TargetKind::kZero;

@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <string>
 
-#include "planning/enum_names.h"
+#include "base/enum_names.h"
 
 namespace planning {
 
@@ -22,7 +22,7 @@ enum class SolveStatus {
             // ended (planner.h RunAicoAttempts).
 };
 
-inline constexpr EnumName<SolveStatus> kSolveStatusNames[] = {
+inline constexpr base::EnumName<SolveStatus> kSolveStatusNames[] = {
     {SolveStatus::kConverged, "converged"},
     {SolveStatus::kMaxIterations, "max_iterations"},
     {SolveStatus::kBudgetExhausted, "budget_exhausted"},
@@ -30,12 +30,12 @@ inline constexpr EnumName<SolveStatus> kSolveStatusNames[] = {
     {SolveStatus::kInvalidInput, "invalid_input"},
     {SolveStatus::kSolved, "solved"},
 };
-constexpr std::span<const EnumName<SolveStatus>> EnumNames(SolveStatus) {
+constexpr std::span<const base::EnumName<SolveStatus>> EnumNames(SolveStatus) {
   return kSolveStatusNames;
 }
 
 // Human-readable name ("converged", "max_iterations", "budget_exhausted", ...).
-inline const char* StatusName(SolveStatus status) { return ToName(status); }
+inline const char* StatusName(SolveStatus status) { return base::ToName(status); }
 
 // A joint-space trajectory: column t of `q` is the configuration q_t (num_dofs × num_points),
 // sampled every `dt` seconds (dt = 0 for geometric paths without timing, e.g. RRT output).

@@ -6,7 +6,7 @@
 #include <random>
 #include <stdexcept>
 
-#include "planning/random.h"
+#include "base/random.h"
 
 namespace planning {
 
@@ -57,8 +57,8 @@ Eigen::Vector3d UnwrapPoleOffset(int seed, double max_m, const Eigen::Vector3d& 
   const Eigen::Vector3d e1 = d.cross(helper).normalized();
   const Eigen::Vector3d e2 = d.cross(e1);
   std::mt19937 rng(static_cast<unsigned>(seed));
-  const double r = max_m * std::sqrt(UniformUnit(&rng));  // uniform over the disc
-  const double phi = 2.0 * M_PI * UniformUnit(&rng);
+  const double r = max_m * std::sqrt(base::UniformUnit(&rng));  // uniform over the disc
+  const double phi = 2.0 * M_PI * base::UniformUnit(&rng);
   return r * (std::cos(phi) * e1 + std::sin(phi) * e2);
 }
 

@@ -17,7 +17,7 @@
 #include <string>
 #include <vector>
 
-#include "planning/enum_names.h"
+#include "base/enum_names.h"
 #include "planning/physics/ode_runtime.h"
 
 namespace planning::physics {
@@ -93,11 +93,11 @@ ObjectMass ObjectMassProperties(const SimObject& object);
 
 enum class HandMode { kMotorized, kKinematic };
 enum class Stepper { kWorldStep, kQuickStep };
-inline constexpr EnumName<Stepper> kStepperNames[] = {
+inline constexpr base::EnumName<Stepper> kStepperNames[] = {
     {Stepper::kWorldStep, "world_step"},
     {Stepper::kQuickStep, "quick_step"},
 };
-constexpr std::span<const EnumName<Stepper>> EnumNames(Stepper) { return kStepperNames; }
+constexpr std::span<const base::EnumName<Stepper>> EnumNames(Stepper) { return kStepperNames; }
 
 // Solver and contact parameters (docs/methods.md §10).
 struct SimOptions {

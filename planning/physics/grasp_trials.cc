@@ -11,7 +11,7 @@
 
 #include "planning/grasp/grasp_quality.h"
 #include "planning/robot/kinematics.h"
-#include "planning/random.h"
+#include "base/random.h"
 
 namespace planning::physics {
 namespace {
@@ -216,11 +216,11 @@ Eigen::Isometry3d PerturbedObjectPose(const Eigen::Isometry3d& world_from_object
   std::seed_seq seq{options.seed, static_cast<std::uint32_t>(h),
                     static_cast<std::uint32_t>(h >> 32), static_cast<std::uint32_t>(k)};
   std::mt19937 rng(seq);
-  auto symmetric = [&rng](double a) { return a * (2.0 * UniformUnit(&rng) - 1.0); };
+  auto symmetric = [&rng](double a) { return a * (2.0 * base::UniformUnit(&rng) - 1.0); };
   Eigen::Vector3d t;
   for (int i = 0; i < 3; ++i) t[i] = symmetric(options.perturb_translation);
-  const double z = 2.0 * UniformUnit(&rng) - 1.0;
-  const double phi = 2.0 * M_PI * UniformUnit(&rng);
+  const double z = 2.0 * base::UniformUnit(&rng) - 1.0;
+  const double phi = 2.0 * M_PI * base::UniformUnit(&rng);
   const double r = std::sqrt(std::max(0.0, 1.0 - z * z));
   const Eigen::Vector3d axis(r * std::cos(phi), r * std::sin(phi), z);
   const double angle = symmetric(options.perturb_rotation_deg * M_PI / 180.0);

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "planning/enum_names.h"
+#include "base/enum_names.h"
 #include "planning/physics/grasp_simulation.h"
 
 namespace planning::physics {
@@ -131,14 +131,14 @@ StabilityResult TestGraspStability(const OdeRuntime& runtime, const SimHand& han
                                    const SimObject& object, const StabilityOptions& options,
                                    const StepCallback& on_step = {});
 
-inline constexpr EnumName<StabilityStatus> kStabilityStatusNames[] = {
+inline constexpr base::EnumName<StabilityStatus> kStabilityStatusNames[] = {
     {StabilityStatus::kTested, "tested"},
     {StabilityStatus::kNoGrasp, "no_grasp"},
     {StabilityStatus::kBlownUp, "blown_up"},
 };
-constexpr std::span<const EnumName<StabilityStatus>> EnumNames(StabilityStatus) {
+constexpr std::span<const base::EnumName<StabilityStatus>> EnumNames(StabilityStatus) {
   return kStabilityStatusNames;
 }
-inline const char* ToString(StabilityStatus status) { return ToName(status); }
+inline const char* ToString(StabilityStatus status) { return base::ToName(status); }
 
 }  // namespace planning::physics

@@ -4,19 +4,19 @@
 
 namespace planning {
 
-ChainDescription ReadChainDescription(const JsonNode& node) {
+ChainDescription ReadChainDescription(const base::JsonNode& node) {
   node.CheckKeys({"name", "closed", "points"});
   ChainDescription c;
   c.where = node.Where();
   c.name = node.At("name").String();
   c.closed = node.Bool("closed", false);
-  const JsonNode pts = node.At("points");
+  const base::JsonNode pts = node.At("points");
   if (pts.Size() < 2) pts.Fail("a chain needs at least 2 points");
   c.point_local.resize(3, static_cast<Eigen::Index>(pts.Size()));
   for (size_t k = 0; k < pts.Size(); ++k) {
-    const JsonNode p = pts.At(k);
+    const base::JsonNode p = pts.At(k);
     p.CheckKeys({"link", "xyz"});
-    const JsonNode link = p.At("link");
+    const base::JsonNode link = p.At("link");
     c.links.push_back(link.String());
     c.link_where.push_back(link.Where());
     c.point_local.col(static_cast<Eigen::Index>(k)) = p.Vec3("xyz", Eigen::Vector3d::Zero());
@@ -43,7 +43,7 @@ ChainSpec ResolveChain(const ChainDescription& chain, const Robot& robot) {
     }
     if (index < 0) {
       throw std::invalid_argument(chain.link_where[k] + ": unknown link '" + chain.links[k] + "'" +
-                                  DidYouMean(chain.links[k], names));
+                                  base::DidYouMean(chain.links[k], names));
     }
     spec.point_link.push_back(index);
   }

@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "planning/json_reader.h"
+#include "base/json_reader.h"
 #include "planning/robot/robot.h"
 
 namespace planning {
@@ -28,7 +28,7 @@ struct ChainDescription {
 };
 
 // Reads one chain object; unknown keys, fewer than 2 points, wrong types throw (JSON path).
-ChainDescription ReadChainDescription(const JsonNode& node);
+ChainDescription ReadChainDescription(const base::JsonNode& node);
 
 // Resolves the link names on `robot`. Throws std::invalid_argument naming the JSON path for an
 // unknown link and for a name already used by one of robot.chains.

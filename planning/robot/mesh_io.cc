@@ -20,7 +20,7 @@
 #include <system_error>
 #include <vector>
 
-#include "topology/input_limits.h"
+#include "base/file_read.h"
 
 extern "C" {
 #include <libqhull_r/qhull_ra.h>
@@ -77,7 +77,7 @@ std::vector<std::string> AttributeValues(const std::string& xml, const std::stri
 // A COLLADA <input>/<accessor> whose source="#id" names no element makes assimp 5.2 allocate
 // gigabytes (found by fuzzing): such files are refused before assimp reads them.
 void CheckColladaSources(const std::string& path) {
-  const std::string xml = topology::ReadFileBounded(path, "mesh", kMaxMeshFileBytes);
+  const std::string xml = base::ReadFileBounded(path, "mesh", kMaxMeshFileBytes);
   const std::vector<std::string> ids = AttributeValues(xml, "id");
   const std::set<std::string> known(ids.begin(), ids.end());
   for (const std::string& source : AttributeValues(xml, "source")) {

@@ -18,9 +18,9 @@
 
 #include "planning/robot/chain_json.h"
 #include "planning/robot/internal/xml_text.h"
-#include "planning/json_reader.h"
+#include "base/json_reader.h"
 #include "planning/robot/mesh_io.h"
-#include "topology/input_limits.h"
+#include "base/file_read.h"
 
 namespace planning {
 namespace {
@@ -397,10 +397,10 @@ struct GeometryBuilder {
 // ---- Chains ------------------------------------------------------------------------------------
 
 void LoadChains(const std::string& json_path, Robot* robot) {
-  const nlohmann::json doc = ParseJsonFile(json_path, "chain");
-  const JsonNode root(doc, json_path);
+  const nlohmann::json doc = base::ParseJsonFile(json_path, "chain");
+  const base::JsonNode root(doc, json_path);
   root.CheckKeys({"chains"});
-  const JsonNode chains = root.At("chains");
+  const base::JsonNode chains = root.At("chains");
   for (size_t c = 0; c < chains.Size(); ++c) {
     robot->chains.push_back(ResolveChain(ReadChainDescription(chains.At(c)), *robot));
   }
@@ -566,7 +566,7 @@ Robot ParseRobot(const std::string& urdf_xml, const std::string& source_name,
 }
 
 Robot LoadRobot(const std::string& urdf_path, const RobotLoadOptions& options) {
-  const std::string xml = topology::ReadFileBounded(urdf_path, "URDF");
+  const std::string xml = base::ReadFileBounded(urdf_path, "URDF");
   std::string dir = fs::path(urdf_path).parent_path().string();
   if (dir.empty()) dir = ".";
   return ParseRobot(xml, urdf_path, dir, options);

@@ -8,7 +8,7 @@
 #include <stdexcept>
 
 #include "planning/robot/internal/xml_text.h"
-#include "topology/input_limits.h"
+#include "base/file_read.h"
 
 namespace planning {
 namespace {
@@ -76,7 +76,7 @@ Srdf ParseSrdf(const std::string& xml, const std::string& source) {
 }
 
 Srdf LoadSrdf(const std::string& path) {
-  return ParseSrdf(topology::ReadFileBounded(path, "SRDF"), path);
+  return ParseSrdf(base::ReadFileBounded(path, "SRDF"), path);
 }
 
 void CheckSrdf(const Srdf& srdf, const Robot& robot) {

@@ -8,7 +8,7 @@
 #include <cmath>
 
 #include "render/internal/canvas.h"
-#include "render/internal/file_read.h"
+#include "base/file_read.h"
 #include "render/offscreen_context.h"
 
 namespace render::internal {
@@ -67,15 +67,16 @@ std::vector<int> DecodeUtf8(std::string_view text) {
 }
 
 Font::Font(const std::string& path) : data_(std::make_unique<Data>()) {
-  std::string bytes;
-  if (!ReadFileUpTo(path, kMaxFontFileBytes, &bytes)) {
-    throw EnvironmentError(path +
-                           ": font not found (install the Debian package fonts-dejavu-core)");
-  }
-  if (bytes.size() > kMaxFontFileBytes) {
+  const base::FileBytes file = base::ReadFileLimited(path, kMaxFontFileBytes);
+  if (file.status == base::ReadStatus::kTooLarge) {
     throw EnvironmentError(path + ": font file is larger than " +
                            std::to_string(kMaxFontFileBytes) + " bytes (limit)");
   }
+  if (file.status != base::ReadStatus::kOk) {
+    throw EnvironmentError(path +
+                           ": font not found (install the Debian package fonts-dejavu-core)");
+  }
+  const std::string& bytes = file.bytes;
   data_->bytes.assign(bytes.begin(), bytes.end());
   // stb_truetype reads the 12-byte header without checking the length.
   const int offset = bytes.size() < 12 ? -1 : stbtt_GetFontOffsetForIndex(data_->bytes.data(), 0);

@@ -6,16 +6,17 @@
 #include <vector>
 
 #include "app/cli/command.h"
-#include "app/figures.h"
+#include "visualize/figures.h"
 #include "app/cli/io.h"
-#include "app/robot_scene.h"
-#include "app/scene_json.h"
+#include "planning/motion/robot_scene.h"
+#include "visualize/scene_file.h"
 #include "app/viewer/session.h"
 #include "planning/grasp/grasp_transfer.h"
 #include "planning/motion/planner.h"
 #include "render/offscreen_context.h"
 #include "tests/fuzz/fuzz_targets.h"
-#include "topology/input_limits.h"
+#include "base/file_read.h"
+#include "base/numbers.h"
 
 namespace topoplan_fuzz {
 namespace {
@@ -54,8 +55,8 @@ void ParseCommandLine(const std::string& text) {
 
 int SceneJson(const uint8_t* data, size_t size) {
   try {
-    const nlohmann::json doc = planning::ParseJsonText(Text(data, size), "fuzz.json");
-    app::ParseSceneJson(doc, "fuzz.json", AssetPath("scenes"));
+    const nlohmann::json doc = base::ParseJsonText(Text(data, size), "fuzz.json");
+    visualize::ParseSceneJson(doc, "fuzz.json", AssetPath("scenes"));
   } catch (const std::invalid_argument& e) {
     Rejected(e);
   }
@@ -77,10 +78,10 @@ int Flags(const uint8_t* data, size_t size) {
   try {
     switch (data[0] < 0x80 ? data[0] % 9 : 9) {
       case 0:
-        app::ParseNumberList(text, "--object");
+        base::ParseNumberList(text, "--object");
         break;
       case 1:
-        app::ParseNumberList(text, "--camera", 7, 1e6);
+        base::ParseNumberList(text, "--camera", 7, 1e6);
         break;
       case 2: {
         std::string value = text;
@@ -89,11 +90,11 @@ int Flags(const uint8_t* data, size_t size) {
       }
       case 3: {
         int w = 0, h = 0;
-        app::ParseImageSize(text, "--size", &w, &h);
+        visualize::ParseImageSize(text, "--size", &w, &h);
         break;
       }
       case 4:
-        app::ParseQ(TinyArm(), text);
+        planning::ParseQ(TinyArm(), text);
         break;
       case 5:
         app::ParseFlag("--planner", [&] { return planning::ParsePlanner(text); });
@@ -105,7 +106,7 @@ int Flags(const uint8_t* data, size_t size) {
         render::ParseGlBackend(text, "--gl");
         break;
       case 8:
-        topology::ParseFiniteDouble(text);
+        base::ParseFiniteDouble(text);
         break;
       default:
         ParseCommandLine(text);

@@ -134,9 +134,9 @@ TEST(HeatmapFigureTest, FramesOfOneSequenceShareTheColourBar) {
   // The second frame has a tenth of the first one's writhe: with one sequence limit its colour
   // bar still reads ±the first frame's peak.
   const std::vector<Eigen::MatrixXd> frames = {Wave(6, 4, 0.15), Wave(6, 4, 0.015)};
-  const double limit = app::PlanHeatmapLimit(frames);
+  const double limit = visualize::PlanHeatmapLimit(frames);
   EXPECT_NEAR(limit, frames[0].cwiseAbs().maxCoeff(), 1e-15);
-  EXPECT_EQ(app::PlanHeatmapLimit(frames, 0.5), 0.5);  // --clim wins
+  EXPECT_EQ(visualize::PlanHeatmapLimit(frames, 0.5), 0.5);  // --clim wins
   auto bar_labels = [](const Eigen::MatrixXd& m, double lim) {
     HeatmapOptions o;
     o.limit = lim;

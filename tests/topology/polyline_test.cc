@@ -4,7 +4,8 @@
 
 #include <sstream>
 
-#include "topology/input_limits.h"
+#include "base/file_read.h"
+#include "base/numbers.h"
 
 namespace topology {
 namespace {
@@ -58,12 +59,12 @@ TEST(ChainCsvTest, LimitsAndSubnormals) {
     EXPECT_NE(std::string(e.what()).find("/dev/zero: chain file is larger than"),
               std::string::npos);
   }
-  EXPECT_EQ(ParseFiniteDouble("1e-310"), 1e-310);
-  EXPECT_FALSE(ParseFiniteDouble("nan"));
-  EXPECT_FALSE(ParseFiniteDouble("1e400"));
-  EXPECT_FALSE(ParseFiniteDouble(" 1"));
-  EXPECT_FALSE(ParseFiniteDouble("1x"));
-  EXPECT_FALSE(ParseFiniteDouble(""));
+  EXPECT_EQ(base::ParseFiniteDouble("1e-310"), 1e-310);
+  EXPECT_FALSE(base::ParseFiniteDouble("nan"));
+  EXPECT_FALSE(base::ParseFiniteDouble("1e400"));
+  EXPECT_FALSE(base::ParseFiniteDouble(" 1"));
+  EXPECT_FALSE(base::ParseFiniteDouble("1x"));
+  EXPECT_FALSE(base::ParseFiniteDouble(""));
 }
 
 TEST(ChainCsvTest, MissingFileThrowsWithPath) {

@@ -32,11 +32,11 @@ std::string Message(const std::function<void()>& f) {
 }
 
 TEST(ParseNumberList, FiniteRangeAndSubnormals) {
-  EXPECT_EQ(ParseNumberList("1e-310,2", "--x")[0], 1e-310);
-  EXPECT_EQ(Message([] { ParseNumberList("nan", "--x"); }), "--x: 'nan' is not a finite number");
-  EXPECT_EQ(Message([] { ParseNumberList("1e400", "--x"); }),
+  EXPECT_EQ(base::ParseNumberList("1e-310,2", "--x")[0], 1e-310);
+  EXPECT_EQ(Message([] { base::ParseNumberList("nan", "--x"); }), "--x: 'nan' is not a finite number");
+  EXPECT_EQ(Message([] { base::ParseNumberList("1e400", "--x"); }),
             "--x: '1e400' is not a finite number");
-  EXPECT_EQ(Message([] { ParseNumberList("1,1e200", "--x", -1, 1e6); }),
+  EXPECT_EQ(Message([] { base::ParseNumberList("1,1e200", "--x", -1, 1e6); }),
             "--x: '1e200' is out of range (|value| <= 1e+06)");
 }
 

@@ -83,7 +83,7 @@ TEST(ReportsTest, UnwrapTableMatchesCsv) {
     double sum = 0.0;
   };
   std::map<std::pair<std::string, std::string>, Agg> csv;
-  std::istringstream in(UnwrapCsv(result));
+  std::istringstream in(planning::UnwrapCsv(result));
   std::string line;
   std::getline(in, line);
   EXPECT_EQ(line,
@@ -184,7 +184,7 @@ TEST(ReportsTest, GraspTableMatchesReportJson) {
     s.ci95 = planning::WilsonInterval(s.stable, s.grasps);
     result.summary.push_back(s);
   }
-  const nlohmann::json report = GraspReportJson(result);
+  const nlohmann::json report = planning::physics::GraspReportJson(result);
   bool has_header = false;
   std::vector<std::string> header;
   const auto rows = TableCells(GraspHtmlTable(result), &has_header, &header);
@@ -217,7 +217,7 @@ TEST(ReportsTest, GraspTableMatchesReportJson) {
   EXPECT_NEAR(report["summary"]["winding"]["ci95"][0].get<double>(), 0.2077, 1e-4);
   EXPECT_NEAR(report["summary"]["winding"]["ci95"][1].get<double>(), 0.9385, 1e-4);
   // summary.md carries the same cells.
-  const std::string md = GraspSummaryMarkdown(result);
+  const std::string md = planning::physics::GraspSummaryMarkdown(result);
   EXPECT_NE(md.find("| grasp_1 | 6/6 stable | 0/6 | 3/6 | 0.0300 | 0.0400 | 0.0500 |"),
             std::string::npos)
       << md;
@@ -229,13 +229,13 @@ TEST(ReportsTest, GraspTableMatchesReportJson) {
   EXPECT_EQ(md.find("perturbed"), std::string::npos) << md;  // no --perturb: no perturbed row
   // The grip travel: in the protocol, and in the figure's title only when not the default.
   result.close_by = phys::HandBuildOptions{}.close_by;
-  EXPECT_EQ(GraspReportJson(result)["protocol"]["close_by_rad"].get<double>(), 0.15);
-  EXPECT_EQ(GraspSummaryDataOf(result).title.find("grip"), std::string::npos);
+  EXPECT_EQ(planning::physics::GraspReportJson(result)["protocol"]["close_by_rad"].get<double>(), 0.15);
+  EXPECT_EQ(visualize::GraspSummaryDataOf(result).title.find("grip"), std::string::npos);
   result.close_by = 0.05;
-  EXPECT_EQ(GraspReportJson(result)["protocol"]["close_by_rad"].get<double>(), 0.05);
-  EXPECT_NE(GraspSummaryDataOf(result).title.find("grip \u03b4 = 0.05 rad"), std::string::npos)
-      << GraspSummaryDataOf(result).title;
-  EXPECT_NE(GraspSummaryMarkdown(result).find("flexion set-points 0.05 rad past the grasp"),
+  EXPECT_EQ(planning::physics::GraspReportJson(result)["protocol"]["close_by_rad"].get<double>(), 0.05);
+  EXPECT_NE(visualize::GraspSummaryDataOf(result).title.find("grip \u03b4 = 0.05 rad"), std::string::npos)
+      << visualize::GraspSummaryDataOf(result).title;
+  EXPECT_NE(planning::physics::GraspSummaryMarkdown(result).find("flexion set-points 0.05 rad past the grasp"),
             std::string::npos);
 }
 
@@ -261,7 +261,7 @@ TEST(ReportsTest, GraspReportCarriesTheExtraCurveWindings) {
       row.push_back(t);
     }
   }
-  const nlohmann::json report = GraspReportJson(result);
+  const nlohmann::json report = planning::physics::GraspReportJson(result);
   const nlohmann::json& pinch = report["grasps"][0]["methods"];
   EXPECT_EQ(pinch["winding"]["target_extra_winding"], nlohmann::json({0.21, -0.34}));
   EXPECT_EQ(pinch["winding"]["robot_extra_winding"], nlohmann::json({0.213457, -0.19}));

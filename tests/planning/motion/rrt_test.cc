@@ -7,7 +7,7 @@
 #include <cmath>
 #include <random>
 
-#include "planning/random.h"
+#include "base/random.h"
 #include "planning/motion/unwrap_benchmark.h"
 
 namespace planning {
@@ -128,12 +128,12 @@ TEST(PathIsValid, DetectsCollisionInsideAnEdge) {
 // equals genrand_res53 of the reference MT19937, e.g. numpy's RandomState(42).random_sample()).
 TEST(PortableRandom, FirstValuesArePinned) {
   std::mt19937 rng(42);
-  EXPECT_EQ(UniformUnit(&rng), 0.37454011884736249);
-  EXPECT_EQ(UniformUnit(&rng), 0.95071430640991617);
-  EXPECT_EQ(UniformUnit(&rng), 0.73199394181140509);
+  EXPECT_EQ(base::UniformUnit(&rng), 0.37454011884736249);
+  EXPECT_EQ(base::UniformUnit(&rng), 0.95071430640991617);
+  EXPECT_EQ(base::UniformUnit(&rng), 0.73199394181140509);
   std::mt19937 pick(42);
   const std::uint32_t expected[] = {3, 7, 9, 1, 7, 7};
-  for (std::uint32_t e : expected) EXPECT_EQ(UniformIndex(&pick, 10), e);
+  for (std::uint32_t e : expected) EXPECT_EQ(base::UniformIndex(&pick, 10), e);
 }
 
 // The unwrap benchmark's pole offsets use the same mapping: r = M·√u1, φ = 2π·u2 in the plane
@@ -156,13 +156,13 @@ TEST(PortableRandom, IndexStaysInRangeAndCoversIt) {
   std::mt19937 rng(1);
   int seen[7] = {};
   for (int i = 0; i < 7000; ++i) {
-    const std::uint32_t k = UniformIndex(&rng, 7);
+    const std::uint32_t k = base::UniformIndex(&rng, 7);
     ASSERT_LT(k, 7u);
     ++seen[k];
   }
   for (int c : seen) EXPECT_GT(c, 850);
-  EXPECT_EQ(UniformIndex(&rng, 1), 0u);
-  EXPECT_THROW(UniformIndex(&rng, 0), std::invalid_argument);
+  EXPECT_EQ(base::UniformIndex(&rng, 1), 0u);
+  EXPECT_THROW(base::UniformIndex(&rng, 0), std::invalid_argument);
 }
 
 // A resolution so fine that the step count would overflow is refused, never silently fewer checks.

@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "planning/json_reader.h"
+#include "base/json_reader.h"
 #include "planning/robot/kinematics.h"
 #include "planning/motion/planner.h"
 #include "planning/motion/replan.h"
@@ -171,8 +171,8 @@ TEST(ScenarioLoader, TargetReachAtAndFinalStepsScheduleTargetAndPrecision) {
 }
 
 TEST(JsonReader, TypedReadsRejectWithoutTruncating) {
-  const nlohmann::json doc = ParseJsonText(R"({"big": 4294967297, "neg": -3, "x": 1.5})", "f.json");
-  const JsonNode root(doc, "f.json");
+  const nlohmann::json doc = base::ParseJsonText(R"({"big": 4294967297, "neg": -3, "x": 1.5})", "f.json");
+  const base::JsonNode root(doc, "f.json");
   EXPECT_THROW(root.At("big").Int(), std::invalid_argument);
   EXPECT_EQ(root.At("big").Integer(0, 1LL << 40), 4294967297LL);
   EXPECT_EQ(root.At("neg").Int(), -3);
@@ -185,7 +185,7 @@ TEST(JsonReader, TypedReadsRejectWithoutTruncating) {
     EXPECT_EQ(std::string(e.what()), "f.json: x: unknown key 'x' (did you mean 'y'?)");
   }
   try {
-    ParseJsonText(R"({"a": [1, {"b": 1e400}]})", "g.json");
+    base::ParseJsonText(R"({"a": [1, {"b": 1e400}]})", "g.json");
     FAIL();
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("g.json: invalid JSON at a[1].b: "), std::string::npos)
@@ -274,10 +274,10 @@ TEST(Planners, NamesRoundTripAndUnknownNamesListTheValidOnes) {
               "unknown planner 'astar' (aico, rrt, birrt, ompl-rrt, ompl-rrtconnect)");
   }
   for (const auto& e : kSolveStatusNames) {
-    EXPECT_EQ(ParseEnum<SolveStatus>(StatusName(e.value), "status"), e.value);
+    EXPECT_EQ(base::ParseEnum<SolveStatus>(StatusName(e.value), "status"), e.value);
   }
   for (const auto& e : kFeatureTypeNames) {
-    EXPECT_EQ(ParseEnum<FeatureType>(ToName(e.value), "feature type"), e.value);
+    EXPECT_EQ(base::ParseEnum<FeatureType>(base::ToName(e.value), "feature type"), e.value);
   }
   EXPECT_STREQ(StatusName(SolveStatus::kBudgetExhausted), "budget_exhausted");
 }

@@ -4,7 +4,7 @@
 
 #include <cstdio>
 
-#include "app/grasp_scene.h"
+#include "visualize/grasp_scene.h"
 #include "planning/physics/grasp_simulation.h"
 #include "render/diff.h"
 #include "tests/planning/physics/test_hands.h"
@@ -35,7 +35,7 @@ TEST(GraspSnapshotTest, ClawClosedOnTheBottleWithContacts) {
   GraspSimulation sim(runtime, hand, bottle, {});
   for (int k = 0; k < 500; ++k) sim.Step();
   ASSERT_GE(sim.state().num_contact_links, 5);
-  ExpectSnapshot(app::GraspSimScene(hand, bottle, sim.state(), Eigen::Vector3d::Zero()),
+  ExpectSnapshot(visualize::GraspSimScene(hand, bottle, sim.state(), Eigen::Vector3d::Zero()),
                  "claw_closed");
   // The open hand under gravity along +z of the palm: the bottle has left the palm.
   GraspSimulation open(runtime, testing_hands::ClawHand(-0.3), bottle, {});
@@ -43,7 +43,7 @@ TEST(GraspSnapshotTest, ClawClosedOnTheBottleWithContacts) {
   open.SetGravity(g);
   for (int k = 0; k < 150; ++k) open.Step();
   ASSERT_GT(open.state().world_from_object.translation().z(), 0.08);
-  ExpectSnapshot(app::GraspSimScene(testing_hands::ClawHand(-0.3), bottle, open.state(), g),
+  ExpectSnapshot(visualize::GraspSimScene(testing_hands::ClawHand(-0.3), bottle, open.state(), g),
                  "open_hand_drops");
 }
 

@@ -7,8 +7,8 @@
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
-#include "app/scene_builder.h"
-#include "app/scene_json.h"
+#include "visualize/scene_builder.h"
+#include "visualize/scene_file.h"
 #include "planning/collision/collision.h"
 #include "planning/robot/kinematics.h"
 #include "planning/robot/robot_io.h"
@@ -98,8 +98,8 @@ TEST(MeshIo, RenderingDrawsTheVerticesCollisionUses) {
   // Robot visuals through the scene builder.
   KinematicsData kin(robot);
   ForwardKinematics(robot, Eigen::VectorXd(0), &kin);
-  app::SceneMeshCache cache;
-  const render::Scene scene = app::BuildRobotScene(robot, kin, {}, {}, &cache);
+  visualize::SceneMeshCache cache;
+  const render::Scene scene = visualize::BuildRobotScene(robot, kin, {}, {}, &cache);
   const render::TriangleMesh* drawn = nullptr;
   for (const render::Shape& s : scene.shapes) {
     if (s.kind == render::Shape::Kind::kMesh) drawn = s.mesh.get();
@@ -116,7 +116,7 @@ TEST(MeshIo, RenderingDrawsTheVerticesCollisionUses) {
   // A scene file's mesh entry reads the same file through the same loader.
   const nlohmann::json doc =
       nlohmann::json::parse(R"({"shapes": [{"type": "mesh", "file": "tet_y_up.dae"}]})");
-  const app::SceneDocument sd = app::ParseSceneJson(doc, "test.json", TestDataFile("axes"));
+  const visualize::SceneDocument sd = visualize::ParseSceneJson(doc, "test.json", TestDataFile("axes"));
   ASSERT_EQ(sd.scene.shapes.size(), 1u);
   EXPECT_EQ(sd.scene.shapes[0].mesh->positions, mesh.vertices);
   EXPECT_EQ(sd.scene.shapes[0].mesh->normals, mesh.normals);

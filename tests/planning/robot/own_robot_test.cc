@@ -3,9 +3,9 @@
 // the shipped scenario (start pose from the SRDF), plan with AICO and BiRRT, render a frame.
 #include <gtest/gtest.h>
 
-#include "app/assets.h"
-#include "app/robot_scene.h"
-#include "app/scene_builder.h"
+#include "base/assets.h"
+#include "planning/motion/robot_scene.h"
+#include "visualize/scene_builder.h"
 #include "planning/collision/collision.h"
 #include "planning/robot/kinematics.h"
 #include "planning/motion/planner.h"
@@ -52,10 +52,10 @@ TEST(OwnRobot, Step1To3LoadMeshesSrdfAndPose) {
   EXPECT_DOUBLE_EQ(ready[2], 0.8);
   EXPECT_FALSE(Colliding(robot, ready, with_srdf, &hit));
   // The app's loader finds the same SRDF and disables the same pairs.
-  const app::RobotScene scene = app::LoadRobotScene(kUrdf, app::RobotInputOptions{});
+  const planning::RobotScene scene = planning::LoadRobotScene(kUrdf, planning::RobotInputOptions{});
   ASSERT_TRUE(scene.srdf.has_value());
   EXPECT_EQ(scene.collision_options.disabled_pairs.size(), srdf.disabled_pairs.size());
-  EXPECT_EQ(app::ChooseQ(scene, "", "ready"), ready);
+  EXPECT_EQ(planning::ChooseQ(scene, "", "ready"), ready);
 }
 
 TEST(OwnRobot, Step5And6PlanWithAicoAndBiRrt) {
@@ -76,8 +76,8 @@ TEST(OwnRobot, Step5And6PlanWithAicoAndBiRrt) {
 TEST(OwnRobot, Step6RenderAFrame) {
   render::OffscreenContext context(render::GlBackend::kAuto);
   render::Renderer renderer(context.proc_loader());
-  const app::SceneDocument doc = app::RobotSceneDocument(AssetFile("scenarios/tinyarm_ring.json"),
-                                                         "", "ready", app::RobotInputOptions{});
+  const visualize::SceneDocument doc = visualize::RobotSceneDocument(AssetFile("scenarios/tinyarm_ring.json"),
+                                                         "", "ready", planning::RobotInputOptions{});
   const render::Image image = renderer.Render(doc.scene, doc.camera, 96, 72, {});
   EXPECT_EQ(image.width, 96);
   // Something is drawn: not every pixel equals the first.

@@ -6,7 +6,7 @@
 
 #include <cmath>
 
-#include "app/scene_builder.h"
+#include "visualize/scene_builder.h"
 #include "planning/robot/robot_io.h"
 #include "render/diff.h"
 #include "tests/planning/robot/robot_test_util.h"
@@ -37,10 +37,10 @@ render::Camera Look(float ex, float ey, float ez, float tx, float ty, float tz, 
 }
 
 render::Scene Build(const Robot& robot, const Eigen::VectorXd& q, const Environment& env,
-                    app::SceneMeshCache* cache) {
+                    visualize::SceneMeshCache* cache) {
   KinematicsData kin(robot);
   ForwardKinematics(robot, q, &kin);
-  return app::BuildRobotScene(robot, kin, env, {}, cache);
+  return visualize::BuildRobotScene(robot, kin, env, {}, cache);
 }
 
 Eigen::VectorXd Q(std::initializer_list<double> v) {
@@ -53,18 +53,18 @@ Eigen::VectorXd Q(std::initializer_list<double> v) {
 // LWR4 + SDH reaching forward with a spherical (60°) hand, flexed fingers.
 TEST(RobotSnapshot, Lwr4Sdh) {
   const Robot robot = LoadRobot(AssetFile("robots/lwr4_sdh.urdf"));
-  app::SceneMeshCache cache;
+  visualize::SceneMeshCache cache;
   const Eigen::VectorXd q =
       Q({0.3, 0.7, 0, -1.1, 0, 0.8, 0, M_PI / 3, 0.4, 0.5, 0.4, 0.5, 0.4, 0.5});
   const render::Scene scene = Build(robot, q, {}, &cache);
-  ExpectSnapshot(scene, app::FrameSceneCamera(scene), "lwr4_sdh");
+  ExpectSnapshot(scene, visualize::FrameSceneCamera(scene), "lwr4_sdh");
 }
 
 // Close-up of the SDH on the flange: knuckles on the palm, fingers in the spherical pose
 // (axis 0 = 60°: three fingers at 120°), proximal/distal flexed towards the grasp centre.
 TEST(RobotSnapshot, SdhCloseUp) {
   const Robot robot = LoadRobot(AssetFile("robots/lwr4_sdh.urdf"));
-  app::SceneMeshCache cache;
+  visualize::SceneMeshCache cache;
   const Eigen::VectorXd q = Q({0, 0, 0, 0, 0, 0, 0, M_PI / 3, 0.3, 0.4, 0.3, 0.4, 0.3, 0.4});
   const render::Scene scene = Build(robot, q, {}, &cache);
   ExpectSnapshot(scene, Look(0.30, -0.36, 1.50, 0, 0, 1.30, 38), "sdh_closeup");
@@ -78,7 +78,7 @@ TEST(RobotSnapshot, Arm20CoilAroundRope) {
   pose.translate(Eigen::Vector3d(-0.1, -1.7, 1.85));
   pose.rotate(Eigen::AngleAxisd(-M_PI / 2, Eigen::Vector3d::UnitX()));
   AddObject(LoadRobot(AssetFile("objects/pole.urdf")), pose, "rope", &env);
-  app::SceneMeshCache cache;
+  visualize::SceneMeshCache cache;
   const render::Scene scene = Build(robot, Eigen::VectorXd::Zero(num_dofs(robot)), env, &cache);
   ExpectSnapshot(scene, Look(3.6, -4.2, 3.0, -0.1, -1.3, 1.4, 40), "arm20_coil");
 }
@@ -86,7 +86,7 @@ TEST(RobotSnapshot, Arm20CoilAroundRope) {
 // Human hand: rest pose, and a power grasp (fingers flexed, thumb opposed).
 TEST(RobotSnapshot, HumanHand) {
   const Robot robot = LoadRobot(AssetFile("robots/human_hand.urdf"));
-  app::SceneMeshCache cache;
+  visualize::SceneMeshCache cache;
   Eigen::VectorXd q = Eigen::VectorXd::Zero(num_dofs(robot));
   q[2] = 0.02;  // hand_tz: lift the palm off the grid
   ExpectSnapshot(Build(robot, q, {}, &cache), Look(0.22, -0.32, 0.24, 0, 0, 0.1, 38),
@@ -121,7 +121,7 @@ TEST(RobotSnapshot, Objects) {
     AddObject(LoadRobot(AssetFile(std::string("objects/") + names[i] + ".urdf")),
               Eigen::Isometry3d(Eigen::Translation3d(0.12 * i, 0, z)), names[i], &env);
   }
-  app::SceneMeshCache cache;
+  visualize::SceneMeshCache cache;
   const render::Scene scene = Build(empty, Eigen::VectorXd(0), env, &cache);
   ExpectSnapshot(scene, Look(0.3, -0.75, 0.4, 0.3, 0, 0.06, 40), "objects");
 }

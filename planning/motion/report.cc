@@ -1,0 +1,90 @@
+#include "planning/motion/report.h"
+
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+#include "planning/robot/kinematics.h"
+
+namespace planning {
+
+nlohmann::json PlanReportJson(const Scenario& s, const PlanReport& r,
+                              unsigned seed) {
+  nlohmann::json j;
+  j["scenario"] = s.name;
+  j["planner"] = r.planner;
+  j["seed"] = seed;
+  j["success"] = r.success;
+  j["status"] = StatusName(r.status);
+  j["collision_checks"] = r.collision_checks;
+  j["narrow_phase_calls"] = r.narrow_phase_calls;
+  j["iterations"] = r.iterations;
+  j["attempts"] = r.attempts;
+  j["cost"] = r.cost;
+  j["path_length"] = r.path_length;
+  j["time_s"] = r.time_s;
+  // A wrap angle means something only for a coil start (unwrap), not e.g. for the ring.
+  if (s.spec.start.kind == StartKind::kCoil) j["start_wrap_deg"] = s.start_wrap_deg;
+  j["start_writhe_total"] = r.start_writhe_total;
+  j["final_writhe_total"] = r.final_writhe_total;
+  j["min_clearance_m"] = r.min_clearance_m;
+  j["path_collision_free"] = r.path_collision_free;
+  j["cost_history"] = r.cost_history;
+  j["failure_reason"] = FailureReasonName(r.failure_reason);
+  j["failure_step"] = r.failure_step;
+  j["reach_error_m"] = r.reach_error_m;
+  j["max_winding_jump_turns"] = r.max_winding_jump_turns;
+  j["final_winding_turns"] = r.final_winding_turns;
+  if (r.writhe_peak_row >= 0) {
+    j["writhe_peak"] = {
+        {"row", r.writhe_peak_row}, {"col", r.writhe_peak_col}, {"value", r.writhe_peak_value}};
+  }
+  return j;
+}
+
+std::string TrajectoryCsv(const Scenario& s, const Trajectory& tr) {
+  std::ostringstream out;
+  out.precision(17);
+  out << "step,time_s";
+  for (const std::string& name : DofNames(s.robot)) out << "," << name;
+  out << "\n";
+  for (int t = 0; t < tr.num_points(); ++t) {
+    out << t << "," << t * tr.dt;
+    for (int k = 0; k < tr.num_dofs(); ++k) out << "," << tr.q(k, t);
+    out << "\n";
+  }
+  return out.str();
+}
+
+std::string PlanSummaryLine(const Scenario& s, const PlanReport& r) {
+  // The start wrap means something only for a coil start (unwrap); other starts name no angle.
+  char wrap[64] = "";
+  if (s.spec.start.kind == StartKind::kCoil) {
+    std::snprintf(wrap, sizeof(wrap), " (start wrap %.1f deg)", s.start_wrap_deg);
+  }
+  char line[512];
+  std::snprintf(line, sizeof(line),
+                "%s on %s%s: %s [%s, %s], %ld collision checks, %ld "
+                "iterations, %.3f s, writhe %+.3f -> %+.3f, min clearance %.3f m",
+                r.planner.c_str(), s.name.c_str(), wrap, r.success ? "success" : "FAILED",
+                StatusName(r.status), FailureReasonName(r.failure_reason),
+                r.collision_checks, r.iterations, r.time_s, r.start_writhe_total,
+                r.final_writhe_total, r.min_clearance_m);
+  return line;
+}
+
+std::string UnwrapCsv(const UnwrapBenchmarkResult& result) {
+  std::ostringstream csv;
+  csv << "angle_deg,planner,seed,success,failure_reason,collision_checks,narrow_phase_calls,"
+         "time_s,path_length,reach_error_m,pole_offset_m\n";
+  for (const UnwrapRun& r : result.runs) {
+    const PlanReport& p = r.report;
+    csv << r.angle_deg << "," << p.planner << "," << r.seed << "," << (p.success ? 1 : 0) << ","
+        << FailureReasonName(p.failure_reason) << "," << p.collision_checks << ","
+        << p.narrow_phase_calls << "," << p.time_s << "," << p.path_length << "," << p.reach_error_m
+        << "," << r.pole_offset.norm() << "\n";
+  }
+  return csv.str();
+}
+
+}  // namespace planning

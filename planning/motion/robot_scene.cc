@@ -1,0 +1,328 @@
+// Loading robots and scene JSON files for the robot commands and the renderer glue.
+#include "planning/motion/robot_scene.h"
+
+#include <cctype>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <memory>
+#include <sstream>
+#include <stdexcept>
+
+#include "base/assets.h"
+#include "base/numbers.h"
+#include "base/json_reader.h"
+#include "planning/robot/robot_io.h"
+#include "planning/motion/scenario.h"
+#include "base/file_read.h"
+
+namespace planning {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string Ext(const std::string& path) {
+  std::string e = fs::path(path).extension().string();
+  for (char& c : e) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return e;
+}
+
+// A file named in a scene: relative to the scene's folder first, then to the asset root.
+std::string ResolveRelative(const std::string& name, const fs::path& base_dir) {
+  const fs::path p(name);
+  if (p.is_absolute()) return name;
+  if (fs::exists(base_dir / p)) return (base_dir / p).string();
+  const fs::path asset = fs::path(base::AssetRoot()) / p;
+  if (fs::exists(asset)) return asset.string();
+  return (base_dir / p).string();  // the loader reports it as missing
+}
+
+Eigen::Vector3d Vec3(const nlohmann::json& j, const std::string& src, const std::string& path) {
+  if (!j.is_array() || j.size() != 3) {
+    throw std::invalid_argument(src + ": " + path + ": expected [x, y, z]");
+  }
+  Eigen::Vector3d v;
+  for (int i = 0; i < 3; ++i) {
+    if (!j[i].is_number() || !std::isfinite(j[i].get<double>())) {
+      throw std::invalid_argument(src + ": " + path + "[" + std::to_string(i) +
+                                  "]: expected a finite number");
+    }
+    v[i] = j[i].get<double>();
+  }
+  return v;
+}
+
+Eigen::Isometry3d Pose(const Eigen::Vector3d& xyz, const Eigen::Vector3d& rpy) {
+  Eigen::Isometry3d t = Eigen::Isometry3d::Identity();
+  t.translation() = xyz;
+  t.linear() = (Eigen::AngleAxisd(rpy[2], Eigen::Vector3d::UnitZ()) *
+                Eigen::AngleAxisd(rpy[1], Eigen::Vector3d::UnitY()) *
+                Eigen::AngleAxisd(rpy[0], Eigen::Vector3d::UnitX()))
+                   .toRotationMatrix();
+  return t;
+}
+
+}  // namespace
+
+std::vector<std::string> PackagePaths(const std::vector<std::string>& extra) {
+  std::vector<std::string> out = extra;
+  if (const char* env = std::getenv("ROS_PACKAGE_PATH")) {
+    std::stringstream ss(env);
+    std::string item;
+    while (std::getline(ss, item, ':')) {
+      if (!item.empty()) out.push_back(item);
+    }
+  }
+  return out;
+}
+
+bool IsRobotSceneFile(const std::string& path) {
+  const std::string ext = Ext(path);
+  if (ext == ".urdf") return true;
+  if (ext != ".json") return false;
+  // Bounded like every reader; a file that cannot be read is not a robot scene (the scene loader
+  // then names the problem).
+  std::string text;
+  try {
+    text = base::ReadFileBounded(path, "scene");
+  } catch (const std::invalid_argument&) {
+    return false;
+  }
+  const nlohmann::json doc = nlohmann::json::parse(text, nullptr, false);
+  return doc.is_object() && doc.contains("robot");
+}
+
+Eigen::VectorXd ParseQ(const Robot& robot, const std::string& text) {
+  const int n = num_dofs(robot);
+  if (text.empty()) return Eigen::VectorXd::Zero(n);
+  std::vector<double> v;
+  try {
+    v = base::ParseNumberList(text, "--q", n);
+  } catch (const std::invalid_argument& e) {
+    std::string names;
+    for (const std::string& s : DofNames(robot)) names += (names.empty() ? "" : ",") + s;
+    throw std::invalid_argument(std::string(e.what()) + " (robot '" + robot.name + "' takes " +
+                                std::to_string(n) + " values: " + names + ")");
+  }
+  const Eigen::VectorXd q = Eigen::Map<const Eigen::VectorXd>(v.data(), n);
+  CheckJointValues(robot, q, "--q");
+  return q;
+}
+
+void CheckJointValues(const Robot& robot, const Eigen::VectorXd& q,
+                      const std::string& where) {
+  const Eigen::VectorXd lo = LowerLimits(robot), hi = UpperLimits(robot);
+  const std::vector<std::string> names = DofNames(robot);
+  for (Eigen::Index k = 0; k < q.size(); ++k) {
+    const std::string at = where + "[" + std::to_string(k) + "] (" + names[k] + ")";
+    if (!std::isfinite(q[k]) || std::fabs(q[k]) > kMaxJointValue) {
+      throw std::invalid_argument(at + ": " + std::to_string(q[k]) +
+                                  " is not a joint value (|q| <= 1e6)");
+    }
+    // A small tolerance keeps values printed at limited precision (e.g. 1.5708) usable.
+    if (q[k] < lo[k] - 1e-6 || q[k] > hi[k] + 1e-6) {
+      throw std::invalid_argument(at + ": " + std::to_string(q[k]) +
+                                  " is outside the joint limits [" + std::to_string(lo[k]) + ", " +
+                                  std::to_string(hi[k]) + "]");
+    }
+  }
+}
+
+void AddObjectSpec(const std::string& spec, RobotScene* scene) {
+  const size_t at = spec.find('@');
+  const std::string file = spec.substr(0, at);
+  Eigen::Vector3d xyz = Eigen::Vector3d::Zero(), rpy = Eigen::Vector3d::Zero();
+  if (at != std::string::npos) {
+    const std::vector<double> v = base::ParseNumberList(spec.substr(at + 1), "--object");
+    if (v.size() != 3 && v.size() != 6) {
+      throw std::invalid_argument("--object '" + spec + "': expected URDF@x,y,z[,roll,pitch,yaw]");
+    }
+    xyz = Eigen::Vector3d(v[0], v[1], v[2]);
+    if (v.size() == 6) rpy = Eigen::Vector3d(v[3], v[4], v[5]);
+  }
+  const std::string path = ResolveRelative(file, fs::current_path());
+  const Robot object = LoadRobot(path);
+  std::string name = object.name;
+  for (int k = 2; [&] {
+         for (const auto& o : scene->env.objects) {
+           if (o.name == name) return true;
+         }
+         return false;
+       }();
+       ++k) {
+    name = object.name + "_" + std::to_string(k);
+  }
+  AddObject(object, Pose(xyz, rpy), name, &scene->env);
+  scene->collides.push_back(true);
+  if (scene->has_collision_env) {
+    AddObject(object, Pose(xyz, rpy), name, &scene->collision_env);
+  }
+}
+
+Environment CollisionEnvironment(const RobotScene& scene) {
+  if (scene.has_collision_env) return scene.collision_env;
+  Environment env;
+  for (size_t i = 0; i < scene.env.objects.size(); ++i) {
+    if (i >= scene.collides.size() || scene.collides[i])
+      env.objects.push_back(scene.env.objects[i]);
+  }
+  return env;
+}
+
+namespace {
+
+// Loads the SRDF at `srdf_path` (if not empty) for scene.robot and disables its pairs.
+void AttachSrdf(const std::string& srdf_path, RobotScene* s) {
+  if (srdf_path.empty()) return;
+  s->srdf = LoadSrdf(srdf_path);
+  CheckSrdf(*s->srdf, s->robot);
+  for (const auto& pair : DisabledPairs(*s->srdf)) {
+    s->collision_options.disabled_pairs.push_back(pair);
+  }
+}
+
+// Paths of a scene's "package_paths", relative to its folder.
+std::vector<std::string> ScenePackagePaths(const nlohmann::json& doc, const std::string& path,
+                                           const fs::path& base) {
+  std::vector<std::string> out;
+  if (!doc.contains("package_paths")) return out;
+  const nlohmann::json& pp = doc["package_paths"];
+  if (!pp.is_array()) throw std::invalid_argument(path + ": package_paths: expected an array");
+  for (size_t i = 0; i < pp.size(); ++i) {
+    if (!pp[i].is_string()) {
+      throw std::invalid_argument(path + ": package_paths[" + std::to_string(i) +
+                                  "]: expected a folder (string)");
+    }
+    const fs::path p(pp[i].get<std::string>());
+    out.push_back(p.is_absolute() ? p.string() : (base / p).string());
+  }
+  return out;
+}
+
+RobotScene LoadRobotSceneImpl(const std::string& path, const std::vector<std::string>& flag_paths,
+                              const std::string& srdf_flag, bool add_ros_paths) {
+  RobotLoadOptions options;
+  options.package_paths = add_ros_paths ? PackagePaths(flag_paths) : flag_paths;
+  RobotScene s;
+  s.source = path;
+  const std::string ext = Ext(path);
+  if (ext == ".urdf") {
+    s.robot = LoadRobot(path, options);
+    s.q = Eigen::VectorXd::Zero(num_dofs(s.robot));
+    AttachSrdf(srdf_flag.empty() ? FindSrdf(path) : srdf_flag, &s);
+    return s;
+  }
+  if (ext != ".json") {
+    throw std::invalid_argument(path + ": expected a robot .urdf or a scene .json");
+  }
+  s.document = base::ParseJsonFile(path, "scene");
+  const nlohmann::json& doc = s.document;
+  const fs::path base = fs::path(path).parent_path();
+  if (doc.is_object() && doc.contains("robot") && doc.contains("tasks")) {
+    // A planning scenario: its own loader decides the start configuration and the collision set.
+    ScenarioOverrides overrides;
+    overrides.search_roots = {base::AssetRoot()};
+    overrides.package_paths = options.package_paths;
+    overrides.srdf = srdf_flag;
+    const std::unique_ptr<Scenario> sc = LoadScenarioArg(path, overrides);
+    s.robot = sc->robot;
+    s.q = sc->problem.q0;
+    s.env = sc->objects;
+    s.collides.assign(s.env.objects.size(), true);
+    s.has_collision_env = true;
+    s.collision_env = sc->env;
+    s.collision_options = sc->collision;  // SRDF pairs included
+    const std::string srdf = !srdf_flag.empty()       ? srdf_flag
+                             : !sc->spec.srdf.empty() ? sc->spec.srdf
+                                                      : FindSrdf(sc->spec.robot);
+    if (!srdf.empty()) s.srdf = LoadSrdf(srdf);
+    return s;
+  }
+  if (!doc.is_object() || !doc.contains("robot") || !doc["robot"].is_string()) {
+    throw std::invalid_argument(path + ": robot: expected a URDF path (string)");
+  }
+  const std::vector<std::string> scene_paths = ScenePackagePaths(doc, path, base);
+  options.package_paths.insert(options.package_paths.begin() + flag_paths.size(),
+                               scene_paths.begin(), scene_paths.end());
+  const std::string urdf = ResolveRelative(doc["robot"].get<std::string>(), base);
+  s.robot = LoadRobot(urdf, options);
+  std::string srdf = srdf_flag;
+  if (srdf.empty() && doc.contains("srdf")) {
+    if (!doc["srdf"].is_string()) throw std::invalid_argument(path + ": srdf: expected a path");
+    srdf = ResolveRelative(doc["srdf"].get<std::string>(), base);
+  }
+  AttachSrdf(srdf.empty() ? FindSrdf(urdf) : srdf, &s);
+  const int n = num_dofs(s.robot);
+  s.q = Eigen::VectorXd::Zero(n);
+  if (doc.contains("q")) {
+    const nlohmann::json& q = doc["q"];
+    if (!q.is_array() || static_cast<int>(q.size()) != n) {
+      throw std::invalid_argument(path + ": q: expected an array of " + std::to_string(n) +
+                                  " numbers (robot '" + s.robot.name + "')");
+    }
+    for (int k = 0; k < n; ++k) {
+      if (!q[k].is_number()) {
+        throw std::invalid_argument(path + ": q[" + std::to_string(k) + "]: expected a number");
+      }
+      s.q[k] = q[k].get<double>();
+    }
+    CheckJointValues(s.robot, s.q, path + ": q");
+  }
+  if (doc.contains("objects")) {
+    const nlohmann::json& objs = doc["objects"];
+    if (!objs.is_array()) throw std::invalid_argument(path + ": objects: expected an array");
+    for (size_t i = 0; i < objs.size(); ++i) {
+      const std::string jp = "objects[" + std::to_string(i) + "]";
+      const nlohmann::json& o = objs[i];
+      if (!o.is_object() || !o.contains("urdf") || !o["urdf"].is_string()) {
+        throw std::invalid_argument(path + ": " + jp + ".urdf: expected a URDF path");
+      }
+      const Robot object =
+          LoadRobot(ResolveRelative(o["urdf"].get<std::string>(), base), options);
+      const std::string name =
+          o.contains("name") && o["name"].is_string() ? o["name"].get<std::string>() : object.name;
+      // "xyz" is the scenario files' spelling (planning/motion/scenario.h), "position" ours.
+      const std::string pos_key = o.contains("xyz") ? "xyz" : "position";
+      const Eigen::Vector3d xyz = o.contains(pos_key) ? Vec3(o[pos_key], path, jp + "." + pos_key)
+                                                      : Eigen::Vector3d::Zero();
+      const Eigen::Vector3d rpy =
+          o.contains("rpy") ? Vec3(o["rpy"], path, jp + ".rpy") : Eigen::Vector3d::Zero();
+      if (o.contains("collide") && !o["collide"].is_boolean()) {
+        throw std::invalid_argument(path + ": " + jp + ".collide: expected true or false");
+      }
+      s.collides.push_back(!o.contains("collide") || o["collide"].get<bool>());
+      try {
+        AddObject(object, Pose(xyz, rpy), name, &s.env);
+      } catch (const std::invalid_argument& e) {
+        throw std::invalid_argument(path + ": " + jp + ".name: " + e.what());
+      }
+    }
+  }
+  return s;
+}
+
+}  // namespace
+
+RobotScene LoadRobotScene(const std::string& path, const std::vector<std::string>& package_paths) {
+  return LoadRobotSceneImpl(path, package_paths, "", false);
+}
+
+RobotScene LoadRobotScene(const std::string& path, const RobotInputOptions& options) {
+  return LoadRobotSceneImpl(path, options.package_paths, options.srdf, true);
+}
+
+Eigen::VectorXd ChooseQ(const RobotScene& scene, const std::string& q_text,
+                        const std::string& pose) {
+  if (!q_text.empty() && !pose.empty()) {
+    throw std::invalid_argument("--q and --pose: give at most one of them");
+  }
+  if (!q_text.empty()) return ParseQ(scene.robot, q_text);
+  if (pose.empty()) return scene.q;
+  if (!scene.srdf) {
+    throw std::invalid_argument("--pose " + pose + ": robot '" + scene.robot.name +
+                                "' has no SRDF (give --srdf FILE)");
+  }
+  return NamedPose(scene.robot, *scene.srdf, pose);
+}
+
+}  // namespace planning
