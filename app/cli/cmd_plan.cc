@@ -187,35 +187,17 @@ std::string ObjectPositionsCsv(const planning::ReplanResult& r) {
   return out.str();
 }
 
-// The plan report of a re-planning run: the executed path judged segment by segment (replan.h);
-// checks and iterations of the initial solve and every re-plan.
-planning::PlanReport ReplanPlanReport(const planning::ReplanResult& r) {
-  planning::PlanReport rep;
-  rep.planner = "aico";
-  rep.success = r.success;
-  rep.status = r.replans.empty() ? r.initial.status : r.replans.back().status;
-  rep.collision_checks = r.initial.collision_queries;
-  rep.iterations = r.initial.iterations;
-  rep.cost = r.replans.empty() ? r.initial.cost : r.replans.back().cost;
-  double wall_ms = r.initial_wall_ms;
-  for (const planning::ReplanStep& step : r.replans) {
-    rep.collision_checks += step.collision_queries;
-    rep.iterations += step.sweeps;
-    wall_ms += step.wall_ms;
-  }
-  rep.path_length = planning::PathLength(r.executed);
-  rep.time_s = wall_ms / 1000.0;
-  rep.start_writhe_total = r.start_writhe_total;
-  rep.final_writhe_total = r.final_writhe_total;
-  rep.min_clearance_m = r.verdict.min_clearance_m;
-  rep.path_collision_free = r.verdict.collision_free;
-  rep.cost_history = r.initial.cost_history;
-  rep.failure_reason = r.verdict.reason;
-  rep.failure_step = r.verdict.step;
-  rep.reach_error_m = r.verdict.reach_error_m;
-  rep.max_winding_jump_turns = r.verdict.max_winding_jump_turns;
-  rep.final_winding_turns = r.verdict.final_winding_turns;
-  return rep;
+// A plan stopped before it finished (--timeout, SIGINT/SIGTERM): DIR/report.json with `fields`
+// and the stop's status (StoppedReportJson), committed; the same JSON on stdout with --json.
+// Exit 1 after a timeout, 130 after a signal.
+ExitCode StoppedPlanExit(const StopRequested& e, nlohmann::json fields, const PlanArgs& pa,
+                         OutputDir* out) {
+  const nlohmann::json report = StoppedReportJson(e, std::move(fields));
+  WriteFileAtomic((fs::path(out->staging()) / "report.json").string(), report.dump(2) + "\n");
+  out->Commit();
+  std::fprintf(stderr, "\n%s: wrote %s/report.json\n", e.what(), pa.output.c_str());
+  if (pa.json) std::printf("%s\n", report.dump(2).c_str());
+  return e.timeout ? kExitFailed : kExitInterrupted;
 }
 
 // `plan SCENARIO --moving-object NAME --object-path FILE`: re-planning while the object moves.
@@ -235,10 +217,7 @@ ExitCode RunMovingObjectPlan(const PlanArgs& pa, const planning::ScenarioOverrid
       ParseFlag("--object-path", [&] { return planning::ReadObjectPath(pa.object_path); });
   const auto scenario = planning::LoadScenarioArg(pa.scenario, overrides);
   ParseFlag("--moving-object", [&] {  // unknown names list the valid ones
-    const std::vector<std::string> names = planning::ObjectNames(*scenario);
-    if (std::find(names.begin(), names.end(), pa.moving_object) == names.end()) {
-      planning::MoveObject(scenario.get(), pa.moving_object, Eigen::Vector3d::Zero());
-    }
+    planning::ObjectPosition(*scenario, scenario->initial, pa.moving_object);
   });
   const StopCheck stop(pa.timeout);
   planning::ReplanOptions options;
@@ -250,19 +229,14 @@ ExitCode RunMovingObjectPlan(const PlanArgs& pa, const planning::ScenarioOverrid
   };
   planning::ReplanResult r;
   try {
-    r = planning::RunReplanning(scenario.get(), pa.moving_object, path, options);
+    r = planning::RunReplanning(*scenario, pa.moving_object, path, options);
   } catch (const StopRequested& e) {
-    const nlohmann::json report = StoppedReportJson(
-        e,
-        {{"scenario", scenario->name}, {"planner", "aico"}, {"moving_object", pa.moving_object}});
-    WriteFileAtomic((fs::path(out.staging()) / "report.json").string(), report.dump(2) + "\n");
-    out.Commit();
-    std::fprintf(stderr, "\n%s: wrote %s/report.json\n", e.what(), pa.output.c_str());
-    if (pa.json) std::printf("%s\n", report.dump(2).c_str());
-    return e.timeout ? kExitFailed : kExitInterrupted;
+    return StoppedPlanExit(
+        e, {{"scenario", scenario->name}, {"planner", "aico"}, {"moving_object", pa.moving_object}},
+        pa, &out);
   }
   EndProgress();
-  const planning::PlanReport rep = ReplanPlanReport(r);
+  const planning::PlanReport rep = planning::ReplanReport(r);
   nlohmann::json report = planning::PlanReportJson(*scenario, rep, pa.seed);
   nlohmann::json replans = nlohmann::json::array();
   for (const planning::ReplanStep& step : r.replans) {
@@ -400,18 +374,13 @@ void AddPlanCommands(CLI::App* root, CommandList* commands) {
                },
                [&stop] { stop.Poll(); });
          } catch (const StopRequested& e) {
-           const nlohmann::json report = StoppedReportJson(
-               e, {{"scenario", scenario->name},
-                   {"planner", planning::PlannerName(planner)},
-                   {"seed", pa->seed},
-                   {"attempts", 1},
-                   {"failure_reason", e.timeout ? "budget_exhausted" : "interrupted"}});
-           WriteFileAtomic((fs::path(out.staging()) / "report.json").string(),
-                           report.dump(2) + "\n");
-           out.Commit();
-           std::fprintf(stderr, "\n%s: wrote %s/report.json\n", e.what(), pa->output.c_str());
-           if (pa->json) std::printf("%s\n", report.dump(2).c_str());
-           return e.timeout ? kExitFailed : kExitInterrupted;
+           return StoppedPlanExit(e,
+                                  {{"scenario", scenario->name},
+                                   {"planner", planning::PlannerName(planner)},
+                                   {"seed", pa->seed},
+                                   {"attempts", 1},
+                                   {"failure_reason", e.timeout ? "budget_exhausted" : "interrupted"}},
+                                  *pa, &out);
          }
          if (planner == planning::Planner::kAico) EndProgress();
          const nlohmann::json report = WritePlanOutputs(*scenario, result, pa->seed, out.staging());

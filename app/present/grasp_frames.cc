@@ -159,13 +159,18 @@ phys::StepCallback GraspFrameWriter::Stability(const std::string& dir, const phy
   gravity_on_time_ = 0.0;
   phase_end_frame_.assign(7, -1);
   phase_end_label_.assign(7, "");
+  phase_outcome_.assign(7, "");
+  closure_state_ = phys::SimState{};
   return [this](int phase, const phys::GraspSimulation& sim) {
     if (phase != last_phase_) {
       // The previous phase ended: show its last state unless it is already a frame.
       if (last_phase_ >= 0 && last_framed_step_ != last_state_.step) {
         AddStabilityFrame(last_phase_, last_state_);
       }
-      if (last_phase_ == 0) gravity_on_time_ = last_state_.time;
+      if (last_phase_ == 0) {
+        gravity_on_time_ = last_state_.time;
+        closure_state_ = last_state_;
+      }
       last_phase_ = phase;
       last_framed_step_ = -1;
     }
@@ -194,6 +199,7 @@ void GraspFrameWriter::FinishStability(const phys::StabilityResult& result) {
         phase == 0
             ? (closing.empty() ? "closed" : closing)
             : DirectionOutcome(result.directions[static_cast<size_t>(phase - 1)], stability_);
+    phase_outcome_[static_cast<size_t>(phase)] = why;
     writer_->SetLabel(frame, phase_end_label_[static_cast<size_t>(phase)] + "\n" + why, true);
   }
   writer_->Finish();
@@ -207,12 +213,13 @@ planning::physics::GraspTrialHooks GraspTransferHooks(const std::string& out_dir
   if (frames) {
     hooks.on_start = [out_dir, frames](const planning::TransferSetup& setup,
                                        const planning::TransferResult& t, const phys::SimHand& hand,
-                                       const phys::SimObject& object) {
+                                       const phys::SimObject& object,
+                                       const phys::StabilityOptions& options) {
       const std::string dir = (std::filesystem::path(out_dir) / "frames" /
                                (setup.grasp.name + "_" + planning::ToString(t.method)))
                                   .string();
       frames->Transfer(dir + "/transfer", setup, t);
-      return frames->Stability(dir + "/stability", hand, object, phys::StabilityOptions{});
+      return frames->Stability(dir + "/stability", hand, object, options);
     };
   }
   hooks.on_done = [frames](const planning::TransferSetup& setup, const phys::GraspTrial& trial) {

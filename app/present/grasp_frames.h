@@ -46,6 +46,13 @@ class GraspFrameWriter {
   // up; these frames are always on the contact sheet) and writes the contact sheet and video.
   void FinishStability(const planning::physics::StabilityResult& result);
 
+  // What the latest stability sequence was drawn with (tests): the protocol given to Stability(),
+  // the state at the end of closing (the pose every gravity direction starts from), and how each
+  // phase ended as its last frame's label says (FinishStability: 7 entries, closing first).
+  const planning::physics::StabilityOptions& stability_options() const { return stability_; }
+  const planning::physics::SimState& closure_state() const { return closure_state_; }
+  const std::vector<std::string>& phase_outcomes() const { return phase_outcome_; }
+
  private:
   render::Image SideBySide(const render::Scene& left, const render::Scene& right,
                            const Eigen::Vector3f& view);
@@ -67,6 +74,8 @@ class GraspFrameWriter {
   double gravity_on_time_ = 0.0;      // simulation time at the end of closing [s]
   std::vector<int> phase_end_frame_;  // per phase 0..6: index of its last frame, -1: none
   std::vector<std::string> phase_end_label_;
+  planning::physics::SimState closure_state_;  // last state of the closing phase
+  std::vector<std::string> phase_outcome_;     // per phase, after FinishStability
 
   void AddStabilityFrame(int phase, const planning::physics::SimState& state);
 };

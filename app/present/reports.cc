@@ -26,14 +26,6 @@ namespace {
 namespace fs = std::filesystem;
 namespace phys = planning::physics;
 
-nlohmann::json VecJson(const Eigen::VectorXd& v) {
-  nlohmann::json a = nlohmann::json::array();
-  for (Eigen::Index i = 0; i < v.size(); ++i) a.push_back(std::round(v[i] * 1e6) / 1e6);
-  return a;
-}
-
-double Round(double v, double scale = 1e6) { return std::round(v * scale) / scale; }
-
 }  // namespace
 
 // --- plan ---------------------------------------------------------------------------------------
@@ -58,17 +50,17 @@ PlanFrames WritePlanFrames(
     const MovingObjectFrames* moving, const PlanFrameOptions& frame_opts) {
   planning::Trajectory frames = tr;
   if (moving != nullptr &&
-      (moving->object < 0 || moving->object >= static_cast<int>(s.objects.objects.size()) ||
+      (moving->object < 0 || moving->object >= static_cast<int>(s.initial.objects.objects.size()) ||
        moving->positions.size() != static_cast<size_t>(tr.num_points()) || tr.dt == 0.0)) {
     throw std::invalid_argument("WritePlanFrames: moving object positions do not match the frames");
   }
   planning::Environment moved;  // with `moving`: the objects, the moving one placed per frame
-  if (moving) moved = s.objects;
+  if (moving) moved = s.initial.objects;
   Eigen::Vector3d home = Eigen::Vector3d::Zero();
-  if (moving) home = s.objects.objects[moving->object].world_from_object.translation();
+  if (moving) home = s.initial.objects.objects[moving->object].world_from_object.translation();
   const bool moving_report =
       moving && s.spec.writhe_report &&
-      s.spec.writhe_report->object.name == s.objects.objects[moving->object].name;
+      s.spec.writhe_report->object.name == s.initial.objects.objects[moving->object].name;
   if (tr.dt == 0.0 && tr.num_points() > 1) {
     frames = planning::Densify(tr, std::max(planning::PathLength(tr) / 100.0, 1e-6));
   }
@@ -78,7 +70,7 @@ PlanFrames WritePlanFrames(
   visualize::SceneMeshCache cache;
   visualize::SceneBuildOptions options;
   render::Camera camera;
-  planning::TaskWorkspace ws(s.problem);
+  planning::TaskWorkspace ws(s.initial.problem);
   std::vector<double> x, writhe, cost;  // x: time (s)
   std::vector<Eigen::MatrixXd> matrices;
   for (int t = 0; t < frames.num_points(); ++t) {
@@ -88,20 +80,20 @@ PlanFrames WritePlanFrames(
       Eigen::Matrix3Xd P;
       planning::ChainPoints(s.robot, kin, s.report_chain, &P);
       W = topology::WritheMatrix(P,
-                                 s.report_object_chain.colwise() + (moving->positions[t] - home));
+                                 s.initial.report_object_chain.colwise() + (moving->positions[t] - home));
       writhe.push_back(W.sum());
     } else {
       writhe.push_back(planning::ReportWritheTotal(s, frames.q.col(t), &W));
     }
     matrices.push_back(W);
     // Task cost at the matching time slice (RRT frames are mapped onto 0..T); time τ · slice.
-    const double slice_t = frames.num_points() > 1 ? static_cast<double>(t) * s.problem.num_steps /
+    const double slice_t = frames.num_points() > 1 ? static_cast<double>(t) * s.initial.problem.num_steps /
                                                          (frames.num_points() - 1)
                                                    : 0.0;
     const int slice = static_cast<int>(std::lround(slice_t));
-    x.push_back(slice_t * planning::tau(s.problem));
-    planning::EvaluateTasks(s.problem, slice, frames.q.col(t), true, &ws);
-    cost.push_back(planning::TaskCost(s.problem, slice, Eigen::VectorXd(), ws));
+    x.push_back(slice_t * planning::tau(s.initial.problem));
+    planning::EvaluateTasks(s.initial.problem, slice, frames.q.col(t), true, &ws);
+    cost.push_back(planning::TaskCost(s.initial.problem, slice, Eigen::VectorXd(), ws));
   }
   // One camera for the whole trajectory: it fits the robot's swept volume and the box regions.
   constexpr int kWidth = 640, kHeight = 480;
@@ -111,7 +103,7 @@ PlanFrames WritePlanFrames(
   swept_options.grid = false;
   for (int t = 0; t < frames.num_points(); ++t) {
     planning::ForwardKinematics(s.robot, frames.q.col(t), &kin);
-    render::Scene robot = visualize::BuildRobotScene(s.robot, kin, s.objects, swept_options, &cache);
+    render::Scene robot = visualize::BuildRobotScene(s.robot, kin, s.initial.objects, swept_options, &cache);
     std::move(robot.shapes.begin(), robot.shapes.end(), std::back_inserter(swept.shapes));
     std::move(robot.tubes.begin(), robot.tubes.end(), std::back_inserter(swept.tubes));
   }
@@ -147,7 +139,7 @@ PlanFrames WritePlanFrames(
     if (moving)
       moved.objects[moving->object].world_from_object.translation() = moving->positions[t];
     render::Scene scene =
-        visualize::BuildRobotScene(s.robot, kin, moving ? moved : s.objects, options, &cache);
+        visualize::BuildRobotScene(s.robot, kin, moving ? moved : s.initial.objects, options, &cache);
     visualize::AddTaskBoxes(s.spec, &scene);
     render::Image frame = renderer.Render(scene, camera, kWidth, kHeight, {});
     if (frame_opts.stamp) render::DrawStamp(&frame, {s.name, out.labels[t]});

@@ -140,6 +140,10 @@ class Session {
   bool loaded() const { return scenario_ != nullptr || robot_scene_.has_value(); }
   bool has_scenario() const { return scenario_ != nullptr; }
   const planning::Scenario* scenario() const { return scenario_.get(); }
+  // The world shown and planned in (objects where `move` put them); null without a scenario.
+  const planning::ScenarioState* world() const { return world_.get(); }
+  // The solver options the next plan uses (the planner panel's; the scenario's on load).
+  const planning::AicoOptions& aico_options() const { return aico_; }
   const planning::Robot& robot() const;
   const planning::Environment& objects() const;
   std::vector<std::string> joint_names() const;
@@ -189,7 +193,12 @@ class Session {
   void DropJob();
   void ShowPlanResult(Settings* settings);
 
-  std::shared_ptr<planning::Scenario> scenario_;
+  std::shared_ptr<const planning::Scenario> scenario_;  // the model, never changed
+  // The world the viewer shows and plans in: objects where `move` put them (shared with the job
+  // that reads it; moved only when no job runs).
+  std::shared_ptr<planning::ScenarioState> world_;
+  // The solver options of the planner panel (from the scenario's on load).
+  planning::AicoOptions aico_;
   std::optional<planning::RobotScene> robot_scene_;
   Eigen::VectorXd joint_q_;  // slider configuration
   std::optional<planning::PlanResult> result_;

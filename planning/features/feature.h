@@ -46,6 +46,10 @@ class Feature {
 };
 
 // --- Factories (throw std::invalid_argument for out-of-range links/chains or bad sizes) --------
+// Each concrete feature class has its own header and source, planning/features/<name>_feature.h
+// (PositionFeature, AxisAlignmentFeature, JointLimitFeature, JointPositionFeature, BoxFeature,
+// WritheFeature, WindingFeature, LineClearanceFeature, CollisionFeature); its factory below,
+// defined next to it, checks the arguments the class's constructor assumes valid.
 
 // Position of the point `offset` (link frame) of `link`, world frame: y = T_link·offset ∈ R³,
 // J = PointJacobian (3 × n).

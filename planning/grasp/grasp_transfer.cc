@@ -1,3 +1,6 @@
+// Grasp transfer to the SDH (planning/grasp/grasp_transfer.h): the floating hand, the setup and
+// placement, the shared and per-method tasks, and the multi-start AICO runs. The transfer's own
+// features are in planning/grasp/internal/ (grasp winding, hand-sphere clearance, palm pose).
 #include "planning/grasp/grasp_transfer.h"
 
 #include <algorithm>
@@ -6,184 +9,18 @@
 #include <stdexcept>
 
 #include "planning/features/feature.h"
-#include "planning/robot/kinematics.h"
 #include "planning/features/task.h"
-#include "topology/winding.h"
-#include "topology/writhe.h"
+#include "planning/grasp/internal/clearance_feature.h"
+#include "planning/grasp/internal/grasp_winding_feature.h"
+#include "planning/grasp/internal/palm_pose_feature.h"
+#include "planning/robot/kinematics.h"
 
 namespace planning {
 namespace {
 
-// --- Grasp-specific features ---------------------------------------------------------------------
-
-// Buffers of GraspWindingFeature (sized on first use, then reused without allocation).
-struct WindingData : FeatureData {
-  Eigen::Matrix3Xd points, grad, grad_b;
-  Eigen::MatrixXd dP, w;
-  topology::WritheJacobian wj;
-  topology::WritheWorkspace ws;
-};
-
-// y = (per-finger winding vector about the main reference (as EncodeGrasp; only when `main`);
-// per extra reference curve the opposition pair (max_f, min_f) of the finger values
-// (OppositionPair)), J = ∂y/∂q ((chains·main + 2·extra) × n).
-class GraspWindingFeature : public Feature {
- public:
-  GraspWindingFeature(std::vector<int> chains, ReferenceCurve reference,
-                      std::vector<ReferenceCurve> extra, bool main)
-      : chains_(std::move(chains)),
-        reference_(std::move(reference)),
-        extra_(std::move(extra)),
-        main_(main) {}
-  int dim() const override {
-    return static_cast<int>((main_ ? chains_.size() : 0) + 2 * extra_.size());
-  }
-  std::string name() const override { return "grasp_winding"; }
-  std::unique_ptr<FeatureData> CreateData(const Robot&) const override {
-    return std::make_unique<WindingData>();
-  }
-  void Eval(const Robot& robot, const KinematicsData& kin, FeatureData* data,
-            Eigen::Ref<Eigen::VectorXd> y, Eigen::MatrixXd* J) const override {
-    auto* d = static_cast<WindingData*>(data);
-    const int n = num_dofs(robot);
-    if (J) J->setZero();
-    for (size_t c = 0; main_ && c < chains_.size(); ++c) {
-      ChainPoints(robot, kin, chains_[c], &d->points);
-      const int np = static_cast<int>(d->points.cols());
-      if (reference_.kind == ReferenceCurve::Kind::kAxis) {
-        y[c] = topology::WindingNumber(d->points, reference_.axis, {}, J ? &d->grad : nullptr);
-      } else {
-        topology::WritheMatrixWithJacobian(d->points, reference_.loop, {}, &d->w, &d->wj, &d->ws);
-        y[c] = d->w.sum();
-        if (J) topology::WeightedWritheGradient(d->wj, Eigen::MatrixXd(), &d->grad, &d->grad_b);
-      }
-      if (J) {
-        if (d->dP.rows() != 3 * np || d->dP.cols() != n) d->dP.resize(3 * np, n);
-        ChainJacobian(robot, kin, chains_[c], d->dP);
-        for (int k = 0; k < np; ++k) {
-          J->row(c).noalias() += d->grad.col(k).transpose() * d->dP.middleRows(3 * k, 3);
-        }
-      }
-    }
-    const int nc = main_ ? static_cast<int>(chains_.size()) : 0;
-    for (size_t r = 0; r < extra_.size(); ++r) {
-      const int row = nc + 2 * static_cast<int>(r);
-      Eigen::MatrixXd jf, jp;
-      const Eigen::VectorXd w =
-          EncodeGrasp(robot, kin, chains_, extra_[r], J ? &jf : nullptr).finger;
-      y.segment<2>(row) = OppositionPair(w, J ? &jf : nullptr, &jp);
-      if (J) J->middleRows(row, 2) = jp;
-    }
-  }
-
- private:
-  std::vector<int> chains_;
-  ReferenceCurve reference_;
-  std::vector<ReferenceCurve> extra_;
-  bool main_;
-};
-
-struct PointJacobianData : FeatureData {
-  PointJacobianData(int n, int groups) : jp(3, n), best(groups), best_k(groups) {}
-  Eigen::MatrixXd jp;
-  std::vector<double> best;
-  std::vector<int> best_k;
-};
-
-// Clearance of every hand sphere to the object: d_k = sdf(c_k) − r_k (world), and
-//   kHinge:  y_k = max(0, margin − d_k) (target 0: no penetration), J_k = −∇sdfᵀ J_c if active;
-//   kMin:    one output per group of spheres, y_g = min_k∈g d_k (target 0: touching),
-//            J_g = ∇sdfᵀ J_c of the minimising sphere.
-class ClearanceFeature : public Feature {
- public:
-  enum class Mode { kHinge, kMin };
-  ClearanceFeature(HandSpheres spheres, std::vector<int> group, int num_groups,
-                   const GraspObject& object, const Eigen::Isometry3d& world_from_object,
-                   double margin, Mode mode)
-      : spheres_(std::move(spheres)),
-        group_(std::move(group)),
-        num_groups_(num_groups),
-        object_(object),
-        world_from_object_(world_from_object),
-        object_from_world_(world_from_object.inverse()),
-        margin_(margin),
-        mode_(mode) {}
-  int dim() const override {
-    return mode_ == Mode::kHinge ? static_cast<int>(spheres_.link.size()) : num_groups_;
-  }
-  std::string name() const override { return mode_ == Mode::kHinge ? "clearance" : "contact"; }
-  std::unique_ptr<FeatureData> CreateData(const Robot& robot) const override {
-    return std::make_unique<PointJacobianData>(num_dofs(robot), num_groups_);
-  }
-  void Eval(const Robot& robot, const KinematicsData& kin, FeatureData* data,
-            Eigen::Ref<Eigen::VectorXd> y, Eigen::MatrixXd* J) const override {
-    auto* d = static_cast<PointJacobianData*>(data);
-    if (J) J->setZero();
-    std::vector<double>& best = d->best;
-    std::vector<int>& best_k = d->best_k;
-    std::fill(best.begin(), best.end(), std::numeric_limits<double>::infinity());
-    std::fill(best_k.begin(), best_k.end(), -1);
-    if (mode_ == Mode::kHinge) y.setZero();
-    for (size_t k = 0; k < spheres_.link.size(); ++k) {
-      const int li = spheres_.link[k];
-      const Eigen::Vector3d c = spheres_.center_local.col(k);
-      const Eigen::Vector3d pw = kin.world_from_link[li] * c;
-      Eigen::Vector3d g;
-      const double dist =
-          SignedDistance(object_, object_from_world_ * pw, J ? &g : nullptr) - spheres_.radius[k];
-      if (mode_ == Mode::kHinge) {
-        if (dist < margin_) {
-          y[k] = margin_ - dist;
-          if (J) {
-            PointJacobian(robot, kin, li, c, d->jp);
-            J->row(k) = -(world_from_object_.linear() * g).transpose() * d->jp;
-          }
-        }
-      } else if (group_[k] >= 0 && dist < best[group_[k]]) {
-        best[group_[k]] = dist;
-        best_k[group_[k]] = static_cast<int>(k);
-      }
-    }
-    if (mode_ == Mode::kMin) {
-      for (int gi = 0; gi < num_groups_; ++gi) {
-        y[gi] = best_k[gi] < 0 ? 0.0 : best[gi];
-        if (J && best_k[gi] >= 0) {
-          const int k = best_k[gi];
-          const int li = spheres_.link[k];
-          const Eigen::Vector3d c = spheres_.center_local.col(k);
-          Eigen::Vector3d g;
-          SignedDistance(object_, object_from_world_ * (kin.world_from_link[li] * c), &g);
-          PointJacobian(robot, kin, li, c, d->jp);
-          J->row(gi) = (world_from_object_.linear() * g).transpose() * d->jp;
-        }
-      }
-    }
-  }
-
- private:
-  HandSpheres spheres_;
-  std::vector<int> group_;
-  int num_groups_;
-  GraspObject object_;
-  Eigen::Isometry3d world_from_object_, object_from_world_;
-  double margin_;
-  Mode mode_;
-};
-
-// The floating base itself: y = q[0..5] (palm translation and rotation joints), J = [I 0].
-class PalmPoseFeature : public Feature {
- public:
-  int dim() const override { return 6; }
-  std::string name() const override { return "palm_pose"; }
-  void Eval(const Robot&, const KinematicsData& kin, FeatureData*, Eigen::Ref<Eigen::VectorXd> y,
-            Eigen::MatrixXd* J) const override {
-    y = kin.q.head<6>();
-    if (J) {
-      J->setZero();
-      J->leftCols<6>().setIdentity();
-    }
-  }
-};
+using internal::ClearanceFeature;
+using internal::GraspWindingFeature;
+using internal::PalmPoseFeature;
 
 // Task active only at the last slice (precision ρ at t = T, 0 before).
 Task FinalTask(const std::string& name, std::unique_ptr<Feature> f, const Eigen::VectorXd& y,
@@ -264,6 +101,98 @@ Eigen::VectorXd JointMapping(const TransferSetup& s, const Eigen::VectorXd& q_pl
   return q;
 }
 
+// --- MakeFloatingHand's parts
+// ---------------------------------------------------------------------
+
+// Per link of `source`: 1 if it is `root` or below it (links come in topological order).
+std::vector<char> SubtreeMask(const Robot& source, int root) {
+  std::vector<char> in(source.links.size(), 0);
+  in[root] = 1;
+  for (size_t i = 0; i < source.links.size(); ++i) {
+    const int pj = source.links[i].parent_joint;
+    if (pj >= 0 && in[source.joints[pj].parent_link]) in[i] = 1;
+  }
+  return in;
+}
+
+// Appends the "world" link and the 6 floating joints (hand_tx, hand_ty, hand_tz prismatic along the
+// world axes within ±5 m, then hand_rz, hand_ry, hand_rx continuous, hand_rz's frame rotated by
+// `nominal`) to the empty `out`, dofs 0..5; the last one carries source link `root`, whose new
+// index goes to (*new_index)[root].
+void AddFloatingJoints(const Robot& source, int root, const Eigen::Matrix3d& nominal, Robot* out,
+                       std::vector<int>* new_index) {
+  Link world;
+  world.name = "world";
+  out->links.push_back(world);
+  const char* names[6] = {"hand_tx", "hand_ty", "hand_tz", "hand_rz", "hand_ry", "hand_rx"};
+  const Eigen::Vector3d axes[6] = {Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitY(),
+                                   Eigen::Vector3d::UnitZ(), Eigen::Vector3d::UnitZ(),
+                                   Eigen::Vector3d::UnitY(), Eigen::Vector3d::UnitX()};
+  for (int k = 0; k < 6; ++k) {
+    Joint j;
+    j.name = names[k];
+    j.type = k < 3 ? JointType::kPrismatic : JointType::kContinuous;
+    j.parent_link = static_cast<int>(out->links.size()) - 1;
+    j.child_link = static_cast<int>(out->links.size());
+    if (k == 3) j.parent_from_joint.linear() = nominal;
+    j.axis = axes[k];
+    if (k < 3) {
+      j.limits.lower = -5.0;
+      j.limits.upper = 5.0;
+    }
+    j.dof = k;
+    Link child;
+    if (k < 5) {
+      child.name = std::string("float_") + names[k];
+    } else {
+      child = source.links[root];
+      (*new_index)[root] = j.child_link;
+    }
+    child.parent_joint = static_cast<int>(out->joints.size());
+    out->joints.push_back(j);
+    out->dof_joints.push_back(static_cast<int>(out->joints.size()) - 1);
+    out->links.push_back(child);
+  }
+}
+
+// Appends the links below `root` (mask `in`) with their parent joints to `out`, in the source's
+// topological order; their dofs are renumbered from 6 in the source dof order (mimic joints keep
+// their masters) and appended to out->dof_joints by new dof. Fills (*new_index)[link].
+void CopySubtree(const Robot& source, int root, const std::vector<char>& in, Robot* out,
+                 std::vector<int>* new_index) {
+  std::vector<int> new_dof(source.dof_joints.size(), -1);
+  for (size_t k = 0; k < source.dof_joints.size(); ++k) {
+    const Joint& j = source.joints[source.dof_joints[k]];
+    if (in[j.child_link] && j.child_link != root) {
+      new_dof[k] = 6 + static_cast<int>(std::count_if(new_dof.begin(), new_dof.begin() + k,
+                                                      [](int v) { return v >= 0; }));
+    }
+  }
+  std::vector<std::pair<int, int>> dof_order;  // (new dof, new joint index)
+  for (size_t i = 0; i < source.links.size(); ++i) {
+    if (!in[i] || static_cast<int>(i) == root) continue;
+    const Joint& sj = source.joints[source.links[i].parent_joint];
+    Joint j = sj;
+    j.parent_link = (*new_index)[sj.parent_link];
+    j.child_link = static_cast<int>(out->links.size());
+    if (j.dof >= 0) {
+      j.dof = new_dof[j.dof];
+      if (j.dof < 0) {
+        throw std::invalid_argument("MakeFloatingHand: joint '" + sj.name +
+                                    "' follows a joint outside the subtree");
+      }
+    }
+    Link l = source.links[i];
+    l.parent_joint = static_cast<int>(out->joints.size());
+    (*new_index)[i] = j.child_link;
+    out->joints.push_back(j);
+    if (j.dof >= 0 && !j.is_mimic) dof_order.push_back({j.dof, l.parent_joint});
+    out->links.push_back(l);
+  }
+  std::sort(dof_order.begin(), dof_order.end());
+  for (const auto& [dof, joint] : dof_order) out->dof_joints.push_back(joint);
+}
+
 }  // namespace
 
 Eigen::VectorXd WindingTarget(const TransferSetup& s) {
@@ -294,81 +223,15 @@ Eigen::MatrixXd FingerCorrespondence() {
 Robot MakeFloatingHand(const Robot& source, const std::string& root_link,
                        const Eigen::Matrix3d& nominal) {
   const int root = FindLink(source, root_link);
-  std::vector<char> in(source.links.size(), 0);
-  in[root] = 1;
-  for (size_t i = 0; i < source.links.size(); ++i) {
-    const int pj = source.links[i].parent_joint;
-    if (pj >= 0 && in[source.joints[pj].parent_link]) in[i] = 1;
-  }
+  const std::vector<char> in = SubtreeMask(source, root);
   Robot out;
   out.name = source.name + "/" + root_link + " (floating)";
   out.source = source.source;
   out.meshes = source.meshes;
-  Link world;
-  world.name = "world";
-  out.links.push_back(world);
-  const char* names[6] = {"hand_tx", "hand_ty", "hand_tz", "hand_rz", "hand_ry", "hand_rx"};
-  const Eigen::Vector3d axes[6] = {Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitY(),
-                                   Eigen::Vector3d::UnitZ(), Eigen::Vector3d::UnitZ(),
-                                   Eigen::Vector3d::UnitY(), Eigen::Vector3d::UnitX()};
   std::vector<int> new_index(source.links.size(), -1);
-  for (int k = 0; k < 6; ++k) {
-    Joint j;
-    j.name = names[k];
-    j.type = k < 3 ? JointType::kPrismatic : JointType::kContinuous;
-    j.parent_link = static_cast<int>(out.links.size()) - 1;
-    j.child_link = static_cast<int>(out.links.size());
-    if (k == 3) j.parent_from_joint.linear() = nominal;
-    j.axis = axes[k];
-    if (k < 3) {
-      j.limits.lower = -5.0;
-      j.limits.upper = 5.0;
-    }
-    j.dof = k;
-    Link child;
-    if (k < 5) {
-      child.name = std::string("float_") + names[k];
-    } else {
-      child = source.links[root];
-      new_index[root] = j.child_link;
-    }
-    child.parent_joint = static_cast<int>(out.joints.size());
-    out.joints.push_back(j);
-    out.dof_joints.push_back(static_cast<int>(out.joints.size()) - 1);
-    out.links.push_back(child);
-  }
-  // Subtree links in topological order, with their parent joints.
-  std::vector<int> new_dof(source.dof_joints.size(), -1);
-  for (size_t k = 0; k < source.dof_joints.size(); ++k) {
-    const Joint& j = source.joints[source.dof_joints[k]];
-    if (in[j.child_link] && j.child_link != root) {
-      new_dof[k] = 6 + static_cast<int>(std::count_if(new_dof.begin(), new_dof.begin() + k,
-                                                      [](int v) { return v >= 0; }));
-    }
-  }
-  std::vector<std::pair<int, int>> dof_order;  // (new dof, new joint index)
-  for (size_t i = 0; i < source.links.size(); ++i) {
-    if (!in[i] || static_cast<int>(i) == root) continue;
-    const Joint& sj = source.joints[source.links[i].parent_joint];
-    Joint j = sj;
-    j.parent_link = new_index[sj.parent_link];
-    j.child_link = static_cast<int>(out.links.size());
-    if (j.dof >= 0) {
-      j.dof = new_dof[j.dof];
-      if (j.dof < 0) {
-        throw std::invalid_argument("MakeFloatingHand: joint '" + sj.name +
-                                    "' follows a joint outside the subtree");
-      }
-    }
-    Link l = source.links[i];
-    l.parent_joint = static_cast<int>(out.joints.size());
-    new_index[i] = j.child_link;
-    out.joints.push_back(j);
-    if (j.dof >= 0 && !j.is_mimic) dof_order.push_back({j.dof, l.parent_joint});
-    out.links.push_back(l);
-  }
-  std::sort(dof_order.begin(), dof_order.end());
-  for (const auto& [dof, joint] : dof_order) out.dof_joints.push_back(joint);
+  AddFloatingJoints(source, root, nominal, &out, &new_index);
+  CopySubtree(source, root, in, &out, &new_index);
+  // Chains whose points all lie in the subtree.
   for (const ChainSpec& c : source.chains) {
     bool inside = true;
     for (int li : c.point_link) inside = inside && in[li];

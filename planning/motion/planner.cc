@@ -49,10 +49,10 @@ RrtProblem ScenarioRrtProblem(const Scenario& s) {
   rp.lower = LowerLimits(s.robot);
   rp.upper = UpperLimits(s.robot);
   for (Eigen::Index k = 0; k < rp.lower.size(); ++k) {  // continuous joints: one turn
-    if (!std::isfinite(rp.lower[k])) rp.lower[k] = s.problem.q0[k] - M_PI;
-    if (!std::isfinite(rp.upper[k])) rp.upper[k] = s.problem.q0[k] + M_PI;
+    if (!std::isfinite(rp.lower[k])) rp.lower[k] = s.initial.problem.q0[k] - M_PI;
+    if (!std::isfinite(rp.upper[k])) rp.upper[k] = s.initial.problem.q0[k] + M_PI;
   }
-  rp.start = s.problem.q0;
+  rp.start = s.initial.problem.q0;
   rp.goal = s.goal_q;
   return rp;
 }
@@ -85,169 +85,113 @@ bool OmplAvailable() {
 
 const char* PlannerName(Planner planner) { return base::ToName(planner); }
 
-inline constexpr base::EnumName<FailureReason> kFailureReasonNames[] = {
-    {FailureReason::kNone, "none"},
-    {FailureReason::kJointLimits, "joint_limits"},
-    {FailureReason::kCollision, "collision"},
-    {FailureReason::kTunnelled, "tunnelled"},
-    {FailureReason::kWritheNotReached, "writhe_not_reached"},
-    {FailureReason::kReachError, "reach_error"},
-    {FailureReason::kBudgetExhausted, "budget_exhausted"},
-    {FailureReason::kDiverged, "diverged"},
-    {FailureReason::kInvalidInput, "invalid_input"},
-};
-constexpr std::span<const base::EnumName<FailureReason>> EnumNames(FailureReason) {
-  return kFailureReasonNames;
-}
-
-const char* FailureReasonName(FailureReason reason) { return base::ToName(reason); }
-
-PlanVerdict JudgePlan(const Scenario& s, const Trajectory& path) {
-  if (path.num_points() == 0) throw std::invalid_argument("JudgePlan: empty path");
-  const SuccessCriteria& c = s.success;
-  PlanVerdict v;
-  CollisionData coll(s.robot, s.env, s.collision);
-  KinematicsData kin(s.robot);
-  const Eigen::VectorXd lo = LowerLimits(s.robot), hi = UpperLimits(s.robot);
-  const bool winding = c.winding_max_jump > 0.0 || c.winding_final_below > 0.0;
-  const topology::Axis axis = winding ? ReportAxis(s) : topology::Axis{};
-  Eigen::Matrix3Xd points;
-  std::vector<ProximityPair> pairs;
-  const Trajectory dense = Densify(path, s.check_resolution);
-  const auto fail = [&v](FailureReason reason, int k) {
-    if (v.reason != FailureReason::kNone) return;
-    v.reason = reason;
-    v.step = k;
-  };
-  double w_prev = 0.0;
-  int tunnel_step = -1;  // first resampled state after a winding jump
-  for (int k = 0; k < dense.num_points(); ++k) {
-    const auto q = dense.q.col(k);
-    if (((q.array() < lo.array()) || (q.array() > hi.array())).any()) {
-      fail(FailureReason::kJointLimits, k);
-      v.collision_free = false;
-    }
-    ForwardKinematics(s.robot, q, &kin);
-    if (InCollision(s.robot, kin, &coll)) {
-      fail(FailureReason::kCollision, k);
-      v.collision_free = false;
-      v.min_clearance_m = std::min(v.min_clearance_m, 0.0);
-    } else {  // (no penetration-depth queries: FCL's EPA can abort on degenerate contacts)
-      ComputeProximity(s.robot, kin, 0.2, &coll, &pairs);
-      for (const ProximityPair& p : pairs) {
-        v.min_clearance_m = std::min(v.min_clearance_m, p.distance);
-      }
-    }
-    if (!winding) continue;
-    ChainPoints(s.robot, kin, s.report_chain, &points);
-    const double w = topology::WindingNumber(points, axis);
-    if (k > 0) {
-      const double jump = std::abs(w - w_prev);
-      v.max_winding_jump_turns = std::max(v.max_winding_jump_turns, jump);
-      if (c.winding_max_jump > 0.0 && jump >= c.winding_max_jump && tunnel_step < 0)
-        tunnel_step = k;
-    }
-    w_prev = w;
-  }
-  // A winding jump means the arm passed through the pole (or off its end): name that, not the
-  // collision of the states on the way through.
-  if (tunnel_step >= 0 &&
-      (v.reason == FailureReason::kNone || v.reason == FailureReason::kCollision)) {
-    v.reason = FailureReason::kTunnelled;
-    v.step = tunnel_step;
-  }
-  v.final_winding_turns = w_prev;
-  const EndState end = CheckEndState(s, path.q.col(path.num_points() - 1), false);
-  v.final_writhe_total = end.writhe_total;
-  v.writhe_peak_row = end.writhe_peak_row;
-  v.writhe_peak_col = end.writhe_peak_col;
-  v.writhe_peak_value = end.writhe_peak_value;
-  if (!end.writhe_reached) fail(FailureReason::kWritheNotReached, -1);
-  v.reach_error_m = end.reach_error_m;
-  if (!end.reached) fail(FailureReason::kReachError, -1);
-  return v;
-}
-
 PlanResult RunPlanner(const Scenario& s, Planner planner, unsigned seed,
                       const AicoCallback& callback, const PollFn& poll) {
+  PlanRequest request;
+  request.planner = planner;
+  request.seed = seed;
+  request.callback = callback;
+  request.poll = poll;
+  return RunPlanner(s, request);
+}
+
+PlanResult RunPlanner(const Scenario& s, const PlanRequest& request) {
+  const ScenarioState& w = request.state != nullptr ? *request.state : s.initial;
+  const Planner planner = request.planner;
+  const unsigned seed = request.seed;
+  const PollFn& poll = request.poll;
+  const auto t0 = std::chrono::steady_clock::now();
+  const auto elapsed = [&t0] {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  };
+  if (planner == Planner::kAico) {
+    PlanResult out = RunAicoAttempts(s, w, request.aico ? *request.aico : s.aico, request.callback);
+    out.report.time_s = elapsed();
+    FinishReport(s, w, out.trajectory.num_points() > 0, /*judged=*/true, &out);
+    return out;
+  }
+  CollisionData coll(s.robot, w.env, s.collision);
+  KinematicsData kin(s.robot);
+  const ValidityFn valid = ValidityChecker(s, &coll, &kin);
+  const RrtProblem rp = ScenarioRrtProblem(s);
+  RrtResult r;
+  switch (planner) {
+    case Planner::kRrt:
+    case Planner::kBiRrt: {
+      // In chunks of iterations, polling between them (same result as one PlanRrt call).
+      RrtSolver solver(rp, s.rrt, valid, std::mt19937(seed), planner == Planner::kBiRrt);
+      while (!solver.done()) {
+        solver.Step(kRrtPollIterations);
+        if (poll) poll();
+      }
+      r = solver.result();
+      break;
+    }
+    case Planner::kOmplRrt:
+    case Planner::kOmplRrtConnect:
+#ifdef TOPOPLAN_HAVE_OMPL
+      r = internal::PlanOmpl(planner == Planner::kOmplRrt ? internal::OmplPlanner::kRrt
+                                                          : internal::OmplPlanner::kRrtConnect,
+                             rp, s.rrt, valid, seed);
+      break;
+#else
+      throw std::invalid_argument(std::string("planner '") + PlannerName(planner) +
+                                  "': topoplan was built without OMPL");
+#endif
+    case Planner::kAico:
+      break;
+  }
+  const double time_s = elapsed();
+  PlanResult out = SamplingPlanResult(s, w, planner, r, coll.queries, coll.narrow_phase_calls);
+  out.report.time_s = time_s;
+  return out;
+}
+
+PlanResult SamplingPlanResult(const Scenario& s, const ScenarioState& w, Planner planner,
+                              const RrtResult& r, long queries, long narrow_phase_calls) {
   PlanResult out;
   PlanReport& rep = out.report;
   rep.planner = PlannerName(planner);
-  CollisionData coll(s.robot, s.env, s.collision);
-  KinematicsData kin(s.robot);
-  const ValidityFn valid = ValidityChecker(s, &coll, &kin);
-  const auto t0 = std::chrono::steady_clock::now();
-  bool found = false;
-  bool judged = false;  // AICO: the report holds the last attempt's verdict
-  if (planner == Planner::kAico) {
-    out = RunAicoAttempts(s, callback);
-    judged = true;
-    found = out.trajectory.num_points() > 0;
-  } else {
-    const RrtProblem rp = ScenarioRrtProblem(s);
-    RrtResult r;
-    switch (planner) {
-      case Planner::kRrt:
-      case Planner::kBiRrt: {
-        // In chunks of iterations, polling between them (same result as one PlanRrt call).
-        RrtSolver solver(rp, s.rrt, valid, std::mt19937(seed), planner == Planner::kBiRrt);
-        while (!solver.done()) {
-          solver.Step(kRrtPollIterations);
-          if (poll) poll();
-        }
-        r = solver.result();
-        break;
-      }
-      case Planner::kOmplRrt:
-      case Planner::kOmplRrtConnect:
-#ifdef TOPOPLAN_HAVE_OMPL
-        r = internal::PlanOmpl(planner == Planner::kOmplRrt ? internal::OmplPlanner::kRrt
-                                                            : internal::OmplPlanner::kRrtConnect,
-                               rp, s.rrt, valid, seed);
-        break;
-#else
-        throw std::invalid_argument(std::string("planner '") + PlannerName(planner) +
-                                    "': topoplan was built without OMPL");
-#endif
-      case Planner::kAico:
-        break;
-    }
-    rep.status = r.status;
-    rep.iterations = r.iterations;
-    rep.collision_checks = coll.queries;
-    rep.narrow_phase_calls = coll.narrow_phase_calls;
-    out.trajectory = r.path;
-    found = r.status == SolveStatus::kConverged;
-    // RRT paths are checked edge by edge while planning; re-check at the scenario's resolution
-    // (on a separate, uncounted collision state).
-    if (found && out.trajectory.num_points() > 0) {
-      CollisionData recheck(s.robot, s.env, s.collision);
-      rep.path_collision_free =
-          PathIsValid(out.trajectory, s.check_resolution, ValidityChecker(s, &recheck, &kin));
-    }
+  rep.status = r.status;
+  rep.iterations = r.iterations;
+  rep.collision_checks = queries;
+  rep.narrow_phase_calls = narrow_phase_calls;
+  out.trajectory = r.path;
+  const bool found = r.status == SolveStatus::kConverged;
+  // RRT paths are checked edge by edge while planning; re-check at the scenario's resolution
+  // (on a separate, uncounted collision state).
+  if (found && out.trajectory.num_points() > 0) {
+    CollisionData recheck(s.robot, w.env, s.collision);
+    KinematicsData kin(s.robot);
+    rep.path_collision_free =
+        PathIsValid(out.trajectory, s.check_resolution, ValidityChecker(s, &recheck, &kin));
   }
-  rep.time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  FinishReport(s, w, found, /*judged=*/false, &out);
+  return out;
+}
 
+void FinishReport(const Scenario& s, const ScenarioState& w, bool found, bool judged,
+                  PlanResult* out) {
+  PlanReport& rep = out->report;
   // Report quantities (not counted).
-  rep.start_writhe_total = ReportWritheTotal(s, s.problem.q0);
+  rep.start_writhe_total = ReportWritheTotal(s, w, w.problem.q0);
   if (!judged) rep.final_writhe_total = rep.start_writhe_total;
   rep.success = false;
-  if (out.trajectory.num_points() > 0) {
-    if (!judged) ApplyVerdict(JudgePlan(s, out.trajectory), &rep);
-    rep.path_length = PathLength(out.trajectory);
-    if (planner != Planner::kAico) rep.cost = rep.path_length;
+  if (out->trajectory.num_points() > 0) {
+    if (!judged) ApplyVerdict(JudgePlan(s, w, out->trajectory), &rep);
+    rep.path_length = PathLength(out->trajectory);
+    if (rep.planner != PlannerName(Planner::kAico)) rep.cost = rep.path_length;
     rep.success = found && rep.path_collision_free && rep.failure_reason == FailureReason::kNone;
   } else {
     // No path: the arm stays at its start. The end quantities are those of q0 (so a failed run
     // does not report the zeros of an unwrapped arm); the failure is named below from the status.
     Trajectory start;
-    start.q = s.problem.q0;
-    ApplyVerdict(JudgePlan(s, start), &rep);
+    start.q = w.problem.q0;
+    ApplyVerdict(JudgePlan(s, w, start), &rep);
     rep.failure_reason = FailureReason::kNone;
     rep.failure_step = -1;
   }
   NameFailure(&rep);
-  return out;
 }
 
 void ApplyVerdict(const PlanVerdict& v, PlanReport* rep) {
@@ -275,17 +219,18 @@ struct AicoPathCheck {
   bool success() const { return valid && judged && verdict.reason == FailureReason::kNone; }
 };
 
-AicoPathCheck CheckAicoPath(const Scenario& s, const Trajectory& path, bool invalid_input,
+AicoPathCheck CheckAicoPath(const Scenario& s, const ScenarioState& w, const Trajectory& path,
+                            bool invalid_input,
                             bool judge_invalid) {
   AicoPathCheck c;
-  CollisionData coll(s.robot, s.env, s.collision);
+  CollisionData coll(s.robot, w.env, s.collision);
   KinematicsData kin(s.robot);
   c.valid =
       !invalid_input && PathIsValid(path, s.check_resolution, ValidityChecker(s, &coll, &kin));
   c.queries = coll.queries;
   c.narrow_phase_calls = coll.narrow_phase_calls;
   if (c.valid || judge_invalid) {
-    c.verdict = JudgePlan(s, path);
+    c.verdict = JudgePlan(s, w, path);
     c.judged = true;
   }
   return c;
@@ -311,19 +256,31 @@ bool FoldAicoAttempt(const AicoResult& r, const AicoPathCheck& check, PlanResult
 }  // namespace
 
 bool AddAicoAttempt(const Scenario& s, const AicoResult& r, PlanResult* out) {
+  return AddAicoAttempt(s, s.initial, r, out);
+}
+
+bool AddAicoAttempt(const Scenario& s, const ScenarioState& w, const AicoResult& r,
+                    PlanResult* out) {
   const bool invalid_input = r.status == SolveStatus::kInvalidInput;
-  return FoldAicoAttempt(r, CheckAicoPath(s, r.trajectory, invalid_input, true), out);
+  return FoldAicoAttempt(r, CheckAicoPath(s, w, r.trajectory, invalid_input, true), out);
 }
 
 PlanResult RunAicoAttempts(const Scenario& s, const AicoCallback& callback) {
+  return RunAicoAttempts(s, s.initial, s.aico, callback);
+}
+
+PlanResult RunAicoAttempts(const Scenario& s, const ScenarioState& w, const AicoOptions& aico,
+                           const AicoCallback& callback) {
   PlanResult out;
   PlanReport& rep = out.report;
   rep.planner = PlannerName(Planner::kAico);
   rep.attempts = 0;
   for (int k = 0; k < static_cast<int>(s.aico_attempts.size()); ++k) {
-    const MotionProblem later = k > 0 ? AttemptProblem(s, k) : MotionProblem{};
+    const MotionProblem later = k > 0 ? AttemptProblem(s, w, k) : MotionProblem{};
     ++rep.attempts;
-    AicoSolver solver(k > 0 ? later : s.problem, AttemptOptions(s, k));
+    AicoOptions options = aico;
+    options.max_iterations = s.aico_attempts[k].max_iterations;
+    AicoSolver solver(k > 0 ? later : w.problem, options);
     long probe_queries = 0, probe_narrow = 0;  // validations of trajectories that were no success
     bool solved = false;
     while (!solver.done()) {
@@ -331,8 +288,8 @@ PlanResult RunAicoAttempts(const Scenario& s, const AicoCallback& callback) {
       if (callback) callback(step.sweep, step.cost, step.accepted, solver.trajectory());
       if (!s.stop_when_solved || !step.accepted || solver.done()) continue;
       const Trajectory& path = solver.trajectory();
-      if (!CheckEndState(s, path.q.col(path.num_points() - 1), false).ok()) continue;
-      const AicoPathCheck check = CheckAicoPath(s, path, false, false);
+      if (!CheckEndState(s, w, path.q.col(path.num_points() - 1), false).ok()) continue;
+      const AicoPathCheck check = CheckAicoPath(s, w, path, false, false);
       if (!check.success()) {
         probe_queries += check.queries;
         probe_narrow += check.narrow_phase_calls;
@@ -343,7 +300,7 @@ PlanResult RunAicoAttempts(const Scenario& s, const AicoCallback& callback) {
       solved = FoldAicoAttempt(r, check, &out);
       break;
     }
-    if (!solved) solved = AddAicoAttempt(s, solver.result(), &out);
+    if (!solved) solved = AddAicoAttempt(s, w, solver.result(), &out);
     rep.collision_checks += probe_queries;
     rep.narrow_phase_calls += probe_narrow;
     if (solved) break;

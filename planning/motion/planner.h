@@ -3,6 +3,7 @@
 #pragma once
 
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -11,6 +12,7 @@
 #include "planning/robot/kinematics.h"
 #include "planning/motion/rrt.h"
 #include "planning/motion/scenario.h"
+#include "planning/motion/success.h"
 #include "planning/motion/trajectory.h"
 
 namespace planning {
@@ -30,24 +32,6 @@ Planner ParsePlanner(const std::string& name);
 // True when this build includes OMPL (libompl-dev was found by CMake).
 bool OmplAvailable();
 const char* PlannerName(Planner planner);
-
-// Why a plan is not a success (kNone: it is one). See JudgePlan for the order of the checks.
-enum class FailureReason {
-  kNone,
-  kJointLimits,       // a resampled state outside the joint limits (failure_step)
-  kCollision,         // a resampled state in collision (failure_step)
-  kTunnelled,         // winding jump >= max_jump between resampled states (failure_step and
-                      // max_winding_jump_turns): through the pole, or off its end
-  kWritheNotReached,  // |final writhe| or |final winding| not below its bound
-  kReachError,        // the position task's final distance (reach_error_m) above its tolerance,
-                      // or the box task's value not 0
-  kBudgetExhausted,   // RRT: no path within the collision-check budget
-  kDiverged,          // AICO: no accepted sweep / non-finite cost
-  kInvalidInput,      // invalid start or goal
-};
-// "none" | "joint_limits" | "collision" | "tunnelled" | "writhe_not_reached" | "reach_error" |
-// "budget_exhausted" | "diverged" | "invalid_input".
-const char* FailureReasonName(FailureReason reason);
 
 struct PlanReport {
   std::string planner;
@@ -77,20 +61,6 @@ struct PlanReport {
   double writhe_peak_value = 0.0;
 };
 
-// The verdict of JudgePlan.
-struct PlanVerdict {
-  FailureReason reason = FailureReason::kNone;
-  int step = -1;  // index into Densify(path, check_resolution) of the first violation, or −1
-  double max_winding_jump_turns = 0.0;
-  double final_winding_turns = 0.0;
-  double final_writhe_total = 0.0;
-  int writhe_peak_row = -1, writhe_peak_col = -1;  // see PlanReport
-  double writhe_peak_value = 0.0;
-  double reach_error_m = -1.0;   // −1 when the scenario has no position criterion
-  double min_clearance_m = 0.2;  // minimum signed distance over the pairs within 0.2 m
-  bool collision_free = true;    // every resampled state within limits and collision-free
-};
-
 struct PlanResult {
   PlanReport report;
   Trajectory trajectory;  // AICO: T+1 slices; RRT: tree waypoints (empty on failure)
@@ -117,6 +87,36 @@ using PollFn = std::function<void()>;
 PlanResult RunPlanner(const Scenario& scenario, Planner planner, unsigned seed,
                       const AicoCallback& callback = {}, const PollFn& poll = {});
 
+// One run's request: what a caller may choose without changing the (immutable) scenario.
+struct PlanRequest {
+  Planner planner = Planner::kAico;
+  unsigned seed = 0;
+  // The world to plan in (objects moved, see MoveObject); null: scenario.initial.
+  const ScenarioState* state = nullptr;
+  // Replaces scenario.aico for this run (each attempt keeps its own iteration limit); the
+  // viewer's planner panel edits these.
+  std::optional<AicoOptions> aico;
+  AicoCallback callback;
+  PollFn poll;
+};
+// RunPlanner above, as the request says.
+PlanResult RunPlanner(const Scenario& scenario, const PlanRequest& request);
+
+// The result of a sampling planner's run `r` (RRT, BiRRT, the OMPL peers; `queries` and
+// `narrow_phase_calls` counted while it ran), as RunPlanner reports it: the path re-checked at
+// check_resolution on an uncounted collision state, then FinishReport. time_s is left 0. The
+// viewer's stepped RRTs report through it too.
+PlanResult SamplingPlanResult(const Scenario& scenario, const ScenarioState& state,
+                              Planner planner, const RrtResult& r, long queries,
+                              long narrow_phase_calls);
+
+// The judged part of every run's report: start writhe, the verdict of JudgePlan on the path (when
+// not `judged` already, as RunAicoAttempts does), path length, success = `found` (a path was
+// found), path_collision_free and no failure reason; without a path, the end quantities of q0.
+// Then NameFailure.
+void FinishReport(const Scenario& scenario, const ScenarioState& state, bool found, bool judged,
+                  PlanResult* out);
+
 // AICO on the scenario, as RunPlanner runs it: attempt k (aico_attempts) is an AicoSolver on
 // AttemptProblem(s, k) stepped one sweep at a time, `callback(sweep, cost, accepted, trajectory())`
 // after each sweep (it may throw to cancel), then folded in by AddAicoAttempt; the next attempt
@@ -131,6 +131,9 @@ PlanResult RunPlanner(const Scenario& scenario, Planner planner, unsigned seed,
 // attempt runs). Fills every report field of an AICO run except time_s and start_writhe_total; does
 // not call NameFailure.
 PlanResult RunAicoAttempts(const Scenario& scenario, const AicoCallback& callback = {});
+// The same in the world `state` with `aico` instead of scenario.aico.
+PlanResult RunAicoAttempts(const Scenario& scenario, const ScenarioState& state,
+                           const AicoOptions& aico, const AicoCallback& callback = {});
 
 // Folds one AICO solve `r` of the scenario (or of one of its attempts' problems) into `out`, as
 // RunAicoAttempts does for every attempt: trajectory, status, cost and its history are replaced;
@@ -140,6 +143,8 @@ PlanResult RunAicoAttempts(const Scenario& scenario, const AicoCallback& callbac
 // report (ApplyVerdict). Returns whether the attempt is a success (valid path, no failure reason);
 // report.success is set accordingly.
 bool AddAicoAttempt(const Scenario& s, const AicoResult& r, PlanResult* out);
+bool AddAicoAttempt(const Scenario& s, const ScenarioState& state, const AicoResult& r,
+                    PlanResult* out);
 
 // Copies a verdict's fields into a report (final writhe, clearance, failure reason and step,
 // reach error, winding jump and final winding, writhe peak).
@@ -150,16 +155,5 @@ void ApplyVerdict(const PlanVerdict& v, PlanReport* report);
 // kConverged / kMaxIterations a run without a verdict reason is kBudgetExhausted (no path within
 // the limits; kSolved only ends successful runs). A successful report is left as it is.
 void NameFailure(PlanReport* report);
-
-// Judges `path` (non-empty) by the scenario's success criteria, the same for every planner
-// (uncounted queries on a collision state of its own). The path is resampled with
-// Densify(path, check_resolution); walking its states k = 0, 1, ...: outside the joint limits ->
-// kJointLimits, InCollision -> kCollision, |w_k − w_{k−1}| >= winding_max_jump -> kTunnelled (w =
-// ReportWinding, turns; only with the winding criterion); the first of these is the reason, except
-// that a winding jump replaces a collision (the states passing through the pole collide;
-// failure_step is then the jump's). At the end (CheckEndState of the last state): |w| >=
-// winding_final_below or |total writhe| >= writhe_total_below -> kWritheNotReached; position error
-// > position_tolerance or the box task's point outside its box (margin 0) -> kReachError.
-PlanVerdict JudgePlan(const Scenario& scenario, const Trajectory& path);
 
 }  // namespace planning

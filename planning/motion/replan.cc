@@ -10,6 +10,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "planning/motion/success.h"
 #include "planning/robot/kinematics.h"
 #include "base/file_read.h"
 #include "topology/winding.h"
@@ -136,39 +137,18 @@ Eigen::Vector3d ObjectPositionAt(const ObjectPath& path, double t) {
   return (1.0 - a) * path.p[k - 1] + a * path.p[k];
 }
 
-bool ChainThroughLoop(const Eigen::Matrix3Xd& chain, const Eigen::Matrix3Xd& loop) {
-  if (chain.cols() < 2 || loop.cols() < 3) return false;
-  // Mean plane of the loop: centroid and Newell normal.
-  const Eigen::Vector3d c = loop.rowwise().mean();
-  Eigen::Vector3d n = Eigen::Vector3d::Zero();
-  for (Eigen::Index k = 0; k < loop.cols(); ++k) {
-    const Eigen::Vector3d a = loop.col(k) - c;
-    const Eigen::Vector3d b = loop.col((k + 1) % loop.cols()) - c;
-    n += a.cross(b);
-  }
-  if (n.norm() < 1e-12) return false;
-  n.normalize();
-  for (Eigen::Index k = 0; k + 1 < chain.cols(); ++k) {
-    const double da = n.dot(chain.col(k) - c), db = n.dot(chain.col(k + 1) - c);
-    if (da * db > 0.0 || da == db) continue;
-    const Eigen::Vector3d x = chain.col(k) + (da / (da - db)) * (chain.col(k + 1) - chain.col(k));
-    if (std::abs(topology::PlanarWinding(loop, x, n)) >= 0.5) return true;
-  }
-  return false;
-}
-
 namespace {
 
 // The world-space point of task i (see replan.h), if it has one.
-std::optional<Eigen::Vector3d> TaskPoint(const Scenario& s, size_t i) {
-  const FeatureSpec& f = s.spec.tasks[i].feature;
+std::optional<Eigen::Vector3d> TaskPoint(const ScenarioState& w, size_t i) {
+  const FeatureSpec& f = w.tasks[i].feature;
   switch (f.type) {
     case FeatureType::kBox:
       return f.center;
     case FeatureType::kWinding:
       return f.axis_point;
     case FeatureType::kPosition: {
-      const Task& task = s.problem.tasks[i];
+      const Task& task = w.problem.tasks[i];
       if (task.target.rows() != 3 || task.target.cols() == 0) return std::nullopt;
       return Eigen::Vector3d(task.target.col(task.target.cols() - 1));
     }
@@ -179,19 +159,20 @@ std::optional<Eigen::Vector3d> TaskPoint(const Scenario& s, size_t i) {
 
 }  // namespace
 
-std::vector<int> AttachedTasks(const Scenario& s, const std::string& object) {
+std::vector<int> AttachedTasks(const Scenario& s, const ScenarioState& w,
+                               const std::string& object) {
   const std::vector<std::string> names = ObjectNames(s);
   if (std::find(names.begin(), names.end(), object) == names.end()) {
     throw std::invalid_argument("unknown object '" + object + "' " + ObjectList(names));
   }
   std::vector<int> out;
-  for (size_t i = 0; i < s.spec.tasks.size() && i < s.problem.tasks.size(); ++i) {
-    const std::optional<Eigen::Vector3d> p = TaskPoint(s, i);
+  for (size_t i = 0; i < w.tasks.size() && i < w.problem.tasks.size(); ++i) {
+    const std::optional<Eigen::Vector3d> p = TaskPoint(w, i);
     if (!p) continue;
     double best = std::numeric_limits<double>::infinity();
     std::string nearest;
     for (const std::string& name : names) {
-      const PlacedObject& o = s.objects.objects[FindObject(s.objects, name)];
+      const PlacedObject& o = w.objects.objects[FindObject(w.objects, name)];
       const double d = (o.world_from_object.translation() - *p).norm();
       if (d < best) {
         best = d;
@@ -203,9 +184,9 @@ std::vector<int> AttachedTasks(const Scenario& s, const std::string& object) {
   return out;
 }
 
-std::vector<int> ResolveAttachedTasks(const Scenario& s, const std::string& object,
-                                      const ReplanOptions& options) {
-  if (!options.attached_tasks) return AttachedTasks(s, object);
+std::vector<int> ResolveAttachedTasks(const Scenario& s, const ScenarioState& w,
+                                      const std::string& object, const ReplanOptions& options) {
+  if (!options.attached_tasks) return AttachedTasks(s, w, object);
   std::vector<std::string> valid;
   for (const TaskSpec& t : s.spec.tasks) valid.push_back(t.name);
   std::vector<int> out;
@@ -220,40 +201,39 @@ std::vector<int> ResolveAttachedTasks(const Scenario& s, const std::string& obje
   return out;
 }
 
-void MoveObjectWithTargets(Scenario* s, const std::string& object, const Eigen::Vector3d& position,
-                           const std::vector<int>& attached) {
-  const std::vector<std::string> names = ObjectNames(*s);
-  if (std::find(names.begin(), names.end(), object) == names.end()) {
-    MoveObject(s, object, position);  // throws, listing the valid names
+void MoveObjectWithTargets(const Scenario& s, ScenarioState* w, const std::string& object,
+                           const Eigen::Vector3d& position, const std::vector<int>& attached) {
+  if (!position.allFinite()) {
+    ObjectPosition(s, *w, object);  // throws, listing the valid names
+    throw std::invalid_argument("MoveObject: non-finite position");
   }
-  if (!position.allFinite()) throw std::invalid_argument("MoveObject: non-finite position");
-  const Eigen::Vector3d delta =
-      position - s->objects.objects[FindObject(s->objects, object)].world_from_object.translation();
+  const Eigen::Vector3d delta = position - ObjectPosition(s, *w, object);
   for (int i : attached) {
-    if (i < 0 || i >= static_cast<int>(s->spec.tasks.size()) ||
-        i >= static_cast<int>(s->problem.tasks.size())) {
+    if (i < 0 || i >= static_cast<int>(w->tasks.size()) ||
+        i >= static_cast<int>(w->problem.tasks.size())) {
       throw std::invalid_argument("MoveObjectWithTargets: task index " + std::to_string(i) +
                                   " out of range");
     }
   }
   for (int i : attached) {
-    FeatureSpec& f = s->spec.tasks[i].feature;
+    FeatureSpec& f = w->tasks[i].feature;
     if (f.type == FeatureType::kBox) f.center += delta;
     if (f.type == FeatureType::kWinding) f.axis_point += delta;
-    Task& task = s->problem.tasks[i];
+    Task& task = w->problem.tasks[i];
     if (f.type == FeatureType::kPosition && task.target.rows() == 3) {
       task.target.colwise() += delta;
     }
   }
-  MoveObject(s, object, position);  // rebuilds the features from the moved spec
+  MoveObject(s, w, object, position);  // rebuilds the features from the moved task specs
 }
 
-ReplanWorkspace::ReplanWorkspace(const Scenario& s) : window(AttemptProblem(s, 0)), aico(window) {
+ReplanWorkspace::ReplanWorkspace(const Scenario& s, const ScenarioState& w)
+    : window(AttemptProblem(s, w, 0)), aico(window) {
   init.q.resize(window.q0.size(), window.num_steps + 1);
   init.dt = tau(window);
 }
 
-AicoResult Replan(const Scenario& s, int slice, const Eigen::VectorXd& q,
+AicoResult Replan(const Scenario& s, const ScenarioState& state, int slice, const Eigen::VectorXd& q,
                   const Eigen::VectorXd& qdot, const Eigen::MatrixXd& previous, int shift,
                   const ReplanOptions& options, ReplanWorkspace* ws) {
   MotionProblem& w = ws->window;
@@ -267,11 +247,11 @@ AicoResult Replan(const Scenario& s, int slice, const Eigen::VectorXd& q,
   }
   if (options.sweeps < 1) throw std::invalid_argument("Replan: sweeps must be >= 1");
   // The moved scene: new features, and their data (collision objects) in the workspace.
-  RebuildTaskFeatures(s, &w);
+  RebuildTaskFeatures(s, state, &w);
   for (size_t i = 0; i < w.tasks.size(); ++i) {
     ws->aico.tasks.data[i] = w.tasks[i].feature->CreateData(s.robot);
   }
-  ShiftTargets(s.problem, slice, &w);
+  ShiftTargets(state.problem, slice, &w);
   w.q0 = q;
   w.qdot0 = qdot;
   for (int j = 0; j <= T; ++j) {
@@ -302,18 +282,19 @@ RecedingPlan MakeRecedingPlan(const Trajectory& t, const Eigen::MatrixXd& veloci
   return plan;
 }
 
-ReplanStep ReplanFrom(const Scenario& s, int elapsed, const ReplanOptions& options,
-                      ReplanWorkspace* ws, RecedingPlan* plan, AicoResult* result) {
-  const int T = s.problem.num_steps;
+ReplanStep ReplanFrom(const Scenario& s, const ScenarioState& state, int elapsed,
+                      const ReplanOptions& options, ReplanWorkspace* ws, RecedingPlan* plan,
+                      AicoResult* result) {
+  const int T = state.problem.num_steps;
   if (elapsed < 0 || elapsed > T || plan->q.cols() != T + 1 || plan->qdot.cols() != T + 1) {
     throw std::invalid_argument("ReplanFrom: elapsed must be in [0, " + std::to_string(T) +
                                 "] and the plan have " + std::to_string(T + 1) + " columns");
   }
   ReplanStep step;
   step.slice = plan->start_slice + elapsed;
-  step.time_s = step.slice * tau(s.problem);
+  step.time_s = step.slice * tau(state.problem);
   const double wall0 = WallMs(), cpu0 = ThreadCpuMs();
-  AicoResult r = Replan(s, step.slice, plan->q.col(elapsed), plan->qdot.col(elapsed), plan->q,
+  AicoResult r = Replan(s, state, step.slice, plan->q.col(elapsed), plan->qdot.col(elapsed), plan->q,
                         elapsed, options, ws);
   step.wall_ms = WallMs() - wall0;
   step.cpu_ms = ThreadCpuMs() - cpu0;
@@ -326,21 +307,21 @@ ReplanStep ReplanFrom(const Scenario& s, int elapsed, const ReplanOptions& optio
   return step;
 }
 
-ReplanResult RunReplanning(Scenario* s, const std::string& object, const ObjectPath& path,
+ReplanResult RunReplanning(const Scenario& s, const std::string& object, const ObjectPath& path,
                            const ReplanOptions& options) {
   if (path.t.empty()) throw std::invalid_argument("RunReplanning: empty object path");
   if (!(options.replan_period_s > 0.0) || !std::isfinite(options.replan_period_s)) {
     throw std::invalid_argument("RunReplanning: replan_period_s must be a finite number > 0");
   }
   if (options.sweeps < 1) throw std::invalid_argument("RunReplanning: sweeps must be >= 1");
-  const std::vector<std::string> names = ObjectNames(*s);
-  if (std::find(names.begin(), names.end(), object) == names.end()) {
-    MoveObject(s, object, Eigen::Vector3d::Zero());  // throws, listing the valid names
-  }
-  const std::vector<int> attached = ResolveAttachedTasks(*s, object, options);
+  // The world of this run: a state of its own (the scenario itself never moves).
+  const std::unique_ptr<ScenarioState> state = MakeScenarioState(s);
+  ScenarioState* w = state.get();
+  ObjectPosition(s, *w, object);  // throws for an unknown name, listing the valid ones
+  const std::vector<int> attached = ResolveAttachedTasks(s, *w, object, options);
   ReplanResult out;
-  out.object = FindObject(s->objects, object);
-  const MotionProblem& base = s->problem;
+  out.object = FindObject(w->objects, object);
+  const MotionProblem& base = w->problem;
   const int T = base.num_steps;
   const double tau_s = tau(base);
   const int n = static_cast<int>(base.q0.size());
@@ -349,38 +330,15 @@ ReplanResult RunReplanning(Scenario* s, const std::string& object, const ObjectP
                                       options.replan_period_s / tau_s, static_cast<double>(T)))));
   out.period_s = out.period_slices * tau_s;
 
-  struct Restore {  // puts the object, the task points and the targets back whatever happens
-    Scenario* s;
-    std::string name;
-    Eigen::Vector3d home;
-    std::vector<TaskSpec> tasks;
-    std::vector<Eigen::MatrixXd> targets;
-    std::vector<Eigen::Isometry3d> env;  // bit-exact poses (moves add and subtract δ)
-    ~Restore() {
-      try {
-        s->spec.tasks = tasks;
-        for (size_t i = 0; i < targets.size(); ++i) s->problem.tasks[i].target = targets[i];
-        MoveObject(s, name, home);
-        for (size_t i = 0; i < env.size(); ++i) s->env.objects[i].world_from_object = env[i];
-        RebuildTaskFeatures(*s, &s->problem);  // from the restored spec and poses
-      } catch (...) {
-      }
-    }
-  } restore{
-      s,  object, s->objects.objects[out.object].world_from_object.translation(), s->spec.tasks,
-      {}, {}};
-  for (const Task& t : base.tasks) restore.targets.push_back(t.target);
-  for (const PlacedObject& o : s->env.objects) restore.env.push_back(o.world_from_object);
-
   // g = 0: the full solve with the object at path(0).
   std::vector<Eigen::Vector3d> segment_position{ObjectPositionAt(path, 0.0)};
   std::vector<int> segment_start{0};
-  MoveObjectWithTargets(s, object, segment_position.back(), attached);
-  out.start_writhe_total = ReportWritheTotal(*s, base.q0);
-  ReplanWorkspace ws(*s);
+  MoveObjectWithTargets(s, w, object, segment_position.back(), attached);
+  out.start_writhe_total = ReportWritheTotal(s, *w, base.q0);
+  ReplanWorkspace ws(s, *w);
   {
     const double wall0 = WallMs(), cpu0 = ThreadCpuMs();
-    out.initial = SolveAico(ws.window, AttemptOptions(*s, 0), &ws.aico);
+    out.initial = SolveAico(ws.window, AttemptOptions(s, 0), &ws.aico);
     out.initial_wall_ms = WallMs() - wall0;
     out.initial_cpu_ms = ThreadCpuMs() - cpu0;
   }
@@ -396,9 +354,9 @@ ReplanResult RunReplanning(Scenario* s, const std::string& object, const ObjectP
     // Re-plan at g (after executing it): the object moves, the window shifts.
     const Eigen::Vector3d position = ObjectPositionAt(path, g * tau_s);
     const double wall0 = WallMs(), cpu0 = ThreadCpuMs();
-    MoveObjectWithTargets(s, object, position, attached);
+    MoveObjectWithTargets(s, w, object, position, attached);
     const double move_wall = WallMs() - wall0, move_cpu = ThreadCpuMs() - cpu0;
-    ReplanStep step = ReplanFrom(*s, g - plan.start_slice, options, &ws, &plan);
+    ReplanStep step = ReplanFrom(s, *w, g - plan.start_slice, options, &ws, &plan);
     step.object_position = position;
     step.wall_ms += move_wall;  // move + window + AICO
     step.cpu_ms += move_cpu;
@@ -409,18 +367,24 @@ ReplanResult RunReplanning(Scenario* s, const std::string& object, const ObjectP
   }
   segment_start.push_back(T);
 
-  // Judge each segment with the object where it was during it; the last one fully.
+  // Judge each segment with the object where it was during it; the last one fully, and when the
+  // moving object is the report loop, with the through-the-loop criterion.
+  SuccessCriteria criteria = s.success;
+  criteria.through_loop = criteria.through_loop ||
+                          (s.report_chain >= 0 && s.spec.writhe_report &&
+                           s.spec.writhe_report->object.name == object &&
+                           IsClosedLoop(w->report_object_chain));
   out.verdict = PlanVerdict{};
   double min_clearance = std::numeric_limits<double>::infinity();
   for (size_t i = 0; i + 1 < segment_start.size(); ++i) {
     const int a = segment_start[i], b = segment_start[i + 1];
-    MoveObjectWithTargets(s, object, segment_position[i], attached);
+    MoveObjectWithTargets(s, w, object, segment_position[i], attached);
     Trajectory segment;
     segment.dt = tau_s;
     segment.q = out.executed.q.middleCols(a, b - a + 1);
-    const PlanVerdict v = JudgePlan(*s, segment);
-    min_clearance = std::min(min_clearance, v.min_clearance_m);
     const bool last = i + 2 == segment_start.size();
+    const PlanVerdict v = JudgePlan(s, *w, segment, last ? criteria : s.success);
+    min_clearance = std::min(min_clearance, v.min_clearance_m);
     const bool along = v.reason == FailureReason::kJointLimits ||
                        v.reason == FailureReason::kCollision ||
                        v.reason == FailureReason::kTunnelled;
@@ -432,7 +396,7 @@ ReplanResult RunReplanning(Scenario* s, const std::string& object, const ObjectP
           Trajectory earlier;
           earlier.q = out.executed.q.middleCols(segment_start[k],
                                                 segment_start[k + 1] - segment_start[k] + 1);
-          offset += Densify(earlier, s->check_resolution).num_points() - 1;
+          offset += Densify(earlier, s.check_resolution).num_points() - 1;
         }
         out.verdict.step = v.step + offset;
         break;
@@ -443,21 +407,17 @@ ReplanResult RunReplanning(Scenario* s, const std::string& object, const ObjectP
   out.verdict.collision_free = out.verdict.reason != FailureReason::kJointLimits &&
                                out.verdict.reason != FailureReason::kCollision;
 
-  // Passing through: the report chain and the report object's loop at the end (object where it
-  // was in the last segment).
-  out.final_writhe_total = ReportWritheTotal(*s, out.executed.q.col(T));
-  const Eigen::Matrix3Xd& O = s->report_object_chain;
-  const bool loop = s->report_chain >= 0 && s->spec.writhe_report &&
-                    s->spec.writhe_report->object.name == object && O.cols() > 3 &&
-                    (O.col(0) - O.col(O.cols() - 1)).norm() < 1e-9;
-  if (loop) {
-    KinematicsData kin(s->robot);
-    ForwardKinematics(s->robot, out.executed.q.col(T), &kin);
+  out.final_writhe_total = ReportWritheTotal(s, *w, out.executed.q.col(T));
+  out.passed_through = out.verdict.passed_through;
+  if (!out.verdict.loop_checked && s.report_chain >= 0 && IsClosedLoop(w->report_object_chain)) {
+    // An earlier segment failed (the last was not judged): where the chain ends all the same.
+    KinematicsData kin(s.robot);
+    ForwardKinematics(s.robot, out.executed.q.col(T), &kin);
     Eigen::Matrix3Xd P;
-    ChainPoints(s->robot, kin, s->report_chain, &P);
-    out.passed_through = ChainThroughLoop(P, s->report_object_chain);
+    ChainPoints(s.robot, kin, s.report_chain, &P);
+    out.passed_through = ChainThroughLoop(P, w->report_object_chain);
   }
-  out.success = out.verdict.reason == FailureReason::kNone && (!loop || out.passed_through);
+  out.success = out.verdict.ok();
 
   std::vector<double> cpu, wall;
   double cpu_total = 0.0, wall_total = 0.0;
@@ -477,6 +437,31 @@ ReplanResult RunReplanning(Scenario* s, const std::string& object, const ObjectP
     out.max_wall_ms = *std::max_element(wall.begin(), wall.end());
   }
   return out;
+}
+
+PlanReport ReplanReport(const ReplanResult& r) {
+  PlanReport rep;
+  rep.planner = PlannerName(Planner::kAico);
+  rep.success = r.success;
+  rep.status = r.replans.empty() ? r.initial.status : r.replans.back().status;
+  rep.collision_checks = r.initial.collision_queries;
+  rep.iterations = r.initial.iterations;
+  rep.cost = r.replans.empty() ? r.initial.cost : r.replans.back().cost;
+  double wall_ms = r.initial_wall_ms;
+  for (const ReplanStep& step : r.replans) {
+    rep.collision_checks += step.collision_queries;
+    rep.iterations += step.sweeps;
+    wall_ms += step.wall_ms;
+  }
+  rep.path_length = PathLength(r.executed);
+  rep.time_s = wall_ms / 1000.0;
+  rep.start_writhe_total = r.start_writhe_total;
+  rep.final_writhe_total = r.final_writhe_total;
+  rep.path_collision_free = r.verdict.collision_free;
+  rep.cost_history = r.initial.cost_history;
+  ApplyVerdict(r.verdict, &rep);
+  rep.final_writhe_total = r.final_writhe_total;
+  return rep;
 }
 
 }  // namespace planning

@@ -100,12 +100,11 @@ struct ReplanResult {
   // Total writhe of the report pair at the first / last executed slice, the object where it was
   // then (0 without a report pair).
   double start_writhe_total = 0.0, final_writhe_total = 0.0;
-  // The report chain passes through the object's loop at the end: some segment of the hand chain
-  // crosses the plane of the report object chain (closed loop) at a point about which the loop
-  // winds (|PlanarWinding| >= 0.5). Only checked when the moving object is the report object and
-  // its report chain is closed (a loop, like the ring's); false otherwise.
+  // The report chain passes through the report object's loop at the end
+  // (ChainSegmentThroughLoop, success.h); false when the report object chain is not a closed loop.
+  // Required for success (kNotThroughLoop) when the moving object is the report loop.
   bool passed_through = false;
-  bool success = false;  // verdict.reason == kNone, and passed_through when it is checked
+  bool success = false;  // verdict.ok(): JudgePlan found no failure reason
   // Re-plans per second of CPU time: replans.size() / Σ cpu_ms · 1000 (0 without re-plans).
   double rate_hz = 0.0;
   // Re-plans per second of wall-clock time: replans.size() / Σ wall_ms · 1000 (0 without).
@@ -116,24 +115,26 @@ struct ReplanResult {
 
 // Indices into scenario.problem.tasks of the tasks attached to object `object` by the rule
 // above (the scenario as it is now). Throws std::invalid_argument for an unknown object.
-std::vector<int> AttachedTasks(const Scenario& scenario, const std::string& object);
+std::vector<int> AttachedTasks(const Scenario& scenario, const ScenarioState& state,
+                               const std::string& object);
 // The indices of options.attached_tasks (task names), or AttachedTasks when unset. Throws
 // std::invalid_argument for an unknown task name, listing the valid ones.
-std::vector<int> ResolveAttachedTasks(const Scenario& scenario, const std::string& object,
-                                      const ReplanOptions& options);
+std::vector<int> ResolveAttachedTasks(const Scenario& scenario, const ScenarioState& state,
+                                      const std::string& object, const ReplanOptions& options);
 
 // MoveObject(scenario, object, position) with the world-space points of tasks `attached`
 // (indices into scenario.problem.tasks) moved by the same δ = position − old position: box
 // centres and winding axis points in scenario.spec (the features are rebuilt from it) and the
 // targets y*_t (all slices) of position tasks in scenario.problem. Throws as MoveObject, and
 // std::invalid_argument for an index out of range.
-void MoveObjectWithTargets(Scenario* scenario, const std::string& object,
-                           const Eigen::Vector3d& position, const std::vector<int>& attached);
+void MoveObjectWithTargets(const Scenario& scenario, ScenarioState* state,
+                           const std::string& object, const Eigen::Vector3d& position,
+                           const std::vector<int>& attached);
 
 // Buffers of the re-plans of one scenario, made once: the window problem, the AICO workspace and
 // the init.
 struct ReplanWorkspace {
-  explicit ReplanWorkspace(const Scenario& scenario);
+  ReplanWorkspace(const Scenario& scenario, const ScenarioState& state);
   MotionProblem window;  // what AICO solves; its features follow MoveObject (see Replan)
   AicoWorkspace aico;
   Trajectory init;  // n × (T+1), dt = τ
@@ -147,7 +148,8 @@ struct ReplanWorkspace {
 // (options.warm_start), else from q repeated. The scenario's attempt-0 AICO options with
 // max_iterations = sweeps (and options.damping if >= 0); options.on_sweep after each sweep.
 // Throws std::invalid_argument for negative slice/shift or wrong sizes.
-AicoResult Replan(const Scenario& scenario, int slice, const Eigen::VectorXd& q,
+AicoResult Replan(const Scenario& scenario, const ScenarioState& state, int slice,
+                  const Eigen::VectorXd& q,
                   const Eigen::VectorXd& qdot, const Eigen::MatrixXd& previous, int shift,
                   const ReplanOptions& options, ReplanWorkspace* ws);
 
@@ -170,21 +172,23 @@ RecedingPlan MakeRecedingPlan(const Trajectory& trajectory, const Eigen::MatrixX
 // shifted by `elapsed` (Replan). `plan` becomes the new plan (start_slice g). Returns the step
 // (slice, time, sweeps, status, cost, wall and CPU time of the re-plan; object_position left 0);
 // `result` receives the AICO result when not null. Reads the scenario only. Throws as Replan.
-ReplanStep ReplanFrom(const Scenario& scenario, int elapsed, const ReplanOptions& options,
-                      ReplanWorkspace* ws, RecedingPlan* plan, AicoResult* result = nullptr);
+ReplanStep ReplanFrom(const Scenario& scenario, const ScenarioState& state, int elapsed,
+                      const ReplanOptions& options, ReplanWorkspace* ws, RecedingPlan* plan,
+                      AicoResult* result = nullptr);
 
 // Runs the re-planning simulation above with object `object` of `scenario` (a name from
-// ObjectNames) following `path`, its attached tasks (ResolveAttachedTasks) moving with it. The
-// scenario is modified while it runs (MoveObjectWithTargets); its object, task points and targets
-// are put back exactly as they were on return. Throws std::invalid_argument for an unknown object
-// name (listing the valid ones), an empty path or invalid options (replan_period_s not > 0 or
-// not finite, sweeps < 1).
-ReplanResult RunReplanning(Scenario* scenario, const std::string& object, const ObjectPath& path,
-                           const ReplanOptions& options = {});
+// ObjectNames) following `path`, its attached tasks (ResolveAttachedTasks) moving with it, in a
+// ScenarioState of its own (MakeScenarioState; the scenario is not changed). The executed path is
+// judged segment by segment by JudgePlan, the last segment also with through_loop when the moving
+// object is the report loop. Throws std::invalid_argument for an unknown object name (listing the
+// valid ones), an empty path or invalid options (replan_period_s not > 0 or not finite,
+// sweeps < 1).
+ReplanResult RunReplanning(const Scenario& scenario, const std::string& object,
+                           const ObjectPath& path, const ReplanOptions& options = {});
 
-// True when the chain (3 × N world points) crosses the plane of the closed loop (3 × M, first
-// point repeated at the end as in ChainPoints) at a point about which the loop winds at least
-// half a turn (topology::PlanarWinding about the loop's mean-plane normal).
-bool ChainThroughLoop(const Eigen::Matrix3Xd& chain, const Eigen::Matrix3Xd& loop);
+// The plan report of a re-planning run (report.json of `plan --moving-object`): the executed
+// path's verdict (success, failure reason and step, clearance, reach, winding), checks and
+// iterations of the initial solve and every re-plan, their wall time.
+PlanReport ReplanReport(const ReplanResult& result);
 
 }  // namespace planning

@@ -224,13 +224,13 @@ RobotScene LoadRobotSceneImpl(const std::string& path, const std::vector<std::st
     overrides.search_roots = {base::AssetRoot()};
     overrides.package_paths = options.package_paths;
     overrides.srdf = srdf_flag;
-    const std::unique_ptr<Scenario> sc = LoadScenarioArg(path, overrides);
+    const std::unique_ptr<const Scenario> sc = LoadScenarioArg(path, overrides);
     s.robot = sc->robot;
-    s.q = sc->problem.q0;
-    s.env = sc->objects;
+    s.q = sc->initial.problem.q0;
+    s.env = sc->initial.objects;
     s.collides.assign(s.env.objects.size(), true);
     s.has_collision_env = true;
-    s.collision_env = sc->env;
+    s.collision_env = sc->initial.env;
     s.collision_options = sc->collision;  // SRDF pairs included
     const std::string srdf = !srdf_flag.empty()       ? srdf_flag
                              : !sc->spec.srdf.empty() ? sc->spec.srdf

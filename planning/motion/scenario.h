@@ -9,7 +9,7 @@
 // initialise the final-pose estimate (the goal). Deterministic.
 //
 // Goal: the final-pose estimate q̂_T (final_pose.h) from the configured init; when it misses an end
-// condition of the success criteria (CheckEndState with state checks: limits, collision, writhe,
+// condition of the success criteria (CheckEndState with state checks, success.h: limits, collision, writhe,
 // winding, reach, box), SearchFinalPose tries the start and seeded perturbations of the init and
 // keeps the estimate that meets them at least cost (or, if none does, the least violation).
 #pragma once
@@ -50,6 +50,9 @@ struct SuccessCriteria {
   // turns: largest change between neighbouring resampled path states, and |value| at the end.
   double winding_max_jump = -1.0;     // < 0: not checked
   double winding_final_below = -1.0;  // < 0: not checked
+  // The report chain passes through the report object's closed loop at the end
+  // (ChainSegmentThroughLoop, planning/motion/success.h).
+  bool through_loop = false;
 };
 
 // One AICO attempt: per-task precision multipliers (size = problem.tasks) and iteration limit.
@@ -60,7 +63,31 @@ struct AicoAttempt {
   int max_iterations = 20;
 };
 
-// A set-up scenario. Not movable (the problem and features point into it); use unique_ptr.
+// What changes while a scenario is planned or simulated: the objects around the robot and all
+// that is built from where they are (the mjData of a Scenario; the Scenario is its mjModel). The
+// collision environment, the report object chain, the task specs whose points follow an object
+// (box centres, winding axis points) and the attempt-0 problem, whose features point into `env`
+// and `objects` of this state. Made by SetUpScenario (Scenario::initial, the world as loaded) and
+// MakeScenarioState (a copy to move), changed only by MoveObject / MoveObjectWithTargets.
+// Not copyable or movable (the problem's features point into it); use unique_ptr.
+struct ScenarioState {
+  ScenarioState() = default;
+  ScenarioState(const ScenarioState&) = delete;
+  ScenarioState& operator=(const ScenarioState&) = delete;
+
+  Environment objects;  // every object (chains, rendering)
+  Environment env;      // what the robot collides with (objects, or capsules replacing them)
+  // The report object chain (3 × M, world) for the report pair; empty without one.
+  Eigen::Matrix3Xd report_object_chain;
+  std::vector<TaskSpec> tasks;  // spec.tasks with their points where the objects are now
+  MotionProblem problem;  // attempt 0: q0, tasks (targets resolved), T, dt, process parameters
+};
+
+// A set-up scenario: the model of a planning run (the mjModel to ScenarioState's mjData). Nothing
+// in the library changes it once SetUpScenario returns: every planner, judge and report takes it
+// as const&, and what moves lives in a ScenarioState. A caller may still set options on its own
+// copy before using it (tests, benchmarks); applications hold it as const. Not movable
+// (`initial.problem` points into it); use unique_ptr.
 struct Scenario {
   Scenario() = default;
   Scenario(const Scenario&) = delete;
@@ -70,10 +97,7 @@ struct Scenario {
   std::string name;
   std::string source;  // scenario file
   Robot robot;
-  Environment objects;  // every object (chains, rendering)
-  Environment env;      // what the robot collides with (objects, or capsules replacing them)
   CollisionOptions collision;
-  MotionProblem problem;  // attempt 0: q0, tasks (targets resolved), T, dt, process parameters
   AicoOptions aico;
   std::vector<AicoAttempt> aico_attempts;  // at least one
   // Stop AICO at the first accepted sweep whose trajectory is a success (RunAicoAttempts).
@@ -87,30 +111,9 @@ struct Scenario {
   double start_wrap_deg = 0.0;  // 360°·|writhe| of the report pair at q0
   // Writhe report pair: robot chain × object chain (for report fields and heatmaps).
   int report_chain = -1;
-  Eigen::Matrix3Xd report_object_chain;
   SuccessCriteria success;
+  ScenarioState initial;  // the world as loaded: every object where the file puts it
 };
-
-// The end conditions of the success criteria at one configuration q (what JudgePlan checks at a
-// path's last state) and, with `state_checks`, the state itself (joint limits, InCollision).
-struct EndState {
-  bool within_limits = true;   // (state_checks only)
-  bool collision_free = true;  // (state_checks only)
-  double writhe_total = 0.0;   // ReportWritheTotal(q)
-  double winding_turns = 0.0;  // ReportWinding(q) (with the winding criterion only, else 0)
-  // The writhe matrix entry of largest |W_ij| (row = robot chain segment, col = object segment;
-  // −1 and 0 when there is no report pair).
-  int writhe_peak_row = -1, writhe_peak_col = -1;
-  double writhe_peak_value = 0.0;
-  bool writhe_reached = true;  // |writhe| < writhe_total_below, |winding| < winding_final_below
-  double reach_error_m = -1.0;  // |φ(q) − y*_T| of the position task (−1: no position criterion)
-  bool reached = true;          // reach_error_m <= position_tolerance, box point inside
-  bool ok() const { return within_limits && collision_free && writhe_reached && reached; }
-  // 0 when ok(); otherwise Σ of the relative excesses (|writhe|/bound, |winding|/bound,
-  // reach/tolerance, 1 + box value) over the unmet conditions, + 1 per state check failed.
-  double violation = 0.0;
-};
-EndState CheckEndState(const Scenario& scenario, const Eigen::VectorXd& q, bool state_checks);
 
 // The expensive part of a set-up, computed from the spec alone: the start q0 (n), the unwinding
 // path (n × (T+1), or empty) and the goal q̂_T (n). ResolvedPosesOf(scenario) reads them back; a
@@ -146,6 +149,8 @@ std::unique_ptr<Scenario> LoadScenarioArg(const std::string& arg,
 // The MotionProblem of AICO attempt k (0 <= k < aico_attempts.size()): the scenario's tasks with
 // attempt k's precision multipliers (k = 0 gives a problem equal to `problem`).
 MotionProblem AttemptProblem(const Scenario& scenario, int k);
+// The same with the objects (and the task points that follow them) of `state`.
+MotionProblem AttemptProblem(const Scenario& scenario, const ScenarioState& state, int k);
 // The AICO options of attempt k: `aico` with attempt k's iteration limit.
 AicoOptions AttemptOptions(const Scenario& scenario, int k);
 
@@ -154,11 +159,17 @@ Eigen::VectorXd FeatureValue(const Robot& robot, const Feature& feature, const E
 
 // Winding number (turns) of the report chain at q about the line through the first and last
 // point of the report object chain (topology::WindingNumber, signed); 0 if no report pair.
+// The overloads without a state read scenario.initial.
+double ReportWinding(const Scenario& scenario, const ScenarioState& state,
+                     const Eigen::VectorXd& q);
 double ReportWinding(const Scenario& scenario, const Eigen::VectorXd& q);
 // That line (the pole's axis in unwrap); throws std::invalid_argument if there is no report pair.
+topology::Axis ReportAxis(const Scenario& scenario, const ScenarioState& state);
 topology::Axis ReportAxis(const Scenario& scenario);
 
 // Total writhe and writhe matrix of the report pair at q (empty matrix if no report pair).
+double ReportWritheTotal(const Scenario& scenario, const ScenarioState& state,
+                         const Eigen::VectorXd& q, Eigen::MatrixXd* matrix = nullptr);
 double ReportWritheTotal(const Scenario& scenario, const Eigen::VectorXd& q,
                          Eigen::MatrixXd* matrix = nullptr);
 
@@ -167,18 +178,27 @@ double ReportWritheTotal(const Scenario& scenario, const Eigen::VectorXd& q,
 // Names of the scenario's objects (spec order), e.g. {"ring"} or {"pole"}.
 std::vector<std::string> ObjectNames(const Scenario& scenario);
 
-// Moves object `name` to world position `position` (m; its orientation is kept): `objects`, the
-// `env` entries made from it (the object, or its capsules "name#k"), spec.objects[].xyz, the
-// report object chain when it is the report object, and the features of `problem`
-// (RebuildTaskFeatures). Task targets are kept (the goal is not re-estimated). Any workspace
-// made from a problem of this scenario before the move holds the old pose: rebuild its feature
-// data (TaskWorkspace::data, Feature::CreateData) or the workspace. Throws std::invalid_argument
+// A state equal to scenario.initial (objects where the file puts them), to be moved.
+std::unique_ptr<ScenarioState> MakeScenarioState(const Scenario& scenario);
+
+// Moves object `name` of `state` to world position `position` (m; its orientation is kept):
+// state->objects, the env entries made from it (the object, or its capsules "name#k"), the report
+// object chain when it is the report object, and the features of state->problem
+// (RebuildTaskFeatures). Task targets are kept (the goal is not re-estimated). Any workspace made
+// from a problem of this state before the move holds the old pose: rebuild its feature data
+// (TaskWorkspace::data, Feature::CreateData) or the workspace. Throws std::invalid_argument
 // "unknown object 'X' (objects: a, b)" for an unknown name or a non-finite position.
-void MoveObject(Scenario* scenario, const std::string& name, const Eigen::Vector3d& position);
+void MoveObject(const Scenario& scenario, ScenarioState* state, const std::string& name,
+                const Eigen::Vector3d& position);
+
+// The world position of object `name` in `state`; throws as MoveObject for an unknown name.
+Eigen::Vector3d ObjectPosition(const Scenario& scenario, const ScenarioState& state,
+                               const std::string& name);
 
 // Replaces the feature of every task of `problem` (built by AttemptProblem: one task per
-// spec.tasks entry, in order) by one built from the scenario as it is now (objects where they
-// are). Targets and precisions are kept. Throws std::invalid_argument on a task-count mismatch.
-void RebuildTaskFeatures(const Scenario& scenario, MotionProblem* problem);
+// spec.tasks entry, in order) by one built from `state` (objects and task points where they are).
+// Targets and precisions are kept. Throws std::invalid_argument on a task-count mismatch.
+void RebuildTaskFeatures(const Scenario& scenario, const ScenarioState& state,
+                         MotionProblem* problem);
 
 }  // namespace planning

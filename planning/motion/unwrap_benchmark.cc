@@ -105,23 +105,24 @@ UnwrapBenchmarkResult RunUnwrapBenchmark(const UnwrapBenchmarkOptions& options) 
   result.seeds = options.seeds;
   const int total =
       static_cast<int>(options.angles_deg.size() * options.planners.size()) * options.seeds;
-  const ScenarioSpec spec = ParseScenarioSpec(options.scenario_path, options.search_roots);
+  ScenarioSpec spec = ParseScenarioSpec(options.scenario_path, options.search_roots);
+  // The run's options go into the spec: a set-up scenario is not changed.
+  if (options.rrt_budget > 0) spec.rrt.max_checks = options.rrt_budget;
+  if (options.aico_stop_when_solved) spec.aico_stop_when_solved = *options.aico_stop_when_solved;
   // Seed offsets of the pole (perpendicular to its line), and which object it is.
   const UnwrapPerturbation perturbation =
       MakeUnwrapPerturbation(spec, options.angles_deg.front(), options.seeds, options.perturb_m);
   const std::vector<Eigen::Vector3d>& offsets = perturbation.offsets;
   for (double angle : options.angles_deg) {
-    std::unique_ptr<Scenario> shared;  // unperturbed: one set-up per angle
+    std::unique_ptr<const Scenario> shared;  // unperturbed: one set-up per angle
     for (int seed = 0; seed < options.seeds; ++seed) {
-      std::unique_ptr<Scenario> own;
+      std::unique_ptr<const Scenario> own;
       if (perturbation.object >= 0) {
         own = SetUpScenario(PerturbedUnwrapSpec(spec, perturbation, seed), angle);
       } else if (!shared) {
         shared = SetUpScenario(spec, angle);
       }
-      Scenario& scenario = own ? *own : *shared;
-      if (options.rrt_budget > 0) scenario.rrt.max_checks = options.rrt_budget;
-      if (options.aico_stop_when_solved) scenario.stop_when_solved = *options.aico_stop_when_solved;
+      const Scenario& scenario = own ? *own : *shared;
       for (Planner planner : options.planners) {
         UnwrapRun run;
         run.angle_deg = angle;

@@ -34,7 +34,9 @@ double ClosureEpsilon(const SimObject& object, const StabilityResult& r, double 
 void Simulate(const OdeRuntime& runtime, const TransferSetup& setup,
               const StabilityOptions& options, const GraspTrialHooks& hooks, GraspTrial* trial) {
   StepCallback on_step;
-  if (hooks.on_start) on_step = hooks.on_start(setup, trial->transfer, trial->hand, trial->object);
+  if (hooks.on_start) {
+    on_step = hooks.on_start(setup, trial->transfer, trial->hand, trial->object, options);
+  }
   trial->stability = TestGraspStability(runtime, trial->hand, trial->object, options, on_step);
   trial->epsilon_quality = ClosureEpsilon(trial->object, trial->stability, options.sim.mu);
   if (hooks.on_done) hooks.on_done(setup, *trial);

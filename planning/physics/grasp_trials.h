@@ -53,8 +53,11 @@ struct GraspTrial {
 // built, and returns the per-step callback for the stability test (may be empty; e.g. frames or a
 // recording); `on_done` runs after the stability test.
 struct GraspTrialHooks {
+  // Called before each stability test with the protocol it runs (`options`, the run's own), so
+  // that an observer (frames) simulates and labels exactly what the verdict is made of.
   std::function<StepCallback(const TransferSetup& setup, const TransferResult& transfer,
-                             const SimHand& hand, const SimObject& object)>
+                             const SimHand& hand, const SimObject& object,
+                             const StabilityOptions& options)>
       on_start;
   std::function<void(const TransferSetup& setup, const GraspTrial& trial)> on_done;
 };

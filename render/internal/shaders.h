@@ -1,5 +1,5 @@
-// GLSL 3.30 core sources of the renderer's programs (see renderer.cc and overlay_pass.cc for the
-// uniforms), and the one compile/link helper pair every GL program is built with.
+// GLSL 3.30 core sources of the renderer's programs (see renderer_passes.cc and overlay_pass.cc
+// for the uniforms), and the one compile/link helper pair every GL program is built with.
 #pragma once
 
 #include "render/internal/gl_api.h"

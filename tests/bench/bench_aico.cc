@@ -62,9 +62,9 @@ BENCHMARK(BM_RrtUnwrap)->Arg(720)->Iterations(1)->Unit(benchmark::kMillisecond);
 // One AICO solve without the validation and reporting around it.
 void BM_AicoSolveOnly720(benchmark::State& state) {
   const planning::Scenario& s = Unwrap(720);
-  planning::AicoWorkspace ws(s.problem);
+  planning::AicoWorkspace ws(s.initial.problem);
   for (auto _ : state) {
-    const planning::AicoResult r = planning::SolveAico(s.problem, s.aico, &ws);
+    const planning::AicoResult r = planning::SolveAico(s.initial.problem, s.aico, &ws);
     benchmark::DoNotOptimize(r.cost);
   }
 }
@@ -75,7 +75,7 @@ void BM_AicoSolverUnwrap(benchmark::State& state) {
   const planning::Scenario& s = Unwrap(static_cast<double>(state.range(0)));
   planning::AicoResult r;
   for (auto _ : state) {
-    planning::AicoSolver solver(s.problem, s.aico);
+    planning::AicoSolver solver(s.initial.problem, s.aico);
     r = solver.Solve();
     benchmark::DoNotOptimize(r.cost);
   }
@@ -92,7 +92,7 @@ void BM_AicoOneSweep720(benchmark::State& state) {
   for (auto _ : state) {
     if (!solver || solver->done()) {
       state.PauseTiming();
-      solver = std::make_unique<planning::AicoSolver>(s.problem, s.aico);
+      solver = std::make_unique<planning::AicoSolver>(s.initial.problem, s.aico);
       state.ResumeTiming();
     }
     const planning::AicoStep step = solver->Step();

@@ -1,4 +1,5 @@
-// Private: the FCL side of CollisionData. Only planning/collision/collision.cc includes this file.
+// Private: the FCL side of CollisionData. Only planning/collision/collision.cc (building it) and
+// collision_queries.cc (querying it) include this file.
 #pragma once
 
 #include <fcl/broadphase/broadphase_dynamic_AABB_tree.h>

@@ -43,7 +43,8 @@ TEST_F(SessionTest, PlannerPanelStartsFromTheScenariosSolverOptions) {
   // An edit in the panel is what the next plan uses; loading again restores the file's options.
   settings_.planner.damping = file->aico.damping * 2.0;
   session_.Apply(SessionCommand(SessionCommand::Kind::kPlan), &settings_);
-  EXPECT_EQ(session_.scenario()->aico.damping, file->aico.damping * 2.0);
+  EXPECT_EQ(session_.aico_options().damping, file->aico.damping * 2.0);
+  EXPECT_EQ(session_.scenario()->aico.damping, file->aico.damping);  // the model is not changed
   session_.Apply(SessionCommand(SessionCommand::Kind::kLoad, "unwrap"), &settings_);
   EXPECT_EQ(settings_.planner.damping, file->aico.damping);
 }
@@ -80,8 +81,9 @@ TEST_F(SessionTest, StepRunsRealSweepsThatMatchTheFullPlan) {
   session_.Wait(&settings_);
   ASSERT_TRUE(session_.result().has_value());
   EXPECT_EQ(session_.result()->trajectory.q, full_q);
-  const planning::PlanResult direct =
-      planning::RunPlanner(*session_.scenario(), planning::Planner::kAico, 0);
+  planning::PlanRequest request;
+  request.aico = session_.aico_options();
+  const planning::PlanResult direct = planning::RunPlanner(*session_.scenario(), request);
   EXPECT_EQ(session_.result()->trajectory.q, direct.trajectory.q);
   EXPECT_EQ(session_.result()->report.iterations, direct.report.iterations);
   EXPECT_EQ(session_.result()->report.cost, direct.report.cost);
@@ -178,7 +180,7 @@ TEST(SessionMoveTest, MovingTheRingRePlansWarmStarted) {
   session.Wait(&settings);
   ASSERT_TRUE(session.result().has_value()) << session.status();
   EXPECT_EQ(session.result()->report.planner, "aico (warm start)");
-  EXPECT_EQ(session.scenario()->spec.objects.at(0).xyz, move.position);
+  EXPECT_EQ(planning::ObjectPosition(*session.scenario(), *session.world(), "ring"), move.position);
   EXPECT_TRUE(session.result()->report.success) << session.status();
   move.text = "table";
   try {
@@ -198,7 +200,7 @@ TEST(SessionMoveTest, RingMovedTwelveCentimetresWhileExecuting) {
   Settings settings;
   session.Apply(SessionCommand(SessionCommand::Kind::kLoad, "reach_through_ring"), &settings);
   const planning::Scenario& s = *session.scenario();
-  const Eigen::Vector3d home = s.objects.objects.at(0).world_from_object.translation();
+  const Eigen::Vector3d home = s.initial.objects.objects.at(0).world_from_object.translation();
   session.Apply(SessionCommand(SessionCommand::Kind::kPlan), &settings);
   ASSERT_TRUE(session.result().has_value());
   const Eigen::MatrixXd first = session.result()->trajectory.q;
@@ -219,7 +221,7 @@ TEST(SessionMoveTest, RingMovedTwelveCentimetresWhileExecuting) {
   planning::ForwardKinematics(s.robot, q.col(q.cols() - 1), &kin);
   Eigen::Matrix3Xd hand;
   planning::ChainPoints(s.robot, kin, s.report_chain, &hand);
-  EXPECT_TRUE(planning::ChainThroughLoop(hand, s.report_object_chain));
+  EXPECT_TRUE(planning::ChainThroughLoop(hand, s.initial.report_object_chain));
   // A second move goes on from the new plan's slice (receding horizon).
   settings.frame = 4;
   move.position = home + 2 * delta;

@@ -82,7 +82,7 @@ TEST(AicoStepping, UnwrapFrom720EqualsSolve) {
   ScenarioOverrides o;
   o.start_wrap_deg = 720.0;
   const auto s = LoadScenario(kScenarios + "unwrap.json", o);
-  CheckStepping(s->problem, s->aico);
+  CheckStepping(s->initial.problem, s->aico);
 }
 
 // Small damping on the ring task: large first steps, so rejected sweeps are stepped through too.
@@ -91,29 +91,29 @@ TEST(AicoStepping, RingWithRejectionsEqualsSolve) {
   AicoOptions options = s->aico;
   options.damping = 1e-4;
   options.max_iterations = 12;
-  AicoWorkspace ws(s->problem);
-  const AicoResult r = SolveAico(s->problem, options, &ws);
+  AicoWorkspace ws(s->initial.problem);
+  const AicoResult r = SolveAico(s->initial.problem, options, &ws);
   EXPECT_GT(r.iterations, 0);
-  CheckStepping(s->problem, options);
+  CheckStepping(s->initial.problem, options);
 }
 
 TEST(AicoStepping, ZeroIterationsIsDoneAtOnce) {
   const auto s = LoadScenario(kScenarios + "reach_through_ring.json");
   AicoOptions options = s->aico;
   options.max_iterations = 0;
-  AicoSolver solver(s->problem, options);
+  AicoSolver solver(s->initial.problem, options);
   EXPECT_TRUE(solver.done());
   EXPECT_EQ(solver.Step().sweep, -1);
   EXPECT_EQ(solver.sweeps(), 0);
-  AicoWorkspace ws(s->problem);
-  ExpectSameResult(solver.result(), SolveAico(s->problem, options, &ws));
+  AicoWorkspace ws(s->initial.problem);
+  ExpectSameResult(solver.result(), SolveAico(s->initial.problem, options, &ws));
 }
 
 TEST(AicoStepping, BadInitThrows) {
   const auto s = LoadScenario(kScenarios + "reach_through_ring.json");
   Trajectory init;
   init.q.setZero(2, 3);
-  EXPECT_THROW(AicoSolver(s->problem, s->aico, &init), std::invalid_argument);
+  EXPECT_THROW(AicoSolver(s->initial.problem, s->aico, &init), std::invalid_argument);
 }
 
 }  // namespace

@@ -98,7 +98,7 @@ TEST(OmplPeers, RrtConnectOnReachThroughRingIsCollisionFreeAndSeedsReproduce) {
   EXPECT_LE(a.report.collision_checks, s->rrt.max_checks);
   EXPECT_GT(a.report.iterations, 0);
   EXPECT_NEAR(a.report.cost, a.report.path_length, 1e-12);
-  EXPECT_TRUE(a.trajectory.q.col(0).isApprox(s->problem.q0));
+  EXPECT_TRUE(a.trajectory.q.col(0).isApprox(s->initial.problem.q0));
   EXPECT_TRUE(a.trajectory.q.col(a.trajectory.num_points() - 1).isApprox(s->goal_q));
   // Independent re-check of the path with the project's checker at the check resolution.
   EXPECT_TRUE(PathCollisionFree(*s, a.trajectory));

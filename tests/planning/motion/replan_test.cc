@@ -77,24 +77,52 @@ TEST(ReadObjectPath, EachBadRowNamesFileAndLine) {
   EXPECT_THROW(ReadObjectPath(kAssets + "scenarios/no_such_path.csv"), std::invalid_argument);
 }
 
-TEST(MoveObject, MovesTheObjectItsCapsulesAndTheReportChain) {
+TEST(MoveObject, MovesTheObjectItsCapsulesAndTheReportChainOfTheStateOnly) {
   const auto s = LoadScenario(kAssets + "scenarios/reach_through_ring.json");
   EXPECT_EQ(ObjectNames(*s), std::vector<std::string>{"ring"});
-  const Eigen::Matrix3Xd chain = s->report_object_chain;
-  const Eigen::Vector3d env0 = s->env.objects[0].world_from_object.translation();
+  const Eigen::Matrix3Xd chain = s->initial.report_object_chain;
+  const Eigen::Vector3d env0 = s->initial.env.objects[0].world_from_object.translation();
+  const Eigen::Vector3d object0 = s->initial.objects.objects[0].world_from_object.translation();
   const Eigen::Vector3d delta(0.0, 0.03, -0.01);
-  MoveObject(s.get(), "ring", Eigen::Vector3d(0.5, 0.03, 0.94));
-  EXPECT_TRUE(s->objects.objects[0].world_from_object.translation().isApprox(
+  const auto w = MakeScenarioState(*s);
+  MoveObject(*s, w.get(), "ring", Eigen::Vector3d(0.5, 0.03, 0.94));
+  EXPECT_TRUE(w->objects.objects[0].world_from_object.translation().isApprox(
       Eigen::Vector3d(0.5, 0.03, 0.94)));
-  EXPECT_TRUE(s->env.objects[0].world_from_object.translation().isApprox(env0 + delta));
-  EXPECT_TRUE(s->report_object_chain.isApprox(chain.colwise() + delta));
+  EXPECT_TRUE(w->env.objects[0].world_from_object.translation().isApprox(env0 + delta));
+  EXPECT_TRUE(w->report_object_chain.isApprox(chain.colwise() + delta));
+  EXPECT_TRUE(ObjectPosition(*s, *w, "ring").isApprox(Eigen::Vector3d(0.5, 0.03, 0.94)));
+  // The scenario (the model) is not changed: its initial world is where the file put it.
+  EXPECT_EQ(s->initial.objects.objects[0].world_from_object.translation(), object0);
+  EXPECT_EQ(s->initial.env.objects[0].world_from_object.translation(), env0);
+  EXPECT_EQ(s->initial.report_object_chain, chain);
   try {
-    MoveObject(s.get(), "pole", Eigen::Vector3d::Zero());
+    MoveObject(*s, w.get(), "pole", Eigen::Vector3d::Zero());
     FAIL() << "no error";
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("unknown object 'pole' (objects: ring)"),
               std::string::npos);
   }
+}
+
+// A fresh state is the scenario's initial world: the same problem (targets, precisions) and the
+// same plan, bit for bit; a plan in a moved state differs.
+TEST(ScenarioState, AFreshStateIsTheInitialWorld) {
+  const auto s = LoadScenario(kAssets + "scenarios/reach_through_ring.json");
+  const auto w = MakeScenarioState(*s);
+  ASSERT_EQ(w->problem.tasks.size(), s->initial.problem.tasks.size());
+  for (size_t i = 0; i < w->problem.tasks.size(); ++i) {
+    EXPECT_EQ(w->problem.tasks[i].target, s->initial.problem.tasks[i].target) << i;
+    EXPECT_EQ(w->problem.tasks[i].precision, s->initial.problem.tasks[i].precision) << i;
+  }
+  PlanRequest request;
+  request.state = w.get();
+  const PlanResult in_state = RunPlanner(*s, request);
+  const PlanResult initial = RunPlanner(*s, Planner::kAico, 0);
+  EXPECT_EQ(in_state.trajectory.q, initial.trajectory.q);
+  EXPECT_EQ(in_state.report.success, initial.report.success);
+  MoveObject(*s, w.get(), "ring", ObjectPosition(*s, *w, "ring") + Eigen::Vector3d(0, 0.05, 0));
+  const PlanResult moved = RunPlanner(*s, request);
+  EXPECT_NE(moved.trajectory.q, initial.trajectory.q);
 }
 
 TEST(ChainThroughLoop, SegmentThroughTheDiskOnly) {
@@ -111,11 +139,11 @@ TEST(ChainThroughLoop, SegmentThroughTheDiskOnly) {
 
 TEST(RunReplanning, TheHandStillPassesThroughTheMovingRing) {
   const auto s = LoadScenario(kAssets + "scenarios/reach_through_ring.json");
-  const Eigen::Vector3d home = s->objects.objects[0].world_from_object.translation();
+  const Eigen::Vector3d home = s->initial.objects.objects[0].world_from_object.translation();
   const ObjectPath path = ReadObjectPath(kAssets + "scenarios/ring_path.csv");
   ReplanOptions options;
-  const ReplanResult r = RunReplanning(s.get(), "ring", path, options);
-  const int T = s->problem.num_steps;
+  const ReplanResult r = RunReplanning(*s, "ring", path, options);
+  const int T = s->initial.problem.num_steps;
   ASSERT_EQ(r.executed.num_points(), T + 1);
   ASSERT_EQ(r.object_positions.size(), static_cast<size_t>(T + 1));
   EXPECT_GT(r.replans.size(), 1u);
@@ -124,7 +152,7 @@ TEST(RunReplanning, TheHandStillPassesThroughTheMovingRing) {
   EXPECT_TRUE(r.passed_through);
   EXPECT_EQ(r.verdict.reason, FailureReason::kNone) << FailureReasonName(r.verdict.reason);
   EXPECT_TRUE(r.success);
-  EXPECT_TRUE(r.executed.q.col(0).isApprox(s->problem.q0));
+  EXPECT_TRUE(r.executed.q.col(0).isApprox(s->initial.problem.q0));
   for (const ReplanStep& step : r.replans) EXPECT_LE(step.sweeps, options.sweeps);
   std::printf(
       "re-plans %zu every %.3f s, rate %.1f /s CPU, median %.1f ms CPU (%.1f wall), max "
@@ -132,14 +160,14 @@ TEST(RunReplanning, TheHandStillPassesThroughTheMovingRing) {
       r.replans.size(), r.period_s, r.rate_hz, r.median_cpu_ms, r.median_wall_ms, r.max_cpu_ms,
       r.initial_cpu_ms);
   // The scenario is back as it was.
-  EXPECT_TRUE(s->objects.objects[0].world_from_object.translation().isApprox(home));
+  EXPECT_TRUE(s->initial.objects.objects[0].world_from_object.translation().isApprox(home));
   // Without the ring moving the hand of the plan passes through too (the criterion is not
   // trivially true: the start pose does not).
   KinematicsData kin(s->robot);
-  ForwardKinematics(s->robot, s->problem.q0, &kin);
+  ForwardKinematics(s->robot, s->initial.problem.q0, &kin);
   Eigen::Matrix3Xd P;
   ChainPoints(s->robot, kin, s->report_chain, &P);
-  EXPECT_FALSE(ChainThroughLoop(P, s->report_object_chain));
+  EXPECT_FALSE(ChainThroughLoop(P, s->initial.report_object_chain));
 }
 
 TEST(RunReplanning, BadInput) {
@@ -147,11 +175,11 @@ TEST(RunReplanning, BadInput) {
   ObjectPath path;
   path.t = {0.0};
   path.p = {Eigen::Vector3d(0.5, 0.0, 0.95)};
-  EXPECT_THROW(RunReplanning(s.get(), "pole", path), std::invalid_argument);
+  EXPECT_THROW(RunReplanning(*s, "pole", path), std::invalid_argument);
   ReplanOptions bad;
   bad.sweeps = 0;
-  EXPECT_THROW(RunReplanning(s.get(), "ring", path, bad), std::invalid_argument);
-  EXPECT_THROW(RunReplanning(s.get(), "ring", ObjectPath{}), std::invalid_argument);
+  EXPECT_THROW(RunReplanning(*s, "ring", path, bad), std::invalid_argument);
+  EXPECT_THROW(RunReplanning(*s, "ring", ObjectPath{}), std::invalid_argument);
 }
 
 // A path that holds the ring at its home for `hold` s, moves it by `delta` over `over` s, then
@@ -176,67 +204,69 @@ std::string Describe(const ReplanResult& r) {
 
 TEST(AttachedTasks, BoxAndReachFollowTheRingWritheStays) {
   const auto s = LoadScenario(kAssets + "scenarios/tinyarm_ring.json");
-  const std::vector<int> attached = AttachedTasks(*s, "ring");
+  const std::vector<int> attached = AttachedTasks(*s, s->initial, "ring");
   std::vector<std::string> names;
-  for (int i : attached) names.push_back(s->problem.tasks[i].name);
+  for (int i : attached) names.push_back(s->initial.problem.tasks[i].name);
   EXPECT_EQ(names, (std::vector<std::string>{"box", "reach"}));
   ReplanOptions named;
   named.attached_tasks = std::vector<std::string>{"reach"};
-  EXPECT_EQ(ResolveAttachedTasks(*s, "ring", named), std::vector<int>{2});
+  EXPECT_EQ(ResolveAttachedTasks(*s, s->initial, "ring", named), std::vector<int>{2});
   named.attached_tasks = std::vector<std::string>{"nope"};
   try {
-    ResolveAttachedTasks(*s, "ring", named);
+    ResolveAttachedTasks(*s, s->initial, "ring", named);
     FAIL() << "no error";
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("'nope'"), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("(tasks: writhe, box, reach,"), std::string::npos)
         << e.what();
   }
-  EXPECT_THROW(AttachedTasks(*s, "pole"), std::invalid_argument);
+  EXPECT_THROW(AttachedTasks(*s, s->initial, "pole"), std::invalid_argument);
 
-  const Eigen::Vector3d home = s->objects.objects[0].world_from_object.translation();
+  const Eigen::Vector3d home = s->initial.objects.objects[0].world_from_object.translation();
   const Eigen::Vector3d delta(0.0, 0.12, 0.0);
-  const Eigen::MatrixXd reach0 = s->problem.tasks[2].target;
-  const Eigen::MatrixXd writhe0 = s->problem.tasks[0].target;
+  const Eigen::MatrixXd reach0 = s->initial.problem.tasks[2].target;
+  const Eigen::MatrixXd writhe0 = s->initial.problem.tasks[0].target;
   const Eigen::Vector3d box0 = s->spec.tasks[1].feature.center;
-  MoveObjectWithTargets(s.get(), "ring", home + delta, attached);
-  EXPECT_TRUE(s->problem.tasks[2].target.isApprox(reach0.colwise() + delta));
-  EXPECT_EQ(s->problem.tasks[0].target, writhe0);  // a relative value: unchanged
-  EXPECT_TRUE(s->spec.tasks[1].feature.center.isApprox(box0 + delta));
-  EXPECT_TRUE(s->objects.objects[0].world_from_object.translation().isApprox(home + delta));
+  const auto w = MakeScenarioState(*s);
+  MoveObjectWithTargets(*s, w.get(), "ring", home + delta, attached);
+  EXPECT_TRUE(w->problem.tasks[2].target.isApprox(reach0.colwise() + delta));
+  EXPECT_EQ(w->problem.tasks[0].target, writhe0);  // a relative value: unchanged
+  EXPECT_TRUE(w->tasks[1].feature.center.isApprox(box0 + delta));
+  EXPECT_EQ(s->spec.tasks[1].feature.center, box0);  // the model keeps the file's
+  EXPECT_TRUE(w->objects.objects[0].world_from_object.translation().isApprox(home + delta));
   // The box feature is rebuilt from the moved centre: its value at q0 changes.
   const Eigen::VectorXd moved_box =
-      FeatureValue(s->robot, *s->problem.tasks[1].feature, s->problem.q0);
-  MoveObjectWithTargets(s.get(), "ring", home, attached);
-  EXPECT_TRUE(s->problem.tasks[2].target.isApprox(reach0));
-  EXPECT_FALSE(
-      FeatureValue(s->robot, *s->problem.tasks[1].feature, s->problem.q0).isApprox(moved_box));
-  EXPECT_THROW(MoveObjectWithTargets(s.get(), "ring", home, {99}), std::invalid_argument);
+      FeatureValue(s->robot, *w->problem.tasks[1].feature, w->problem.q0);
+  MoveObjectWithTargets(*s, w.get(), "ring", home, attached);
+  EXPECT_TRUE(w->problem.tasks[2].target.isApprox(reach0));
+  EXPECT_FALSE(FeatureValue(s->robot, *w->problem.tasks[1].feature, w->problem.q0)
+                   .isApprox(moved_box));
+  EXPECT_THROW(MoveObjectWithTargets(*s, w.get(), "ring", home, {99}), std::invalid_argument);
 }
 
 // The ring moved by 20 and 12 cm while the arm executes (and diagonally): with the box
 // and reach targets attached, the hand still passes through the ring and the run succeeds.
 TEST(RunReplanning, LargeMovesSucceedWithAttachedTargets) {
   const auto s = LoadScenario(kAssets + "scenarios/tinyarm_ring.json");
-  const Eigen::Vector3d home = s->objects.objects[0].world_from_object.translation();
-  const Eigen::MatrixXd reach0 = s->problem.tasks[2].target;
+  const Eigen::Vector3d home = s->initial.objects.objects[0].world_from_object.translation();
+  const Eigen::MatrixXd reach0 = s->initial.problem.tasks[2].target;
   const Eigen::Vector3d moves[] = {Eigen::Vector3d(0.0, 0.2, 0.0), Eigen::Vector3d(0.0, 0.12, 0.0),
                                    Eigen::Vector3d(-0.05, -0.15, 0.08)};
   for (const Eigen::Vector3d& delta : moves) {
-    const ReplanResult r = RunReplanning(s.get(), "ring", StepPath(home, delta, 0.5, 1.0));
+    const ReplanResult r = RunReplanning(*s, "ring", StepPath(home, delta, 0.5, 1.0));
     EXPECT_TRUE(r.object_positions.back().isApprox(home + delta));
     EXPECT_TRUE(r.passed_through) << Describe(r);
     EXPECT_EQ(r.verdict.reason, FailureReason::kNone) << Describe(r);
     EXPECT_TRUE(r.success) << Describe(r);
     std::printf("move %.2f %.2f %.2f: %s\n", delta.x(), delta.y(), delta.z(), Describe(r).c_str());
     // Put back exactly.
-    EXPECT_EQ(s->objects.objects[0].world_from_object.translation(), home);
-    EXPECT_EQ(s->problem.tasks[2].target, reach0);
+    EXPECT_EQ(s->initial.objects.objects[0].world_from_object.translation(), home);
+    EXPECT_EQ(s->initial.problem.tasks[2].target, reach0);
   }
   // Without moving the targets (none attached) the same 20 cm move misses the box.
   ReplanOptions fixed;
   fixed.attached_tasks = std::vector<std::string>{};
-  const ReplanResult r = RunReplanning(s.get(), "ring", StepPath(home, moves[0], 0.5, 1.0), fixed);
+  const ReplanResult r = RunReplanning(*s, "ring", StepPath(home, moves[0], 0.5, 1.0), fixed);
   EXPECT_FALSE(r.success) << Describe(r);
 }
 
@@ -252,8 +282,8 @@ TEST(RunReplanning, WarmStartBeatsColdStart) {
   cold.warm_start = false;
   const auto run = [](const ReplanOptions& options) {
     const auto s = LoadScenario(kAssets + "scenarios/tinyarm_ring.json");
-    const Eigen::Vector3d home = s->objects.objects[0].world_from_object.translation();
-    return RunReplanning(s.get(), "ring", StepPath(home, Eigen::Vector3d(0.0, 0.12, 0.0), 0.5, 1.0),
+    const Eigen::Vector3d home = s->initial.objects.objects[0].world_from_object.translation();
+    return RunReplanning(*s, "ring", StepPath(home, Eigen::Vector3d(0.0, 0.12, 0.0), 0.5, 1.0),
                          options);
   };
   const ReplanResult w = run(warm), c = run(cold);

@@ -136,7 +136,7 @@ TEST(ScenarioLoader, TargetReachAtAndFinalStepsScheduleTargetAndPrecision) {
       "reach_at.json", MiniScenario(R"({"name": "x", "feature": {"type": "joint_position"},
                        "target": {"type": "interpolate", "value": 1, "reach_at": 0.6},
                        "precision": 2, "final_precision": 7, "final_steps": 3})")));
-  const Task& task = s->problem.tasks[0];
+  const Task& task = s->initial.problem.tasks[0];
   ASSERT_EQ(task.target.cols(), 6);  // T = 5; the target is reached at t = 0.6 * 5 = 3
   const double expected[] = {0.0, 1.0 / 3.0, 2.0 / 3.0, 1.0, 1.0, 1.0};
   for (int t = 0; t <= 5; ++t) {
@@ -149,8 +149,8 @@ TEST(ScenarioLoader, TargetReachAtAndFinalStepsScheduleTargetAndPrecision) {
       "reach_at_default.json", MiniScenario(R"({"name": "x", "feature": {"type": "joint_position"},
                        "target": {"type": "interpolate", "value": 1},
                        "precision": 2, "final_precision": 7})")));
-  EXPECT_NEAR(d->problem.tasks[0].target(0, 3), 0.6, 1e-12);
-  EXPECT_EQ(d->problem.tasks[0].precision, (Eigen::VectorXd(6) << 2, 2, 2, 2, 2, 7).finished());
+  EXPECT_NEAR(d->initial.problem.tasks[0].target(0, 3), 0.6, 1e-12);
+  EXPECT_EQ(d->initial.problem.tasks[0].precision, (Eigen::VectorXd(6) << 2, 2, 2, 2, 2, 7).finished());
 
   ExpectLoadError("reach_at_value.json",
                   MiniScenario(R"({"name": "x", "feature": {"type": "joint_position"},
@@ -315,7 +315,7 @@ void CheckUnwrapRun(Scenario* s, double wrap_deg, bool stop_when_solved) {
   EXPECT_LT(std::abs(r.report.final_winding_turns), 0.1);
   EXPECT_TRUE(r.report.path_collision_free);
   EXPECT_GT(r.report.min_clearance_m, 0.0);
-  EXPECT_EQ(r.trajectory.num_points(), s->problem.num_steps + 1);
+  EXPECT_EQ(r.trajectory.num_points(), s->initial.problem.num_steps + 1);
   // Accepted sweeps never raise the cost.
   for (size_t k = 1; k < r.report.cost_history.size(); ++k) {
     EXPECT_LE(r.report.cost_history[k], r.report.cost_history[k - 1]);
@@ -357,12 +357,12 @@ TEST(UnwrapScenario, StopWhenSolvedEndsAtTheFirstAcceptedSweepThatIsASuccess) {
   EXPECT_EQ(r.report.status, SolveStatus::kSolved);
   EXPECT_STREQ(StatusName(r.report.status), "solved");
 
-  AicoSolver solver(s->problem, AttemptOptions(*s, 0));
+  AicoSolver solver(s->initial.problem, AttemptOptions(*s, 0));
   int first = -1;
   while (!solver.done() && first < 0) {
     const AicoStep step = solver.Step();
     if (!step.accepted) continue;
-    CollisionData coll(s->robot, s->env, s->collision);
+    CollisionData coll(s->robot, s->initial.env, s->collision);
     KinematicsData kin(s->robot);
     const bool valid =
         PathIsValid(solver.trajectory(), s->check_resolution, ValidityChecker(*s, &coll, &kin));
@@ -433,7 +433,7 @@ TEST(ReachThroughRing, AicoEndsInsideTheBoxWithTheWrithePeakAtTheFingerThroughTh
 
   // The hand passes through the ring at the end, not at the start; the writhe of hand × ring
   // grows from ~0.2 to ~0.65.
-  const Eigen::Matrix3Xd& ring = s->report_object_chain;
+  const Eigen::Matrix3Xd& ring = s->initial.report_object_chain;
   Eigen::Matrix3Xd P;
   ChainPoints(s->robot, kin, s->report_chain, &P);
   EXPECT_TRUE(ChainThroughLoop(P, ring));
@@ -442,7 +442,7 @@ TEST(ReachThroughRing, AicoEndsInsideTheBoxWithTheWrithePeakAtTheFingerThroughTh
   EXPECT_LT(std::abs(r.report.start_writhe_total), 0.3);
   {
     KinematicsData kin0(s->robot);
-    ForwardKinematics(s->robot, s->problem.q0, &kin0);
+    ForwardKinematics(s->robot, s->initial.problem.q0, &kin0);
     Eigen::Matrix3Xd P0;
     ChainPoints(s->robot, kin0, s->report_chain, &P0);
     EXPECT_FALSE(ChainThroughLoop(P0, ring));
@@ -495,7 +495,7 @@ TEST(SuccessCriteria, InsideBoxIsTheBoxWithoutItsMargin) {
   // Point 0.01 m inside the top face (within the 0.02 m margin).
   const auto inside = LoadScenario(WriteTemp("box_margin_in.json", scenario(1.3485 - 0.04)));
   EXPECT_TRUE(CheckEndState(*inside, zero, true).reached);
-  EXPECT_GT(FeatureValue(inside->robot, *inside->problem.tasks[0].feature, zero).norm(), 0.0);
+  EXPECT_GT(FeatureValue(inside->robot, *inside->initial.problem.tasks[0].feature, zero).norm(), 0.0);
   // Point 0.005 m above the top face.
   const auto outside = LoadScenario(WriteTemp("box_margin_out.json", scenario(1.3485 - 0.055)));
   EXPECT_FALSE(CheckEndState(*outside, zero, true).reached);
@@ -511,7 +511,7 @@ TEST(RrtBaselines, PathsAreCollisionFreeAndSeedsReproduce) {
     SCOPED_TRACE(PlannerName(planner));
     ASSERT_TRUE(a.report.success);
     EXPECT_TRUE(a.report.path_collision_free);
-    EXPECT_TRUE(a.trajectory.q.col(0).isApprox(s->problem.q0));
+    EXPECT_TRUE(a.trajectory.q.col(0).isApprox(s->initial.problem.q0));
     EXPECT_TRUE(a.trajectory.q.col(a.trajectory.num_points() - 1).isApprox(s->goal_q));
     // Independent re-check of the path at the edge resolution.
     EXPECT_TRUE(PathCollisionFree(*s, a.trajectory));

@@ -11,7 +11,7 @@ namespace planning {
 // True when no configuration along `path` (densified at the scenario's check resolution) is in
 // collision, checked with a fresh CollisionData (joint limits not checked).
 inline bool PathCollisionFree(const Scenario& s, const Trajectory& path) {
-  CollisionData coll(s.robot, s.env, s.collision);
+  CollisionData coll(s.robot, s.initial.env, s.collision);
   KinematicsData kin(s.robot);
   const ValidityFn free = [&](const Eigen::VectorXd& q) {
     ForwardKinematics(s.robot, q, &kin);

@@ -44,9 +44,9 @@ TEST(JudgePlan, APathThatTunnelsThroughThePoleBetweenSlicesIsRejected) {
   // Two slices: the coil (one turn about the pole) and the unwrapped pose. Straight-line
   // interpolation in joint space pulls the arm through the pole instead of around its end.
   Trajectory path;
-  path.q.resize(s->problem.q0.size(), 2);
-  path.q.col(0) = s->problem.q0;
-  path.q.col(1) = unwrapped->problem.q0;
+  path.q.resize(s->initial.problem.q0.size(), 2);
+  path.q.col(0) = s->initial.problem.q0;
+  path.q.col(1) = unwrapped->initial.problem.q0;
   EXPECT_NEAR(std::abs(ReportWinding(*s, path.q.col(0))), 1.0, 0.2);
   EXPECT_LT(std::abs(ReportWinding(*s, path.q.col(1))), 0.2);
   const PlanVerdict v = JudgePlan(*s, path);
@@ -61,9 +61,9 @@ TEST(JudgePlan, TunnellingIsNamedBeforeTheCollisionOnTheWayThrough) {
   const auto s = Unwrap(360.0);
   const auto unwrapped = Unwrap(0.0);
   Trajectory path;
-  path.q.resize(s->problem.q0.size(), 2);
-  path.q.col(0) = s->problem.q0;
-  path.q.col(1) = unwrapped->problem.q0;
+  path.q.resize(s->initial.problem.q0.size(), 2);
+  path.q.col(0) = s->initial.problem.q0;
+  path.q.col(1) = unwrapped->initial.problem.q0;
   const PlanVerdict v = JudgePlan(*s, path);
   EXPECT_FALSE(v.collision_free);
   EXPECT_EQ(v.reason, FailureReason::kTunnelled) << FailureReasonName(v.reason);
@@ -78,7 +78,7 @@ std::unique_ptr<Scenario> ReachScenario(const std::string& name, double miss_m) 
   const auto probe = LoadScenario(
       WriteTemp("probe.json", robot + R"("tasks": [{"feature": {"type": "joint_position"}}]})"));
   KinematicsData kin(probe->robot);
-  ForwardKinematics(probe->robot, probe->problem.q0, &kin);
+  ForwardKinematics(probe->robot, probe->initial.problem.q0, &kin);
   const int link = FindLink(probe->robot, "lwr_link_7");
   const Eigen::Vector3d p = kin.world_from_link[link].translation() + Eigen::Vector3d(miss_m, 0, 0);
   char target[160];
@@ -94,7 +94,7 @@ TEST(JudgePlan, TheReachCriterionRejectsATenCentimetreMiss) {
   for (const double miss : {0.0, 0.1}) {
     const auto s = ReachScenario("reach.json", miss);
     Trajectory path;
-    path.q = s->problem.q0;
+    path.q = s->initial.problem.q0;
     const PlanVerdict v = JudgePlan(*s, path);
     SCOPED_TRACE("miss " + std::to_string(miss));
     EXPECT_NEAR(v.reach_error_m, miss, 1e-5);
@@ -164,12 +164,12 @@ TEST(UnwindingTarget, FollowsACollisionFreePathWithoutTunnelling) {
   ScenarioOverrides o;
   o.start_wrap_deg = 720.0;
   const auto s = LoadScenario(WriteTemp("unwinding.json", text), o);
-  const int T = s->problem.num_steps;
+  const int T = s->initial.problem.num_steps;
   ASSERT_EQ(s->unwinding.cols(), T + 1);
-  EXPECT_TRUE(s->unwinding.col(0).isApprox(s->problem.q0));
+  EXPECT_TRUE(s->unwinding.col(0).isApprox(s->initial.problem.q0));
   EXPECT_LT(std::abs(ReportWritheTotal(*s, s->unwinding.col(T))), 0.05);
   const Task* unwind = nullptr;
-  for (const Task& t : s->problem.tasks) {
+  for (const Task& t : s->initial.problem.tasks) {
     if (t.name == "unwind") unwind = &t;
   }
   ASSERT_NE(unwind, nullptr);
@@ -186,12 +186,12 @@ TEST(UnwindingTarget, FollowsACollisionFreePathWithoutTunnelling) {
   const ResolvedPoses poses = ResolvedPosesOf(*s);
   const auto again =
       SetUpScenario(ParseScenarioSpec(WriteTemp("unwinding.json", text)), {}, &poses);
-  EXPECT_EQ(again->problem.q0, s->problem.q0);
+  EXPECT_EQ(again->initial.problem.q0, s->initial.problem.q0);
   EXPECT_EQ(again->goal_q, s->goal_q);
   EXPECT_EQ(again->unwinding, s->unwinding);
-  ASSERT_EQ(again->problem.tasks.size(), s->problem.tasks.size());
-  for (size_t i = 0; i < s->problem.tasks.size(); ++i)
-    EXPECT_EQ(again->problem.tasks[i].target, s->problem.tasks[i].target) << i;
+  ASSERT_EQ(again->initial.problem.tasks.size(), s->initial.problem.tasks.size());
+  for (size_t i = 0; i < s->initial.problem.tasks.size(); ++i)
+    EXPECT_EQ(again->initial.problem.tasks[i].target, s->initial.problem.tasks[i].target) << i;
   // Wrong sizes are refused.
   ResolvedPoses bad = poses;
   bad.unwinding.resize(0, 0);
@@ -231,6 +231,29 @@ TEST(RunPlanner, ARunWithoutAPathReportsTheStartItStayedIn) {
   EXPECT_GT(r.report.reach_error_m, 0.5);
   EXPECT_EQ(r.report.max_winding_jump_turns, 0.0);
   EXPECT_GT(r.report.min_clearance_m, 0.0);  // the start coil is collision-free
+}
+
+// through_loop: the hand chain must end through the ring. The start pose does not (only that
+// criterion is checked here); the AICO plan's end does, through a named segment of the chain.
+TEST(JudgePlan, ThroughLoopNeedsTheChainThroughTheRing) {
+  const auto s = LoadScenario(kAssets + "scenarios/reach_through_ring.json");
+  SuccessCriteria only_loop;
+  only_loop.through_loop = true;
+  Trajectory start;
+  start.q = s->initial.problem.q0;
+  const PlanVerdict at_start = JudgePlan(*s, s->initial, start, only_loop);
+  EXPECT_TRUE(at_start.loop_checked);
+  EXPECT_FALSE(at_start.passed_through);
+  EXPECT_EQ(at_start.reason, FailureReason::kNotThroughLoop) << FailureReasonName(at_start.reason);
+  EXPECT_STREQ(FailureReasonName(FailureReason::kNotThroughLoop), "not_through_loop");
+  const PlanResult plan = RunPlanner(*s, Planner::kAico, 0);
+  ASSERT_TRUE(plan.report.success);
+  const PlanVerdict at_end = JudgePlan(*s, s->initial, plan.trajectory, only_loop);
+  EXPECT_TRUE(at_end.passed_through);
+  EXPECT_GE(at_end.through_segment, 0);
+  EXPECT_EQ(at_end.reason, FailureReason::kNone) << FailureReasonName(at_end.reason);
+  // Without the criterion the verdict still says whether the chain passed (reports use it).
+  EXPECT_TRUE(JudgePlan(*s, plan.trajectory).passed_through);
 }
 
 }  // namespace

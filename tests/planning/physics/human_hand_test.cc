@@ -71,7 +71,7 @@ TEST(HumanHandTest, HumanHandStaysFiniteAndHoldsThePowerGrasp) {
   bool finite = true;
   GraspTrialHooks hooks;
   hooks.on_start = [&](const TransferSetup&, const TransferResult&, const SimHand&,
-                       const SimObject&) -> StepCallback {
+                       const SimObject&, const StabilityOptions&) -> StepCallback {
     return [&](int, const GraspSimulation& sim) {
       const SimState& s = sim.state();
       finite = finite && s.world_from_object.matrix().allFinite();

@@ -63,7 +63,7 @@ TEST(OwnRobot, Step5And6PlanWithAicoAndBiRrt) {
   overrides.search_roots = {AssetFile("")};
   const auto scenario = LoadScenario(AssetFile("scenarios/tinyarm_ring.json"), overrides);
   const Srdf srdf = LoadSrdf(FindSrdf(kUrdf));
-  EXPECT_EQ(scenario->problem.q0, NamedPose(scenario->robot, srdf, "ready"));
+  EXPECT_EQ(scenario->initial.problem.q0, NamedPose(scenario->robot, srdf, "ready"));
   const PlanResult aico = RunPlanner(*scenario, Planner::kAico, 0);
   EXPECT_TRUE(aico.report.success);
   EXPECT_TRUE(aico.report.path_collision_free);

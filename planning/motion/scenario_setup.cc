@@ -1,0 +1,379 @@
+#include "planning/motion/scenario.h"
+#include "planning/motion/internal/scenario_build.h"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "base/assets.h"
+#include "planning/motion/success.h"
+#include "planning/robot/kinematics.h"
+#include "planning/robot/pose.h"
+#include "planning/robot/robot_io.h"
+#include "planning/robot/srdf.h"
+#include "topology/winding.h"
+#include "topology/writhe.h"
+namespace planning {
+
+using internal::BuildTask;
+using internal::FindIn;
+using internal::ObjectChain;
+
+namespace {
+
+// Writhe continuation (see scenario.h): from q toward total writhe `target` in steps.
+// Every accepted configuration (from included) is appended to `path` if not null.
+Eigen::VectorXd WritheContinuation(const Scenario& s, const Eigen::VectorXd& from, double target,
+                                   double step, double margin,
+                                   std::vector<Eigen::VectorXd>* path = nullptr) {
+  MotionProblem p;
+  p.robot = &s.robot;
+  p.q0 = from;
+  p.num_steps = 1;
+  p.dynamic = false;
+  p.w_rate = 100.0;
+  Task w;
+  w.name = "writhe";
+  w.feature =
+      MakeWritheFeature(s.robot, s.report_chain, s.initial.report_object_chain, WritheOutput::kTotal);
+  SetConstantTarget(&w, Eigen::VectorXd::Zero(1), 1000.0, 1);
+  p.tasks.push_back(std::move(w));
+  Task c;
+  c.name = "collision";
+  c.feature = MakeCollisionFeature(s.robot, s.initial.env, s.collision, margin);
+  SetConstantTarget(&c, Eigen::VectorXd::Zero(c.feature->dim()), 100.0, 1);
+  p.tasks.push_back(std::move(c));
+  Task l;
+  l.name = "limits";
+  l.feature = MakeJointLimitFeature(s.robot, 0.05);
+  SetConstantTarget(&l, Eigen::VectorXd::Zero(l.feature->dim()), 100.0, 1);
+  p.tasks.push_back(std::move(l));
+  TaskWorkspace ws(p);
+  FinalPoseOptions fo;
+  fo.alpha = 0.5;
+  Eigen::VectorXd q = from;
+  if (path != nullptr) path->push_back(q);
+  double current = ReportWritheTotal(s, q);
+  for (int k = 0; k < 1000 && std::abs(current - target) > 0.005; ++k) {
+    const double next =
+        current + std::copysign(std::min(step, std::abs(target - current)), target - current);
+    p.q0 = q;
+    p.tasks[0].target.setConstant(next);
+    const FinalPoseResult r = EstimateFinalPose(p, fo, &ws);
+    const double moved = ReportWritheTotal(s, r.q);
+    if (std::abs(moved - current) < 1e-4) break;  // stuck
+    q = r.q;
+    current = moved;
+    if (path != nullptr) path->push_back(q);
+  }
+  return q;
+}
+
+// `path` (at least one configuration) resampled at num_points equally spaced joint-space arc
+// lengths (linear between its configurations): n × num_points.
+Eigen::MatrixXd ResampleByArcLength(const std::vector<Eigen::VectorXd>& path, int num_points) {
+  std::vector<double> length(path.size(), 0.0);
+  for (size_t k = 1; k < path.size(); ++k)
+    length[k] = length[k - 1] + (path[k] - path[k - 1]).norm();
+  Eigen::MatrixXd out(path[0].size(), num_points);
+  size_t k = 0;
+  for (int t = 0; t < num_points; ++t) {
+    const double at = num_points > 1 ? length.back() * t / (num_points - 1) : 0.0;
+    while (k + 2 < path.size() && length[k + 1] < at) ++k;
+    if (path.size() == 1 || length[k + 1] <= length[k]) {
+      out.col(t) = path[std::min(k + 1, path.size() - 1)];
+      continue;
+    }
+    const double a = std::clamp((at - length[k]) / (length[k + 1] - length[k]), 0.0, 1.0);
+    out.col(t) = (1.0 - a) * path[k] + a * path[k + 1];
+  }
+  return out;
+}
+
+bool UsesUnwinding(const ScenarioSpec& spec) {
+  for (const TaskSpec& t : spec.tasks) {
+    if (t.target.kind == TargetKind::kUnwinding) return true;
+  }
+  return false;
+}
+
+struct StartPose {
+  Eigen::VectorXd q0;
+  Eigen::VectorXd unwrapped;               // coil start only: the coil continued to writhe 0
+  std::vector<Eigen::VectorXd> unwinding;  // coil start, "unwinding" targets: q0 continued to 0
+};
+
+// The start configuration: given, zero, or the start coil (see scenario.h).
+StartPose ResolveStart(const Scenario& s, const std::optional<double>& wrap_override) {
+  const StartSpec& start = s.spec.start;
+  const int n = num_dofs(s.robot);
+  StartPose out;
+  switch (start.kind) {
+    case StartKind::kZero:
+      out.q0 = Eigen::VectorXd::Zero(n);
+      break;
+    case StartKind::kPose:  // SetUpScenario turned it into kQ
+    case StartKind::kQ:
+      if (start.q.size() != n) {
+        throw std::invalid_argument(start.where + ": expected " + std::to_string(n) +
+                                    " numbers, got " + std::to_string(start.q.size()));
+      }
+      out.q0 = start.q;
+      break;
+    case StartKind::kCoil: {
+      const double wrap = wrap_override ? *wrap_override : start.wrap_deg;
+      if (!(wrap >= 0.0 && wrap <= 2000.0)) {
+        throw std::invalid_argument(start.where + ": wrap_deg must be in [0, 2000]");
+      }
+      const Eigen::VectorXd zero = Eigen::VectorXd::Zero(n);
+      const double sign = ReportWritheTotal(s, zero) < 0 ? -1.0 : 1.0;
+      out.q0 = WritheContinuation(s, zero, sign * wrap / 360.0, start.step, start.margin);
+      out.unwrapped = WritheContinuation(s, zero, 0.0, start.step, start.margin);
+      if (UsesUnwinding(s.spec))
+        WritheContinuation(s, out.q0, 0.0, start.step, start.margin, &out.unwinding);
+      break;
+    }
+  }
+  return out;
+}
+
+// The goal q̂_T: the final-pose estimate over the listed tasks (their targets at T), or q0; when
+// it misses the end conditions, the multi-start search (see scenario.h). Needs s.problem (its
+// position and box targets) and s.success.
+Eigen::VectorXd EstimateGoal(const Scenario& s, const StartPose& start) {
+  const FinalPoseSpec& fps = s.spec.final_pose;
+  if (fps.tasks.empty()) return start.q0;
+  MotionProblem fp;
+  fp.robot = &s.robot;
+  fp.q0 = start.q0;
+  fp.num_steps = s.spec.problem.num_steps;
+  fp.duration = s.spec.problem.duration;
+  fp.dynamic = false;  // the kinematic prior N(q0, T W⁻¹)
+  fp.w_rate = s.spec.problem.w_rate;
+  for (const SpecName& name : fps.tasks) {
+    bool found = false;
+    for (const TaskSpec& t : s.spec.tasks) {
+      if (t.name != name.name) continue;
+      fp.tasks.push_back(BuildTask(s, s.initial, t, start.q0, nullptr));
+      found = true;
+    }
+    if (!found) throw std::invalid_argument(name.where + ": no task named '" + name.name + "'");
+  }
+  Eigen::VectorXd init = start.q0;
+  if (fps.init == FinalPoseInit::kUnwrapped) init = start.unwrapped;
+  if (fps.init == FinalPoseInit::kQ) {
+    if (fps.init_q.size() != start.q0.size()) {
+      throw std::invalid_argument(fps.init_where + ": expected " + std::to_string(start.q0.size()) +
+                                  " numbers, got " + std::to_string(fps.init_q.size()));
+    }
+    init = fps.init_q;
+  }
+  TaskWorkspace ws(fp);
+  std::vector<Eigen::VectorXd> inits = {init};
+  if (init != start.q0) inits.push_back(start.q0);
+  const auto violation = [&s](const Eigen::VectorXd& q) {
+    return CheckEndState(s, q, true).violation;
+  };
+  FinalPoseSearchResult best = SearchFinalPose(fp, fps.options, {}, &ws, inits, violation);
+  // Further rounds, from the best so far with wider perturbations, leave terms that can fight the
+  // reach to the end-condition check: first the collision hinge (its margin keeps the links apart
+  // further than collision-free needs), then also the writhe term.
+  FinalPoseSearch wide;
+  wide.spread = 1.0;
+  wide.random_starts = 16;
+  for (const char* drop : {"collision", "writhe"}) {
+    if (best.violation == 0.0) break;
+    std::erase_if(fp.tasks, [drop](const Task& t) { return t.feature->name() == drop; });
+    TaskWorkspace fewer(fp);
+    std::vector<Eigen::VectorXd> from = {best.best.q};
+    from.insert(from.end(), inits.begin(), inits.end());
+    FinalPoseSearchResult r = SearchFinalPose(fp, fps.options, wide, &fewer, from, violation);
+    if (r.violation < best.violation) best = std::move(r);
+  }
+  return best.best.q;
+}
+
+int TaskIndex(const Scenario& s, const SpecName& n) {
+  for (size_t i = 0; i < s.spec.tasks.size(); ++i) {
+    if (s.spec.tasks[i].name == n.name) return static_cast<int>(i);
+  }
+  std::vector<std::string> names;
+  for (const TaskSpec& t : s.spec.tasks) names.push_back(t.name);
+  throw std::invalid_argument(n.where + ": no task named '" + n.name + "'" +
+                              base::DidYouMean(n.name, names));
+}
+
+void LoadObjects(Scenario* s) {
+  ScenarioState& w = s->initial;
+  for (const ObjectSpec& o : s->spec.objects) {
+    Robot model = base::PrefixErrors(o.where + ".urdf", [&] { return LoadRobot(o.urdf); });
+    const Eigen::Isometry3d pose = PoseFromXyzRpy(o.xyz, o.rpy);
+    base::PrefixErrors(o.where, [&] { AddObject(model, pose, o.name, &w.objects); });
+    if (!o.collide) continue;
+    if (!o.capsule_chain) {
+      AddObject(model, pose, o.name, &w.env);
+      continue;
+    }
+    const int obj = static_cast<int>(w.objects.objects.size()) - 1;
+    const int chain = FindIn(*o.capsule_chain, FindChain, model);
+    const Eigen::Matrix3Xd pts = ObjectChainPoints(w.objects, obj, chain);
+    for (Eigen::Index k = 0; k + 1 < pts.cols(); ++k) {
+      const Eigen::Vector3d a = pts.col(k), b = pts.col(k + 1);
+      Geometry g;
+      g.kind = Geometry::Kind::kCapsule;
+      g.size = Eigen::Vector3d(o.capsule_radius, (b - a).norm(), 0.0);
+      Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+      T.translation() = 0.5 * (a + b);
+      T.linear() =
+          Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), b - a).toRotationMatrix();
+      const std::string part = o.name + "#" + std::to_string(k);
+      AddObject(MakePrimitiveObject(part, g), T, part, &w.env);
+    }
+  }
+}
+
+void SetUpCollision(Scenario* s) {
+  const CollisionSpec& c = s->spec.collision;
+  s->collision.self_collision = c.self;
+  s->collision.analytic_capsules = c.analytic_capsules;
+  s->collision.disabled_pairs = c.disabled_pairs;
+  // Every pair of links whose names start with prefixes of the same group is not checked.
+  for (const std::vector<std::string>& prefixes : c.disabled_groups) {
+    auto member = [&](const std::string& name) {
+      for (const std::string& p : prefixes) {
+        if (name.rfind(p, 0) == 0) return true;
+      }
+      return false;
+    };
+    const auto& links = s->robot.links;
+    for (size_t a = 0; a < links.size(); ++a) {
+      for (size_t b = a + 1; b < links.size(); ++b) {
+        if (member(links[a].name) && member(links[b].name)) {
+          s->collision.disabled_pairs.emplace_back(links[a].name, links[b].name);
+        }
+      }
+    }
+  }
+  // Validate the options once (unknown link names throw here, with the JSON path).
+  if (!c.where.empty())
+    base::PrefixErrors(c.where,
+                       [&] { CollisionData check(s->robot, s->initial.env, s->collision); });
+}
+
+}  // namespace
+
+ResolvedPoses ResolvedPosesOf(const Scenario& s) {
+  return {s.initial.problem.q0, s.unwinding, s.goal_q};
+}
+
+namespace {
+
+void CheckResolved(const ResolvedPoses& r, const Scenario& s) {
+  const Eigen::Index n = num_dofs(s.robot);
+  const auto check = [](bool ok, const std::string& what) {
+    if (!ok) throw std::invalid_argument("resolved: " + what);
+  };
+  check(r.q0.size() == n && r.q0.allFinite(),
+        "q0: expected " + std::to_string(n) + " finite numbers");
+  check(r.goal_q.size() == n && r.goal_q.allFinite(),
+        "goal_q: expected " + std::to_string(n) + " finite numbers");
+  const bool wants = UsesUnwinding(s.spec) && s.spec.start.kind == StartKind::kCoil;
+  const Eigen::Index cols = s.spec.problem.num_steps + 1;
+  check(wants ? (r.unwinding.rows() == n && r.unwinding.cols() == cols && r.unwinding.allFinite())
+              : r.unwinding.size() == 0,
+        wants ? "unwinding: expected " + std::to_string(n) + " x " + std::to_string(cols) +
+                    " finite numbers"
+              : "unwinding: expected none (the scenario has no unwinding target)");
+}
+
+}  // namespace
+
+std::unique_ptr<Scenario> SetUpScenario(ScenarioSpec spec,
+                                        const std::optional<double>& start_wrap_deg,
+                                        const ResolvedPoses* resolved) {
+  auto s = std::make_unique<Scenario>();
+  s->spec = std::move(spec);
+  const ScenarioSpec& sp = s->spec;
+  s->initial.tasks = sp.tasks;
+  s->name = sp.name;
+  s->source = sp.source;
+  RobotLoadOptions load;
+  load.package_paths = sp.package_paths;
+  s->robot = base::PrefixErrors(sp.source + ": robot", [&] { return LoadRobot(sp.robot, load); });
+  const std::string srdf_path = sp.srdf.empty() ? FindSrdf(sp.robot) : sp.srdf;
+  std::optional<Srdf> srdf;
+  if (!srdf_path.empty()) {
+    srdf = LoadSrdf(srdf_path);
+    CheckSrdf(*srdf, s->robot);
+  }
+  if (sp.start.kind == StartKind::kPose) {
+    if (!srdf) throw std::invalid_argument(sp.start.where + ": a pose start needs an SRDF");
+    s->spec.start.q =
+        base::PrefixErrors(sp.start.where, [&] { return NamedPose(s->robot, *srdf, sp.start.pose); });
+    s->spec.start.kind = StartKind::kQ;
+  }
+  LoadObjects(s.get());
+  for (const ChainDescription& c : sp.robot_chains) {
+    s->robot.chains.push_back(ResolveChain(c, s->robot));
+  }
+  SetUpCollision(s.get());
+  if (srdf) {
+    for (const auto& pair : DisabledPairs(*srdf)) s->collision.disabled_pairs.push_back(pair);
+  }
+  if (sp.writhe_report) {
+    s->report_chain = FindIn(sp.writhe_report->chain, FindChain, s->robot);
+    s->initial.report_object_chain =
+        ObjectChain(s->initial, sp.writhe_report->object, sp.writhe_report->object_chain);
+  }
+
+  StartPose start;
+  if (resolved != nullptr) {
+    CheckResolved(*resolved, *s);
+    start.q0 = resolved->q0;
+    s->unwinding = resolved->unwinding;
+  } else {
+    start = ResolveStart(*s, start_wrap_deg);
+    if (!start.unwinding.empty())
+      s->unwinding = ResampleByArcLength(start.unwinding, sp.problem.num_steps + 1);
+  }
+  s->initial.problem.q0 = start.q0;
+  s->start_wrap_deg = 360.0 * std::abs(ReportWritheTotal(*s, start.q0));
+
+  s->aico = sp.aico;
+  s->stop_when_solved = sp.aico_stop_when_solved;
+  s->rrt = sp.rrt;
+  s->check_resolution = sp.check_resolution;
+  for (const AicoAttemptSpec& a : sp.aico_attempts) {
+    AicoAttempt attempt;
+    attempt.max_iterations = a.max_iterations;
+    attempt.precision_scale = Eigen::VectorXd::Ones(static_cast<Eigen::Index>(sp.tasks.size()));
+    for (const auto& [task, factor] : a.precision_scale)
+      attempt.precision_scale[TaskIndex(*s, task)] *= factor;
+    s->aico_attempts.push_back(attempt);
+  }
+
+  const SuccessSpec& su = sp.success;
+  s->success.writhe_total_below = su.writhe_total_below;
+  if (su.position_task) s->success.position_task = TaskIndex(*s, *su.position_task);
+  s->success.position_tolerance = su.position_tolerance;
+  if (su.box_task) s->success.box_task = TaskIndex(*s, *su.box_task);
+  if (!su.winding_where.empty() && s->report_chain < 0) {
+    throw std::invalid_argument(su.winding_where + ": the winding criterion needs writhe_report");
+  }
+  s->success.winding_max_jump = su.winding_max_jump;
+  s->success.winding_final_below = su.winding_final_below;
+
+  // The goal's end conditions read the position/box targets of a problem built with goal q0.
+  s->goal_q = start.q0;
+  s->initial.problem = AttemptProblem(*s, 0);
+  s->goal_q = resolved != nullptr ? resolved->goal_q : EstimateGoal(*s, start);
+  s->initial.problem = AttemptProblem(*s, 0);
+  return s;
+}
+
+}  // namespace planning

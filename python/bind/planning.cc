@@ -1,0 +1,446 @@
+// The planning layer in Python: robots (forward kinematics, Jacobians, chains, collision),
+// scenarios and their planners, grasp transfer with the ODE stability test.
+#include "python/bind/planning_types.h"
+
+#include "base/assets.h"
+#include "planning/grasp/grasp_inputs.h"
+#include "planning/grasp/grasp_object.h"
+#include "planning/grasp/grasp_quality.h"
+#include "planning/grasp/grasp_transfer.h"
+#include "planning/motion/planner.h"
+#include "planning/motion/report.h"
+#include "planning/motion/unwrap_benchmark.h"
+#include "planning/physics/grasp_report.h"
+#include "planning/physics/grasp_trials.h"
+
+namespace topoplan_py {
+namespace {
+
+py::object FkPy(PyRobot& r, const py::handle& q, const std::optional<std::string>& link) {
+  r.Fk(q);
+  if (link) return py::cast(Eigen::Matrix4d(r.kin->world_from_link[r.Link(*link)].matrix()));
+  py::dict out;
+  for (size_t i = 0; i < r.robot.links.size(); ++i) {
+    out[py::str(r.robot.links[i].name)] = Eigen::Matrix4d(r.kin->world_from_link[i].matrix());
+  }
+  return out;
+}
+
+py::tuple PlanPy(PyScenario& s, const std::string& planner_name, unsigned seed,
+                 const py::object& callback) {
+  const planning::Planner planner =
+      Named("planner", [&] { return planning::ParsePlanner(planner_name); });
+  std::optional<py::error_already_set> callback_error;
+  bool cancelled = false;
+  int cancelled_sweep = -1;
+  Eigen::MatrixXd cancelled_q;
+  planning::AicoCallback cb;
+  if (!callback.is_none()) {
+    cb = [&](int sweep, double cost, bool, const planning::Trajectory& trajectory) {
+      py::gil_scoped_acquire gil;
+      try {
+        const py::object r = callback(sweep, cost, Eigen::MatrixXd(trajectory.q.transpose()));
+        // True / None go on, False cancels; anything else is a mistake, not a truth value.
+        const std::string type = py::str(py::type::of(r).attr("__name__")).cast<std::string>();
+        if (!r.is_none() && type != "bool" && type != "bool_") {  // bool_: NumPy's
+          PyErr_SetString(PyExc_TypeError,
+                          ("callback: must return True, False or None, got " + type).c_str());
+          throw py::error_already_set();
+        }
+        if (!r.is_none() && !r.cast<bool>()) {
+          cancelled = true;
+          cancelled_sweep = sweep;
+          cancelled_q = trajectory.q.transpose();
+          throw CallbackStop{};
+        }
+      } catch (py::error_already_set& e) {
+        callback_error.emplace(std::move(e));
+        throw CallbackStop{};
+      }
+    };
+  }
+  planning::PlanResult result;
+  try {
+    py::gil_scoped_release release;
+    result = planning::RunPlanner(*s.scenario, planner, seed, cb);
+  } catch (const CallbackStop&) {
+  }
+  if (callback_error) throw *callback_error;
+  if (cancelled) {
+    py::object exc = py::module_::import("topoplan._core")
+                         .attr("PlanCancelled")("plan: cancelled by the callback at sweep " +
+                                                std::to_string(cancelled_sweep));
+    exc.attr("sweep") = cancelled_sweep;
+    exc.attr("trajectory") = cancelled_q;
+    PyErr_SetObject(exc.get_type().ptr(), exc.ptr());
+    throw py::error_already_set();
+  }
+  const nlohmann::json report = planning::PlanReportJson(*s.scenario, result.report, seed);
+  return py::make_tuple(Eigen::MatrixXd(result.trajectory.q.transpose()), JsonToPython(report));
+}
+
+}  // namespace
+
+void BindPlanning(py::module_& m) {
+  // robots
+  py::class_<PyRobot>(m, "Robot",
+                      "A robot model loaded from a URDF, with placed collision objects. q is an\n"
+                      "array in joint_names order or a dict {joint name: value} (others 0).")
+      .def_static("load", &PyRobot::Load, py::arg("urdf"),
+                  py::arg("package_paths") = std::vector<fs::path>{},
+                  "Loads a URDF (meshes through assimp; package:// URIs resolved against\n"
+                  "package_paths, $ROS_PACKAGE_PATH and the URDF's ancestors; chains from the\n"
+                  "<stem>.chains.json sidecar). FileNotFoundError for a missing file, ValueError\n"
+                  "for a bad one.")
+      .def_property_readonly(
+          "name", [](const PyRobot& r) { return r.robot.name; }, "Robot name from the URDF.")
+      .def_property_readonly(
+          "joint_names", [](const PyRobot& r) { return planning::DofNames(r.robot); },
+          "Names of the joints driven by q, in q order.")
+      .def_property_readonly(
+          "link_names", [](const PyRobot& r) { return Names(r.robot.links); }, "Link names.")
+      .def_property_readonly(
+          "chain_names", [](const PyRobot& r) { return Names(r.robot.chains); },
+          "Names of the robot's chains (sidecar file).")
+      .def_property_readonly(
+          "limits",
+          [](const PyRobot& r) {
+            return py::make_tuple(planning::LowerLimits(r.robot), planning::UpperLimits(r.robot));
+          },
+          "(lower, upper): joint limits in q order (+-inf for continuous joints).")
+      .def("fk", &FkPy, py::arg("q"), py::arg("link") = py::none(),
+           "Forward kinematics: {link name: 4x4 world_from_link}, or one 4x4 when link is given.")
+      .def(
+          "point_jacobian",
+          [](PyRobot& r, const py::handle& q, const std::string& link, const py::handle& point) {
+            const Eigen::Vector3d p = ToVector(point, "point", 3);
+            const int l = r.Link(link);
+            r.Fk(q);
+            Eigen::MatrixXd J(3, planning::num_dofs(r.robot));
+            planning::PointJacobian(r.robot, *r.kin, l, p, J);
+            return J;
+          },
+          py::arg("q"), py::arg("link"), py::arg("point") = std::vector<double>{0, 0, 0},
+          "3 x n Jacobian d p_world / d q of a point fixed in link's frame (world frame).")
+      .def(
+          "frame_jacobian",
+          [](PyRobot& r, const py::handle& q, const std::string& link) {
+            const int l = r.Link(link);
+            r.Fk(q);
+            Eigen::MatrixXd J(6, planning::num_dofs(r.robot));
+            planning::FrameJacobian(r.robot, *r.kin, l, J);
+            return J;
+          },
+          py::arg("q"), py::arg("link"),
+          "6 x n geometric Jacobian of link's frame: rows 0-2 linear velocity of its origin,\n"
+          "rows 3-5 angular velocity (world frame), per unit qdot.")
+      .def(
+          "chain_points",
+          [](PyRobot& r, const py::handle& q, const std::string& chain) {
+            const int c = r.Chain(chain);
+            r.Fk(q);
+            Eigen::Matrix3Xd P;
+            planning::ChainPoints(r.robot, *r.kin, c, &P);
+            return Rows(P);
+          },
+          py::arg("q"), py::arg("chain"),
+          "World positions (N x 3) of the chain's points at q (closed chains repeat point 0).")
+      .def(
+          "chain_jacobian",
+          [](PyRobot& r, const py::handle& q, const std::string& chain) {
+            const int c = r.Chain(chain);
+            r.Fk(q);
+            Eigen::MatrixXd J(3 * planning::ChainSize(r.robot, c), planning::num_dofs(r.robot));
+            planning::ChainJacobian(r.robot, *r.kin, c, J);
+            return J;
+          },
+          py::arg("q"), py::arg("chain"),
+          "(3N) x n Jacobian of the chain points: rows 3k..3k+2 = d p_k / d q.")
+      .def(
+          "add_object",
+          [](PyRobot& r, const fs::path& urdf_path, const py::handle& position,
+             const py::handle& rpy, const std::string& name) {
+            const std::string urdf = urdf_path.string();
+            RequireFile(urdf, "urdf");
+            const Eigen::Vector3d xyz = ToVector(position, "position", 3);
+            const Eigen::Vector3d e = ToVector(rpy, "rpy", 3);
+            planning::Robot object = planning::LoadRobot(urdf);
+            const Eigen::Isometry3d T = planning::PoseFromXyzRpy(xyz, e);
+            r.coll.reset();
+            planning::AddObject(object, T, name.empty() ? object.name : name, &r.env);
+          },
+          py::arg("urdf"), py::arg("position") = std::vector<double>{0, 0, 0},
+          py::arg("rpy") = std::vector<double>{0, 0, 0}, py::arg("name") = "",
+          "Places a static object (URDF) at position with roll/pitch/yaw rpy (radians, fixed\n"
+          "axes x then y then z) for the collision checks.")
+      .def(
+          "in_collision",
+          [](PyRobot& r, const py::handle& q) {
+            r.Fk(q);
+            return planning::InCollision(r.robot, *r.kin, r.Coll());
+          },
+          py::arg("q"), "True when the robot at q collides with a placed object or itself.")
+      .def(
+          "min_distance",
+          [](PyRobot& r, const py::handle& q) {
+            r.Fk(q);
+            return planning::MinDistance(r.robot, *r.kin, r.Coll());
+          },
+          py::arg("q"),
+          "Minimum signed distance [m] over the checked pairs (negative: penetration; inf when\n"
+          "nothing is checked).")
+      .def(
+          "distances",
+          [](PyRobot& r, const py::handle& q, double margin) {
+            if (!(margin >= 0.0)) ThrowValue("margin: must be >= 0");
+            r.Fk(q);
+            std::vector<planning::ProximityPair> pairs;
+            planning::ComputeProximity(r.robot, *r.kin, margin, r.Coll(), &pairs);
+            py::list out;
+            for (const auto& p : pairs) {
+              py::dict d;
+              d["link_a"] = r.robot.links[p.link_a].name;
+              d["other"] =
+                  p.object >= 0 ? r.env.objects[p.object].name : r.robot.links[p.link_b].name;
+              d["is_object"] = p.object >= 0;
+              d["distance"] = p.distance;
+              d["point_a"] = p.point_a;
+              d["point_b"] = p.point_b;
+              d["normal"] = p.normal;
+              out.append(d);
+            }
+            return out;
+          },
+          py::arg("q"), py::arg("margin") = 0.1,
+          "Every checked pair closer than margin [m]: list of dicts with link_a, other (link or\n"
+          "object name), is_object, distance, point_a, point_b, normal (world frame).");
+
+  // scenarios
+  py::class_<PyScenario>(m, "Scenario", "A set-up planning scenario (see load_scenario).")
+      .def_property_readonly(
+          "name", [](const PyScenario& s) { return s.scenario->name; }, "Scenario name.")
+      .def_property_readonly(
+          "joint_names", [](const PyScenario& s) { return planning::DofNames(s.scenario->robot); },
+          "Joint names in q order.")
+      .def_property_readonly(
+          "q0", [](const PyScenario& s) { return Eigen::VectorXd(s.scenario->initial.problem.q0); },
+          "Start configuration.")
+      .def_property_readonly(
+          "goal_q", [](const PyScenario& s) { return Eigen::VectorXd(s.scenario->goal_q); },
+          "Final-pose estimate (the RRT goal).")
+      .def_property_readonly(
+          "start_wrap_deg", [](const PyScenario& s) { return s.scenario->start_wrap_deg; },
+          "360 deg x |writhe| of the report pair at q0.")
+      .def(
+          "resolved_poses",
+          [](const PyScenario& s) {
+            const planning::ResolvedPoses r = planning::ResolvedPosesOf(*s.scenario);
+            py::dict d;
+            d["q0"] = r.q0;
+            d["unwinding"] = r.unwinding;
+            d["goal_q"] = r.goal_q;
+            return d;
+          },
+          "The expensive part of the set-up: dict with 'q0' (n,), 'unwinding' (n x (T+1), or\n"
+          "0 x 0) and 'goal_q' (n,). load_scenario(..., resolved=d) with the same file and moves\n"
+          "skips the start-coil continuation and the final-pose estimate and sets up an equal\n"
+          "scenario (plans are bit-identical); picklable, so one process can set up for many.")
+      .def(
+          "writhe_total",
+          [](const PyScenario& s, const py::handle& q) {
+            return planning::ReportWritheTotal(
+                *s.scenario, ToVector(q, "q", planning::num_dofs(s.scenario->robot)));
+          },
+          py::arg("q"), "Total writhe of the scenario's report pair (robot chain x object) at q.")
+      .def(
+          "plan", &PlanPy, py::arg("planner") = "aico", py::arg("seed") = 0,
+          py::arg("callback") = py::none(),
+          "Runs a planner (aico, rrt, birrt, and ompl-* when built with OMPL) and returns\n"
+          "(trajectory, report): trajectory (T+1) x n (RRT: waypoints; empty on failure), report\n"
+          "a dict with the keys of `topoplan plan`'s report.json. For AICO, callback(sweep, cost,\n"
+          "trajectory) is called after every sweep and returns True or None (go on) or False\n"
+          "(cancel: PlanCancelled is raised); any other return value is a TypeError, and an\n"
+          "exception in the callback ends the plan and propagates. The GIL is released while\n"
+          "planning.");
+  m.def(
+      "load_scenario",
+      [](const fs::path& arg_path, std::optional<double> start_wrap, long rrt_budget,
+         const std::map<std::string, py::object>& move_objects, const py::object& resolved,
+         std::optional<bool> stop_when_solved) {
+        const std::string arg = arg_path.string();
+        if (start_wrap && !std::isfinite(*start_wrap)) ThrowValue("start_wrap: must be finite");
+        if (start_wrap && !(*start_wrap >= 0.0 && *start_wrap <= 2000.0)) {
+          ThrowValue("start_wrap: must be in [0, 2000] degrees");
+        }
+        const std::string path = Named(
+            "path_or_name", [&] { return base::ResolveScenarioPath(arg); }, PyExc_FileNotFoundError);
+        planning::ScenarioOverrides overrides;
+        overrides.start_wrap_deg = start_wrap;
+        overrides.search_roots = {base::AssetRoot()};
+        std::map<std::string, Eigen::Vector3d> offsets;
+        for (const auto& [name, xyz] : move_objects) {
+          offsets[name] = ToVector(xyz, "move_objects['" + name + "']", 3);
+        }
+        planning::ScenarioSpec spec = planning::ParseScenarioSpec(path, overrides.search_roots);
+        for (const auto& [name, offset] : offsets) {
+          auto it = std::find_if(spec.objects.begin(), spec.objects.end(),
+                                 [&](const auto& o) { return o.name == name; });
+          if (it == spec.objects.end()) {
+            ThrowValue("move_objects: the scenario has no object '" + name + "'");
+          }
+          it->xyz += offset;
+        }
+        std::optional<planning::ResolvedPoses> given;
+        if (!resolved.is_none()) {
+          if (!py::isinstance<py::dict>(resolved)) {
+            ThrowValue("resolved: expected a dict from Scenario.resolved_poses()");
+          }
+          const py::dict d = resolved.cast<py::dict>();
+          for (const char* key : {"q0", "unwinding", "goal_q"}) {
+            if (!d.contains(key)) ThrowValue(std::string("resolved: no key '") + key + "'");
+          }
+          given.emplace();
+          given->q0 = ToVector(d["q0"], "resolved['q0']", -1);
+          given->goal_q = ToVector(d["goal_q"], "resolved['goal_q']", -1);
+          const Array u = ToArray(d["unwinding"], "resolved['unwinding']");
+          if (u.ndim() != 2) ThrowValue("resolved['unwinding']: expected a 2-D array");
+          if (u.size() > 0) given->unwinding = ToMatrix(d["unwinding"], "resolved['unwinding']");
+        }
+        PyScenario s;
+        {
+          py::gil_scoped_release release;
+          // Bad resolved poses throw std::invalid_argument "resolved: ..." (a ValueError).
+          s.scenario =
+              planning::SetUpScenario(std::move(spec), start_wrap, given ? &*given : nullptr);
+        }
+        if (rrt_budget > 0) s.scenario->rrt.max_checks = rrt_budget;
+        if (stop_when_solved) s.scenario->stop_when_solved = *stop_when_solved;
+        return s;
+      },
+      py::arg("path_or_name"), py::arg("start_wrap") = py::none(), py::arg("rrt_budget") = -1,
+      py::arg("move_objects") = std::map<std::string, py::object>{},
+      py::arg("resolved") = py::none(), py::arg("stop_when_solved") = py::none(),
+      "Loads a scenario file, or a name in the shipped assets/scenarios (e.g. 'unwrap'), and\n"
+      "sets it up (start coil, final-pose estimate). start_wrap overrides the coil's angle to\n"
+      "unwrap [deg]; rrt_budget > 0 replaces the RRTs' collision-check budget; move_objects\n"
+      "{name: (3,) offset [m]} moves objects of the scenario before it is set up; resolved (a\n"
+      "dict from Scenario.resolved_poses() of the same set-up) skips the expensive part;\n"
+      "stop_when_solved (bool) replaces the scenario's aico.stop_when_solved (True: AICO stops at\n"
+      "the first accepted sweep whose trajectory meets the success criteria, status 'solved').");
+  m.def(
+      "unwrap_perturbation",
+      [](const fs::path& arg_path, int seeds, double perturb) {
+        const std::string path = Named(
+            "path_or_name", [&] { return base::ResolveScenarioPath(arg_path.string()); },
+            PyExc_FileNotFoundError);
+        if (seeds < 1) ThrowValue("seeds: must be >= 1");
+        if (!(perturb >= 0.0) || !std::isfinite(perturb)) ThrowValue("perturb: must be >= 0");
+        planning::UnwrapPerturbation p;
+        {
+          py::gil_scoped_release release;
+          const planning::ScenarioSpec spec = planning::ParseScenarioSpec(path, {base::AssetRoot()});
+          p = planning::MakeUnwrapPerturbation(spec, 0.0, seeds, perturb);
+        }
+        Eigen::MatrixXd offsets(seeds, 3);
+        for (int s = 0; s < seeds; ++s) offsets.row(s) = p.offsets[s].transpose();
+        py::dict d;
+        d["object"] = p.object_name;
+        d["offsets"] = offsets;
+        return d;
+      },
+      py::arg("path_or_name"), py::arg("seeds"), py::arg("perturb"),
+      "The pole perturbation of `topoplan bench unwrap --perturb M --seeds N`: dict with\n"
+      "'object' (the moved object's name, '' when perturb is 0) and 'offsets' (N x 3 world-frame\n"
+      "offsets [m], row s for seed s; at most perturb from the pole's line). Pass\n"
+      "move_objects={object: offsets[s]} to load_scenario for seed s's set-up.");
+
+  m.def(
+      "grasp_transfer",
+      [](const fs::path& grasp_path, const std::string& method, double mu, int perturb,
+         std::uint32_t seed, double close_by) {
+        const std::string grasp = grasp_path.string();
+        if (!(mu >= 0.0) || !std::isfinite(mu)) ThrowValue("mu: must be finite and >= 0");
+        if (!(close_by >= 0.0 && close_by <= planning::physics::GraspTrialsOptions::kMaxCloseBy))
+          ThrowValue("close_by: must be in [0, 0.5] rad");
+        if (perturb < 0 || perturb > 1000) ThrowValue("perturb: must be in 0..1000");
+        const planning::TransferMethod tm =
+            Named("method", [&] { return planning::ParseTransferMethod(method); });
+        const std::vector<std::string> files = Named(
+            "grasp", [&] { return planning::SelectGraspFiles(grasp); }, PyExc_FileNotFoundError);
+        if (files.size() != 1) ThrowValue("grasp: name one grasp (a name or a file), not 'all'");
+        nlohmann::json report;
+        {
+          py::gil_scoped_release release;
+          // ODE is initialised once per process (OdeRuntime allows one instance at a time): calls
+          // from several Python threads (a multi-threaded Dask worker) take turns here.
+          static std::mutex ode_mutex;
+          const std::lock_guard<std::mutex> lock(ode_mutex);
+          const planning::GraspInputs in = planning::LoadGraspInputs(files);
+          const planning::physics::OdeRuntime ode;
+          planning::physics::GraspTrialsOptions options;
+          options.mu = mu;
+          options.perturb = perturb;
+          options.seed = seed;
+          options.close_by = close_by;
+          const auto result = planning::physics::RunGraspTrials(
+              ode, in.human, in.lwr_sdh, in.objects, in.grasps, {tm}, options);
+          report = planning::physics::GraspReportJson(result);
+        }
+        return JsonToPython(report["grasps"][0]);
+      },
+      py::arg("grasp"), py::arg("method") = "winding", py::arg("mu") = 1.0, py::arg("perturb") = 0,
+      py::arg("seed") = 0, py::arg("close_by") = planning::physics::HandBuildOptions{}.close_by,
+      "Transfers one human grasp (a name in assets/grasps or a file) to the SDH with method\n"
+      "(winding, winding_only, contact_only, fingertip, joint, human), tests it in ODE with\n"
+      "friction mu and returns its entry of `topoplan grasp transfer`'s report.json. perturb = N\n"
+      "> 0 repeats the test N times with the object moved (<= 5 mm) and turned (<= 5 deg), seeded\n"
+      "by seed as `grasp transfer --perturb N --seed S` (methods[...]['perturbed']). close_by:\n"
+      "the grip, flexion set-points this many rad past the grasp (`--close-by`, in [0, 0.5]).\n"
+      "Releases the GIL; concurrent calls from several threads run one after another (ODE is\n"
+      "initialised once per process).");
+  m.def(
+      "available_grasps",
+      [] {
+        std::vector<std::string> names;
+        for (const std::string& f : planning::SelectGraspFiles("all")) {
+          names.push_back(fs::path(f).stem().string());
+        }
+        return names;
+      },
+      "Names of the shipped human grasps (assets/grasps/*.json except objects.json), sorted.");
+  m.def(
+      "transfer_methods",
+      [] {
+        std::vector<std::string> names;
+        for (planning::TransferMethod t : planning::AllTransferMethods()) {
+          names.emplace_back(planning::ToString(t));
+        }
+        return names;
+      },
+      "The six grasp transfer methods in report order (`grasp transfer --method all`).");
+  m.def(
+      "wilson_interval",
+      [](int successes, int trials) {
+        if (trials < 1 || successes < 0 || successes > trials) {
+          ThrowValue("successes, trials: need 0 <= successes <= trials, trials >= 1");
+        }
+        const Eigen::Vector2d ci = planning::WilsonInterval(successes, trials);
+        return std::pair<double, double>{ci[0], ci[1]};
+      },
+      py::arg("successes"), py::arg("trials"),
+      "Wilson score 95 % interval (lo, hi) of a success rate successes / trials (Wilson 1927).");
+  m.def(
+      "available_planners",
+      [] {
+        std::vector<std::string> names;
+        for (planning::Planner p : planning::AvailablePlanners()) {
+          names.emplace_back(planning::PlannerName(p));
+        }
+        return names;
+      },
+      "Names of the planners of this build (aico, rrt, birrt, and ompl-* with OMPL).");
+  m.def("asset_root", &base::AssetRoot,
+        "Root of the asset tree ($TOPOPLAN_ASSETS, else the installed or source assets/).");
+}
+
+}  // namespace topoplan_py
