@@ -67,6 +67,10 @@ std::string ReadFileBounded(const std::string& path, const std::string& what,
   FileBytes file = ReadFileLimited(path, max_bytes);
   switch (file.status) {
     case ReadStatus::kOk:
+      // Text: a UTF-8 byte-order mark (written by some editors) is not part of the content.
+      if (file.bytes.size() >= 3 && file.bytes.compare(0, 3, "\xEF\xBB\xBF") == 0) {
+        return file.bytes.substr(3);
+      }
       return std::move(file.bytes);
     case ReadStatus::kCannotOpen:
       throw std::invalid_argument(path + ": cannot open " + what + " file");

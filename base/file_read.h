@@ -36,7 +36,8 @@ struct FileBytes {
 // why.
 FileBytes ReadFileLimited(const std::string& path, std::size_t max_bytes);
 
-// ReadFileLimited, throwing std::invalid_argument for anything but kOk:
+// ReadFileLimited for a text file (a leading UTF-8 byte-order mark is dropped), throwing
+// std::invalid_argument for anything but kOk:
 //   "<path>: cannot open <what> file" (also "... (it is a folder)"),
 //   "<path>: <what> file is larger than <max_bytes> bytes (limit)", "<path>: cannot read <what>
 //   file".

@@ -39,8 +39,11 @@ struct PathTracker {
     bool array = false;
     size_t index = 0;
     std::string key;
+    std::vector<std::string> keys;  // the object's keys so far (duplicates are errors)
   };
   std::vector<Frame> frames;
+  std::string duplicate;       // the first duplicate key found ("" while none)
+  std::string duplicate_path;  // its object's JSON path
 
   void ValueDone() {
     if (!frames.empty() && frames.back().array) ++frames.back().index;
@@ -48,13 +51,23 @@ struct PathTracker {
   bool operator()(int /*depth*/, json::parse_event_t event, json& parsed) {
     switch (event) {
       case json::parse_event_t::object_start:
-        frames.push_back({false, 0, ""});
+        frames.push_back({false, 0, "", {}});
         break;
       case json::parse_event_t::array_start:
-        frames.push_back({true, 0, ""});
+        frames.push_back({true, 0, "", {}});
         break;
       case json::parse_event_t::key:
-        if (!frames.empty()) frames.back().key = parsed.get<std::string>();
+        if (!frames.empty()) {
+          Frame& f = frames.back();
+          f.key = parsed.get<std::string>();
+          if (std::find(f.keys.begin(), f.keys.end(), f.key) != f.keys.end()) {
+            f.key.clear();
+            duplicate_path = Path();
+            duplicate = parsed.get<std::string>();
+            return false;  // ParseJsonText reports it
+          }
+          f.keys.push_back(f.key);
+        }
         break;
       case json::parse_event_t::object_end:
       case json::parse_event_t::array_end:
@@ -71,9 +84,12 @@ struct PathTracker {
     std::string p;
     for (const Frame& f : frames) {
       if (f.array) {
-        p += "[" + std::to_string(f.index) + "]";
+        p.push_back('[');
+        p.append(std::to_string(f.index));
+        p.push_back(']');
       } else if (!f.key.empty()) {
-        p = Join(p, f.key);
+        if (!p.empty()) p.push_back('.');
+        p.append(f.key);
       }
     }
     return p;
@@ -85,9 +101,17 @@ struct PathTracker {
 json ParseJsonText(const std::string& text, const std::string& source) {
   PathTracker tracker;
   try {
-    return json::parse(text, [&](int depth, json::parse_event_t event, json& parsed) {
+    json j = json::parse(text, [&](int depth, json::parse_event_t event, json& parsed) {
+      if (!tracker.duplicate.empty()) return false;
       return tracker(depth, event, parsed);
     });
+    if (!tracker.duplicate.empty()) {
+      // Last-one-wins would silently drop a value: the file is refused, naming the key.
+      const std::string where = tracker.duplicate_path.empty() ? "(root)" : tracker.duplicate_path;
+      throw std::invalid_argument(source + ": " + where + ": duplicate key '" + tracker.duplicate +
+                                  "' (each key may appear once per object)");
+    }
+    return j;
   } catch (const json::exception& e) {
     const std::string path = tracker.Path();
     throw std::invalid_argument(source + ": invalid JSON" + (path.empty() ? "" : " at " + path) +

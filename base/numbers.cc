@@ -1,21 +1,56 @@
 #include "base/numbers.h"
 
+#include <stdlib.h>
+
+#include <array>
 #include <cerrno>
+#include <charconv>
 #include <cmath>
 #include <cstdlib>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
+#include <system_error>
 
 namespace base {
+namespace {
 
-std::optional<double> ParseFiniteDouble(const std::string& text) {
-  if (text.empty() || std::isspace(static_cast<unsigned char>(text[0]))) return std::nullopt;
+// The "C" locale as an object, for strtod_l (made once; never freed).
+locale_t ClassicLocale() {
+  static const locale_t c = newlocale(LC_ALL_MASK, "C", static_cast<locale_t>(nullptr));
+  return c;
+}
+
+}  // namespace
+
+NumberKind ClassifyNumber(const std::string& text, double* value) {
+  if (text.empty() || std::isspace(static_cast<unsigned char>(text[0]))) {
+    return NumberKind::kNotANumber;
+  }
   char* end = nullptr;
   errno = 0;
-  const double v = std::strtod(text.c_str(), &end);
-  if (end != text.c_str() + text.size() || !std::isfinite(v)) return std::nullopt;
+  const double v = strtod_l(text.c_str(), &end, ClassicLocale());
+  if (end != text.c_str() + text.size()) return NumberKind::kNotANumber;
   // ERANGE also reports underflow to a subnormal or zero (1e-310), which is a number.
-  if (errno == ERANGE && std::fabs(v) >= 1.0) return std::nullopt;
+  if (!std::isfinite(v) || (errno == ERANGE && std::fabs(v) >= 1.0)) return NumberKind::kNonFinite;
+  if (value != nullptr) *value = v;
+  return NumberKind::kFinite;
+}
+
+std::optional<double> ParseFiniteDouble(const std::string& text) {
+  double v = 0.0;
+  if (ClassifyNumber(text, &v) != NumberKind::kFinite) return std::nullopt;
+  return v;
+}
+
+std::optional<long long> ParseInteger(const std::string& text) {
+  const char* first = text.data();
+  const char* last = text.data() + text.size();
+  if (first != last && *first == '+') ++first;  // from_chars takes '-' but not '+'
+  if (first == last || !(*first == '-' || (*first >= '0' && *first <= '9'))) return std::nullopt;
+  long long v = 0;
+  const auto [ptr, ec] = std::from_chars(first, last, v, 10);
+  if (ec != std::errc() || ptr != last) return std::nullopt;
   return v;
 }
 
@@ -25,13 +60,11 @@ std::vector<double> ParseNumberList(const std::string& text, const std::string& 
   std::stringstream ss(text);
   std::string field;
   while (std::getline(ss, field, ',')) {
-    const std::optional<double> v = base::ParseFiniteDouble(field);
+    const std::optional<double> v = ParseFiniteDouble(field);
     if (!v) throw std::invalid_argument(flag + ": '" + field + "' is not a finite number");
     if (std::fabs(*v) > max_abs) {
-      std::ostringstream limit;
-      limit << max_abs;
-      throw std::invalid_argument(flag + ": '" + field +
-                                  "' is out of range (|value| <= " + limit.str() + ")");
+      throw std::invalid_argument(flag + ": '" + field + "' is out of range (|value| <= " +
+                                  FormatShortest(max_abs) + ")");
     }
     values.push_back(*v);
   }
@@ -42,5 +75,27 @@ std::vector<double> ParseNumberList(const std::string& text, const std::string& 
   }
   return values;
 }
+
+std::string FormatFixed(double v, int digits) {
+  if (std::isnan(v)) return "nan";
+  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
+  std::array<char, 400> buf{};
+  const auto [ptr, ec] =
+      std::to_chars(buf.data(), buf.data() + buf.size(), v, std::chars_format::fixed, digits);
+  if (ec != std::errc()) return FormatShortest(v);
+  return std::string(buf.data(), ptr);
+}
+
+std::string FormatShortest(double v) {
+  if (std::isnan(v)) return "nan";
+  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
+  std::array<char, 64> buf{};
+  const auto [ptr, ec] = std::to_chars(buf.data(), buf.data() + buf.size(), v);
+  return ec == std::errc() ? std::string(buf.data(), ptr) : std::string("?");
+}
+
+ScopedClassicLocale::ScopedClassicLocale() : previous_(uselocale(ClassicLocale())) {}
+
+ScopedClassicLocale::~ScopedClassicLocale() { uselocale(previous_); }
 
 }  // namespace base

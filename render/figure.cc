@@ -1,6 +1,8 @@
 // Figure formats and writing (see figure.h).
 #include "render/figure.h"
 
+#include "base/file_write.h"
+
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -107,7 +109,7 @@ std::string Figure::Encode(FigureFormat format) const {
 }
 
 void WriteFigure(const std::string& path, const Figure& figure, const std::string& flag) {
-  WriteFileAtomically(path, figure.Encode(FigureFormatForPath(path, flag)));
+  base::WriteFileAtomic(path, figure.Encode(FigureFormatForPath(path, flag)));
 }
 
 std::vector<std::string> WriteFigureFormats(const std::string& path, const Figure& figure,
@@ -115,7 +117,7 @@ std::vector<std::string> WriteFigureFormats(const std::string& path, const Figur
   std::vector<std::string> written;
   for (FigureFormat f : formats) {
     written.push_back(PathWithFormat(path, f));
-    WriteFileAtomically(written.back(), figure.Encode(f));
+    base::WriteFileAtomic(written.back(), figure.Encode(f));
   }
   return written;
 }

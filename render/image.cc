@@ -15,6 +15,7 @@
 #include <stdexcept>
 
 #include "base/file_read.h"
+#include "base/file_write.h"
 
 namespace render {
 namespace {
@@ -75,32 +76,8 @@ std::string EncodePng(const Image& image, int zlib_level) {
   return out;
 }
 
-void WriteFileAtomically(const std::string& path, const std::string& contents) {
-  namespace fs = std::filesystem;
-  const fs::path target(path);
-  std::error_code ec;
-  if (target.has_parent_path()) fs::create_directories(target.parent_path(), ec);
-  const fs::path tmp =
-      target.parent_path() / (target.filename().string() + ".tmp" + std::to_string(getpid()));
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out) throw std::runtime_error(path + ": cannot open for writing");
-    out.write(contents.data(), static_cast<std::streamsize>(contents.size()));
-    out.close();
-    if (!out) {
-      fs::remove(tmp, ec);
-      throw std::runtime_error(path + ": write failed");
-    }
-  }
-  fs::rename(tmp, target, ec);
-  if (ec) {
-    fs::remove(tmp, ec);
-    throw std::runtime_error(path + ": cannot rename temporary file into place");
-  }
-}
-
 void WritePng(const std::string& path, const Image& image, int zlib_level) {
-  WriteFileAtomically(path, EncodePng(image, zlib_level));
+  base::WriteFileAtomic(path, EncodePng(image, zlib_level));
 }
 
 Image DecodePng(const std::string& bytes, const std::string& source_name) {

@@ -41,9 +41,6 @@ std::string EncodePng(const Image& image, int zlib_level = 2);
 // Creates missing parent folders. Throws std::runtime_error naming the path on failure.
 void WritePng(const std::string& path, const Image& image, int zlib_level = 2);
 
-// Writes `contents` to `path` atomically (temporary file + rename; parent folders created).
-// Throws std::runtime_error naming the path on failure.
-void WriteFileAtomically(const std::string& path, const std::string& contents);
 
 // Limits of PNG input, checked before decoding: file bytes and pixels (width × height, read from
 // the header; 8192 × 8192 = 256 MB of RGBA).

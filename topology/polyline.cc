@@ -41,16 +41,16 @@ Chain ParseChainCsv(std::istream& in, const std::string& source_name) {
     while (std::getline(fields, field, ',')) {
       field = Trim(field);
       if (++count > 3) Fail(source_name, line_no, "expected 3 comma-separated numbers x,y,z");
-      const std::optional<double> v = base::ParseFiniteDouble(field);
-      if (!v) {
-        char* end = nullptr;  // a whole-field number that is not finite (nan, inf, 1e400)?
-        std::strtod(field.c_str(), &end);
-        Fail(source_name, line_no,
-             !field.empty() && end == field.c_str() + field.size()
-                 ? "non-finite value '" + field + "'"
-                 : "'" + field + "' is not a number");
+      double v = 0.0;
+      switch (base::ClassifyNumber(field, &v)) {
+        case base::NumberKind::kFinite:
+          break;
+        case base::NumberKind::kNonFinite:
+          Fail(source_name, line_no, "non-finite value '" + field + "'");
+        case base::NumberKind::kNotANumber:
+          Fail(source_name, line_no, "'" + field + "' is not a number");
       }
-      xyz.push_back(*v);
+      xyz.push_back(v);
     }
     if (line.back() == ',') Fail(source_name, line_no, "trailing comma");
     if (count != 3) Fail(source_name, line_no, "expected 3 comma-separated numbers x,y,z");

@@ -4,6 +4,7 @@
 #include <regex>
 #include <stdexcept>
 
+#include "base/numbers.h"
 #include "render/heatmap.h"
 
 namespace visualize {
@@ -14,7 +15,8 @@ void ParseImageSize(const std::string& text, const std::string& flag, int* width
   if (!std::regex_match(text, m, kSize)) {
     throw std::invalid_argument(flag + ": expected WxH such as 640x480, got '" + text + "'");
   }
-  const int w = std::stoi(m[1].str()), h = std::stoi(m[2].str());
+  const int w = static_cast<int>(*base::ParseInteger(m[1].str()));
+  const int h = static_cast<int>(*base::ParseInteger(m[2].str()));
   if (w < 16 || h < 16 || w > 8192 || h > 8192) {
     throw std::invalid_argument(flag + ": each side must be in [16, 8192], got '" + text + "'");
   }

@@ -8,8 +8,8 @@
 #include "planning/grasp/grasp_quality.h"
 #include "planning/physics/grasp_report.h"
 #include "render/heatmap.h"
-#include "visualize/figures.h"
 #include "render/plot.h"
+#include "visualize/figures.h"
 
 namespace visualize {
 
@@ -87,85 +87,105 @@ double Quantile(std::vector<double>* v, double q) {
   return (*v)[k] + (pos - static_cast<double>(k)) * ((*v)[k + 1] - (*v)[k]);
 }
 
+// One panel of the unwrap figure: a measure of a run's report on a log axis.
+struct UnwrapMeasure {
+  const char* title;
+  const char* y_label;
+  double (*value)(const planning::PlanReport&);
+  // Zero cannot be drawn on a log axis: a run with no count sits at 1 (the axis floor; wall
+  // time: 1e-4 s).
+  double floor;
+};
+
+const UnwrapMeasure kUnwrapMeasures[3] = {
+    {"Collision checks", "Collision checks",
+     [](const planning::PlanReport& r) { return static_cast<double>(r.collision_checks); }, 1.0},
+    {"Narrow-phase calls", "Narrow-phase calls",
+     [](const planning::PlanReport& r) { return static_cast<double>(r.narrow_phase_calls); }, 1.0},
+    {"Wall time", "Wall time (s)", [](const planning::PlanReport& r) { return r.time_s; }, 1e-4}};
+
+// Planner `p`'s series of measure `m`: per angle the median and interquartile range over the
+// solved runs (NaN without), and a failure cross per failed run. Failure crosses are staggered
+// vertically by planner (factors 1.25^k about the run's value, k centred on the planner list)
+// so that the failures of several planners at one budget stay visible; on the log axes that is
+// 0.1 decade between neighbouring planners.
+render::PlotSeries UnwrapSeries(const planning::UnwrapBenchmarkResult& result, size_t p,
+                                const UnwrapMeasure& m) {
+  const double planners = static_cast<double>(result.planners.size());
+  const double stagger = std::pow(1.25, static_cast<double>(p) - 0.5 * (planners - 1.0));
+  render::PlotSeries ser;
+  ser.label = planning::PlannerName(result.planners[p]);
+  bool any_band = false;
+  for (double angle : result.angles_deg) {
+    std::vector<double> solved;
+    for (const planning::UnwrapRun& r : result.runs) {
+      if (r.planner != result.planners[p] || r.angle_deg != angle) continue;
+      const double v = std::max(m.value(r.report), m.floor);
+      if (r.report.success) {
+        solved.push_back(v);
+      } else {
+        ser.failure_x.push_back(angle);
+        ser.failure_y.push_back(v * stagger);
+      }
+    }
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    ser.x.push_back(angle);
+    ser.y.push_back(solved.empty() ? nan : Quantile(&solved, 0.5));
+    ser.y_lo.push_back(solved.size() >= 2 ? Quantile(&solved, 0.25) : nan);
+    ser.y_hi.push_back(solved.size() >= 2 ? Quantile(&solved, 0.75) : nan);
+    any_band |= solved.size() >= 2;
+  }
+  if (!any_band) ser.y_lo.clear(), ser.y_hi.clear();
+  return ser;
+}
+
+// Headroom above the data (a third of the decades shown) for the legend and the failure markers
+// at the budget: the log y range from the decade below the smallest value.
+void SetLogRange(render::PlotPanel* panel) {
+  double y_top = 0.0, y_bottom = std::numeric_limits<double>::infinity();
+  for (const auto& ser : panel->series) {
+    for (const std::vector<double>* v : {&ser.y, &ser.y_lo, &ser.y_hi, &ser.failure_y}) {
+      for (double y : *v) {
+        if (std::isfinite(y) && y > 0.0) {
+          y_top = std::max(y_top, y);
+          y_bottom = std::min(y_bottom, y);
+        }
+      }
+    }
+  }
+  if (y_top > 0.0) {
+    const double lo = std::floor(std::log10(y_bottom)), hi = std::log10(y_top);
+    panel->axes.y_min = std::pow(10.0, lo);
+    panel->axes.y_max = std::pow(10.0, std::ceil(hi + 0.5 * std::max(1.0, hi - lo)));
+  }
+}
+
+// The panel of measure `m` over the angle to unwrap, one series per planner; `legend` on the
+// first panel only.
+render::PlotPanel UnwrapPanel(const planning::UnwrapBenchmarkResult& result, const UnwrapMeasure& m,
+                              bool legend) {
+  render::PlotPanel panel;
+  for (size_t p = 0; p < result.planners.size(); ++p) {
+    panel.series.push_back(UnwrapSeries(result, p, m));
+  }
+  panel.axes.title = m.title;
+  panel.axes.x_label = "Angle to unwrap (deg)";
+  panel.axes.y_label = m.y_label;
+  panel.axes.log_y = true;
+  panel.axes.legend = legend ? render::LegendPosition::kTopLeft : render::LegendPosition::kNone;
+  SetLogRange(&panel);
+  return panel;
+}
+
 }  // namespace
 
 std::optional<render::Figure> UnwrapFigure(const planning::UnwrapBenchmarkResult& result) {
   if (result.runs.empty()) return std::nullopt;
-  struct Measure {
-    const char* title;
-    const char* y_label;
-    double (*value)(const planning::PlanReport&);
-  };
-  const Measure measures[3] = {
-      {"Collision checks", "Collision checks",
-       [](const planning::PlanReport& r) { return static_cast<double>(r.collision_checks); }},
-      {"Narrow-phase calls", "Narrow-phase calls",
-       [](const planning::PlanReport& r) { return static_cast<double>(r.narrow_phase_calls); }},
-      {"Wall time", "Wall time (s)", [](const planning::PlanReport& r) { return r.time_s; }}};
   int seeds = 0;
   for (const planning::UnwrapRun& r : result.runs) seeds = std::max(seeds, r.seed + 1);
-  // Failure crosses are staggered vertically by planner (factors 1.25^k about the run's value, k
-  // centred on the planner list) so that the failures of several planners at one budget stay
-  // visible; on the log axes that is 0.1 decade between neighbouring planners.
-  const double planners = static_cast<double>(result.planners.size());
-  const auto stagger = [&](size_t p) {
-    return std::pow(1.25, static_cast<double>(p) - 0.5 * (planners - 1.0));
-  };
   std::vector<render::PlotPanel> panels;
-  for (const Measure& m : measures) {
-    render::PlotPanel panel;
-    for (size_t p = 0; p < result.planners.size(); ++p) {
-      render::PlotSeries ser;
-      ser.label = planning::PlannerName(result.planners[p]);
-      bool any_band = false;
-      for (double angle : result.angles_deg) {
-        std::vector<double> solved;
-        for (const planning::UnwrapRun& r : result.runs) {
-          if (r.planner != result.planners[p] || r.angle_deg != angle) continue;
-          // Zero cannot be drawn on a log axis: a run with no count sits at 1 (the axis floor).
-          const double v = std::max(m.value(r.report), m.value == measures[2].value ? 1e-4 : 1.0);
-          if (r.report.success) {
-            solved.push_back(v);
-          } else {
-            ser.failure_x.push_back(angle);
-            ser.failure_y.push_back(v * stagger(p));
-          }
-        }
-        const double nan = std::numeric_limits<double>::quiet_NaN();
-        ser.x.push_back(angle);
-        ser.y.push_back(solved.empty() ? nan : Quantile(&solved, 0.5));
-        ser.y_lo.push_back(solved.size() >= 2 ? Quantile(&solved, 0.25) : nan);
-        ser.y_hi.push_back(solved.size() >= 2 ? Quantile(&solved, 0.75) : nan);
-        any_band |= solved.size() >= 2;
-      }
-      if (!any_band) ser.y_lo.clear(), ser.y_hi.clear();
-      panel.series.push_back(ser);
-    }
-    panel.axes.title = m.title;
-    panel.axes.x_label = "Angle to unwrap (deg)";
-    panel.axes.y_label = m.y_label;
-    panel.axes.log_y = true;
-    panel.axes.legend =
-        panels.empty() ? render::LegendPosition::kTopLeft : render::LegendPosition::kNone;
-    // Headroom above the data (a third of the decades shown) for the legend and the failure
-    // markers at the budget.
-    double y_top = 0.0, y_bottom = std::numeric_limits<double>::infinity();
-    for (const auto& ser : panel.series) {
-      for (const std::vector<double>* v : {&ser.y, &ser.y_lo, &ser.y_hi, &ser.failure_y}) {
-        for (double y : *v) {
-          if (std::isfinite(y) && y > 0.0) {
-            y_top = std::max(y_top, y);
-            y_bottom = std::min(y_bottom, y);
-          }
-        }
-      }
-    }
-    if (y_top > 0.0) {
-      const double lo = std::floor(std::log10(y_bottom)), hi = std::log10(y_top);
-      panel.axes.y_min = std::pow(10.0, lo);
-      panel.axes.y_max = std::pow(10.0, std::ceil(hi + 0.5 * std::max(1.0, hi - lo)));
-    }
-    panels.push_back(panel);
+  for (const UnwrapMeasure& m : kUnwrapMeasures) {
+    panels.push_back(UnwrapPanel(result, m, /*legend=*/panels.empty()));
   }
   render::PanelLayout layout;
   layout.width = 1380;
@@ -201,10 +221,11 @@ GraspSummaryData GraspSummaryDataOf(const phys::GraspTrialsResult& result) {
     const phys::GraspMethodSummary& s = result.summary[mi];
     // The legend carries each method's rate with its Wilson 95 % interval: over the grasps
     // (stable = all six directions held) and, with perturbations, over every repetition.
-    std::string label =
-        std::string(planning::ToString(s.method)) + ": " + phys::RateText(s.stable, s.grasps, s.ci95);
+    std::string label = std::string(planning::ToString(s.method)) + ": " +
+                        phys::RateText(s.stable, s.grasps, s.ci95);
     if (perturbed) {
-      label += ", perturbed " + phys::RateText(s.perturbed_stable, s.perturbed_trials, s.perturbed_ci95);
+      label +=
+          ", perturbed " + phys::RateText(s.perturbed_stable, s.perturbed_trials, s.perturbed_ci95);
     }
     d.methods.push_back(label);
     d.value.emplace_back();

@@ -334,11 +334,13 @@ SceneDocument RobotSceneDocument(const std::string& path, const std::string& q_t
                                  const std::string& pose, const planning::RobotInputOptions& input,
                                  const SceneBuildOptions& options) {
   planning::RobotScene rs = planning::LoadRobotScene(path, input);
-  rs.q = planning::ChooseQ(rs, q_text, pose);
+  std::vector<std::string> warnings = rs.warnings;
+  rs.q = planning::ChooseQ(rs, q_text, pose, &warnings);
   planning::KinematicsData kin(rs.robot);
   planning::ForwardKinematics(rs.robot, rs.q, &kin);
   SceneMeshCache cache;
   SceneDocument doc;
+  doc.warnings = std::move(warnings);
   doc.scene = BuildRobotScene(rs.robot, kin, rs.env, options, &cache);
   doc.camera = FrameSceneCamera(doc.scene);
   if (rs.document.is_object() && rs.document.contains("camera")) {

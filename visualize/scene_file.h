@@ -9,6 +9,7 @@
 #include <cstddef>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "render/scene.h"
 
@@ -28,6 +29,7 @@ struct SceneDocument {
   render::Camera camera;  // defaults when has_camera is false
   bool has_camera = false;
   int width = 0, height = 0;  // "size": [w, h] when given, else 0
+  std::vector<std::string> warnings;  // robot scenes: planning::RobotScene::warnings and pose's
 };
 
 // Parses a scene document. `source` names the file in messages; relative "file" entries (meshes,

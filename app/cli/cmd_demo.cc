@@ -88,7 +88,7 @@ class Demo {
   explicit Demo(const DemoArgs& args) : args_(args), out_(args.out_dir) {}
 
   int Run() {
-    CheckOutputDir(out_.string(), "-o");
+    base::CheckOutputDir(out_.string(), "-o");
     const StopCheck stop(args_.timeout);  // the commands of each stage see the same deadline
     stop_ = &stop;
     fs::create_directories(out_);
@@ -104,7 +104,7 @@ class Demo {
     }
     Stage("interactive viewer, headless screenshot", [&] { return Viewer(); });
     WriteIndex();
-    std::printf("wrote %s\n", (out_ / "index.html").c_str());
+    Note("wrote %s", (out_ / "index.html").c_str());
     if (stopped_) {
       std::printf("status: %s\n", stopped_timeout_ ? "timeout" : "interrupted");
       return stopped_timeout_ ? kExitFailed : kExitInterrupted;
@@ -163,7 +163,7 @@ class Demo {
         for (Eigen::Index c = 0; c < w.cols(); ++c) m.back().push_back(w(r, c));
       }
       j["matrix"] = std::move(m);
-      WriteFileAtomic((out_ / "writhe" / (std::string(p.name) + ".json")).string(),
+      base::WriteFileAtomic((out_ / "writhe" / (std::string(p.name) + ".json")).string(),
                       j.dump() + "\n");
       const std::string png = "writhe/" + std::string(p.name) + ".png";
       for (render::FigureFormat f : args_.formats) {  // PNG always (the page shows it)
@@ -291,7 +291,7 @@ class Demo {
       if (done == total) EndProgress();
     };
     const planning::UnwrapBenchmarkResult result = planning::RunUnwrapBenchmark(options);
-    WriteFileAtomic((dir / "unwrap.csv").string(), planning::UnwrapCsv(result));
+    base::WriteFileAtomic((dir / "unwrap.csv").string(), planning::UnwrapCsv(result));
     if (const auto figure = visualize::UnwrapFigure(result)) {
       render::WriteFigure((dir / "unwrap.png").string(), *figure);
       visualize::WriteVectorFormats((dir / "unwrap.png").string(), *figure, args_.formats);
@@ -364,7 +364,7 @@ class Demo {
 
   int Viewer() {
     const fs::path script = out_ / "viewer_script.txt";
-    WriteFileAtomic(
+    base::WriteFileAtomic(
         script.string(),
         "# The viewer after Plan (on its worker thread; wait until it is done), at the\n"
         "# end of the AICO trajectory (seek takes seconds: the plan lasts 2 s).\n"
@@ -395,7 +395,7 @@ class Demo {
            << "</li>";
     }
     page << "</ul>\n" << html_.str() << "</body></html>\n";
-    WriteFileAtomic((out_ / "index.html").string(), page.str());
+    base::WriteFileAtomic((out_ / "index.html").string(), page.str());
   }
 
   DemoArgs args_;

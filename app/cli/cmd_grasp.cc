@@ -32,7 +32,7 @@ struct SynthesizeArgs {
 };
 
 int RunSynthesize(const SynthesizeArgs& a) {
-  if (a.out_given) CheckOutputFile(a.out_path, "-o");  // before any work; "" is refused
+  if (a.out_given) base::CheckOutputFile(a.out_path, "-o");  // before any work; "" is refused
   const std::vector<planning::GraspObject> objects =
       planning::LoadGraspObjects(base::AssetPath("grasps/objects.json"));
   planning::Robot human = planning::LoadRobot(base::AssetPath("robots/human_hand.urdf"));
@@ -63,7 +63,7 @@ int RunSynthesize(const SynthesizeArgs& a) {
   }
   for (const auto& [name, v] : grasp.joints) std::printf("  %-16s %+.4f\n", name.c_str(), v);
   grasp.close.clear();
-  if (!a.out_path.empty()) WriteFileAtomic(a.out_path, planning::HumanGraspToJson(grasp));
+  if (!a.out_path.empty()) base::WriteFileAtomic(a.out_path, planning::HumanGraspToJson(grasp));
   return kExitOk;
 }
 
@@ -99,10 +99,11 @@ int RunTransfer(const TransferArgs& a) {
   } else {
     methods = {ParseFlag("--method", [&] { return planning::ParseTransferMethod(a.method); })};
   }
-  OutputDir out(a.out_dir, "-o");  // checked before any work
+  const std::vector<std::string> grasp_files = planning::SelectGraspFiles(a.grasp);
+  OutputDir out(a.out_dir, "-o", "grasp transfer", grasp_files);  // checked before any work
   const StopCheck stop(a.timeout);
   // Load everything first so that a bad file fails before any simulation runs.
-  const planning::GraspInputs in = planning::LoadGraspInputs(planning::SelectGraspFiles(a.grasp));
+  const planning::GraspInputs in = planning::LoadGraspInputs(grasp_files);
 
   namespace phys = planning::physics;
   phys::OdeRuntime ode;
@@ -197,18 +198,17 @@ void AddGraspCommands(CLI::App* root, CommandList* commands) {
   transfer->add_flag("--frames", ta->frames,
                      "also write frames of the transfer and stability test");
   transfer->add_flag("--json", ta->json, "print report.json to stdout");
-  transfer
-      ->add_option("--perturb", ta->perturb,
-                   "also repeat every grasp and method N times with the object moved by up to "
-                   "+-5 mm per axis and turned by up to +-5 deg (seeded); report.json then gives "
-                   "per grasp and method perturbed: {trials, stable, ci95} (Wilson 95 %)")
-      ->check(CLI::Range(1, 1000));
+  IntIn(transfer->add_option(
+            "--perturb", ta->perturb,
+            "also repeat every grasp and method N times with the object moved by up to "
+            "+-5 mm per axis and turned by up to +-5 deg (seeded); report.json then gives "
+            "per grasp and method perturbed: {trials, stable, ci95} (Wilson 95 %)"),
+        1, 1000);
   transfer->add_option("--seed", ta->seed, "seed of the perturbations (default 0)");
-  transfer
-      ->add_option("--threads", ta->threads,
-                   "threads computing transfers ahead of the simulations (default: the number "
-                   "of cores); the results do not depend on it")
-      ->check(CLI::Range(1, 256));
+  IntIn(transfer->add_option("--threads", ta->threads,
+                             "threads computing transfers ahead of the simulations (default: the "
+                             "number of cores); the results do not depend on it"),
+        1, 256);
   AddFormatsFlag(transfer, &ta->formats);
   commands->push_back({transfer, [ta] { return RunTransfer(*ta); }});
 }

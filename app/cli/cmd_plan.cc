@@ -14,6 +14,7 @@
 #include <sstream>
 
 #include "base/assets.h"
+#include "base/version.h"
 #include "app/cli/command.h"
 #include "visualize/figures.h"
 #include "app/cli/io.h"
@@ -139,7 +140,7 @@ std::vector<planning::Planner> ParsePlanners(const std::string& text) {
 // The header of the OMPL logs of `bench unwrap`: this host, the start time (UTC) and the options.
 OmplLogInfo BenchLogInfo(const planning::UnwrapBenchmarkOptions& options) {
   OmplLogInfo info;
-  info.version = TOPOPLAN_VERSION;
+  info.version = base::Version();
   char host[256] = {};
   if (gethostname(host, sizeof host - 1) == 0 && host[0] != '\0') info.host = host;
   for (char& c : info.host) {
@@ -187,13 +188,21 @@ std::string ObjectPositionsCsv(const planning::ReplanResult& r) {
   return out.str();
 }
 
+// The input files of a plan run (never to be replaced by its outputs): the scenario file (when
+// the argument names one) and the object path.
+std::vector<std::string> PlanInputs(const PlanArgs& pa) {
+  std::vector<std::string> inputs{pa.scenario};
+  if (!pa.object_path.empty()) inputs.push_back(pa.object_path);
+  return inputs;
+}
+
 // A plan stopped before it finished (--timeout, SIGINT/SIGTERM): DIR/report.json with `fields`
 // and the stop's status (StoppedReportJson), committed; the same JSON on stdout with --json.
 // Exit 1 after a timeout, 130 after a signal.
 ExitCode StoppedPlanExit(const StopRequested& e, nlohmann::json fields, const PlanArgs& pa,
                          OutputDir* out) {
   const nlohmann::json report = StoppedReportJson(e, std::move(fields));
-  WriteFileAtomic((fs::path(out->staging()) / "report.json").string(), report.dump(2) + "\n");
+  base::WriteFileAtomic((fs::path(out->staging()) / "report.json").string(), report.dump(2) + "\n");
   out->Commit();
   std::fprintf(stderr, "\n%s: wrote %s/report.json\n", e.what(), pa.output.c_str());
   if (pa.json) std::printf("%s\n", report.dump(2).c_str());
@@ -212,10 +221,11 @@ ExitCode RunMovingObjectPlan(const PlanArgs& pa, const planning::ScenarioOverrid
   if (!(pa.replan_period > 0.0) || !std::isfinite(pa.replan_period)) {
     throw std::invalid_argument("--replan-period: expected a finite number of seconds > 0");
   }
-  OutputDir out(pa.output, "-o");  // checked before any work
+  OutputDir out(pa.output, "-o", "plan", PlanInputs(pa));  // checked before any work
   const planning::ObjectPath path =
       ParseFlag("--object-path", [&] { return planning::ReadObjectPath(pa.object_path); });
   const auto scenario = planning::LoadScenarioArg(pa.scenario, overrides);
+  ReportWarnings(scenario->warnings);
   ParseFlag("--moving-object", [&] {  // unknown names list the valid ones
     planning::ObjectPosition(*scenario, scenario->initial, pa.moving_object);
   });
@@ -264,11 +274,12 @@ ExitCode RunMovingObjectPlan(const PlanArgs& pa, const planning::ScenarioOverrid
                           {"initial_solve_ms", r.initial_cpu_ms},
                           {"passed_through", r.passed_through},
                           {"replans", replans}};
+  report["provenance"] = ProvenanceJson();
   const std::string dir = out.staging();
-  WriteFileAtomic((fs::path(dir) / "trajectory.csv").string(),
+  base::WriteFileAtomic((fs::path(dir) / "trajectory.csv").string(),
                   planning::TrajectoryCsv(*scenario, r.executed));
-  WriteFileAtomic((fs::path(dir) / "object_path.csv").string(), ObjectPositionsCsv(r));
-  WriteFileAtomic((fs::path(dir) / "report.json").string(), report.dump(2) + "\n");
+  base::WriteFileAtomic((fs::path(dir) / "object_path.csv").string(), ObjectPositionsCsv(r));
+  base::WriteFileAtomic((fs::path(dir) / "report.json").string(), report.dump(2) + "\n");
   if (pa.frames) {
     MovingObjectFrames moving;
     moving.object = r.object;
@@ -288,7 +299,7 @@ ExitCode RunMovingObjectPlan(const PlanArgs& pa, const planning::ScenarioOverrid
         "(median %.1f ms, max %.1f ms CPU), %s the %s\n",
         r.replans.size(), r.period_s, r.rate_hz, r.wall_rate_hz, r.median_cpu_ms, r.max_cpu_ms,
         r.passed_through ? "passed through" : "did not pass through", pa.moving_object.c_str());
-    std::printf("wrote %s/trajectory.csv, %s/object_path.csv, %s/report.json\n", pa.output.c_str(),
+    Note("wrote %s/trajectory.csv, %s/object_path.csv, %s/report.json", pa.output.c_str(),
                 pa.output.c_str(), pa.output.c_str());
   }
   return r.success ? kExitOk : kExitFailed;
@@ -333,9 +344,9 @@ void AddPlanCommands(CLI::App* root, CommandList* commands) {
   plan->add_option("--replan-period", pa->replan_period,
                    "plan time between re-plans in seconds, rounded to whole time slices "
                    "(default 0.1)");
-  plan->add_option("--replan-sweeps", pa->replan_sweeps,
-                   "AICO sweep budget of each re-plan (default 3)")
-      ->check(CLI::Range(1, 1000));
+  IntIn(plan->add_option("--replan-sweeps", pa->replan_sweeps,
+                   "AICO sweep budget of each re-plan (default 3)"),
+        1, 1000);
   AddFormatsFlag(plan, &pa->formats);
   plan->footer(
       "Writes DIR/trajectory.csv (step,time_s,<joints in robot order>) and DIR/report.json\n"
@@ -360,9 +371,10 @@ void AddPlanCommands(CLI::App* root, CommandList* commands) {
          if (!pa->moving_object.empty() || !pa->object_path.empty()) {
            return RunMovingObjectPlan(*pa, overrides, planner);
          }
-         OutputDir out(pa->output, "-o");  // checked before any work
+         OutputDir out(pa->output, "-o", "plan", PlanInputs(*pa));  // checked before any work
          const StopCheck stop(pa->timeout);
          const auto scenario = planning::LoadScenarioArg(pa->scenario, overrides);
+         ReportWarnings(scenario->warnings);
          planning::PlanResult result;
          try {
            result = planning::RunPlanner(
@@ -384,19 +396,23 @@ void AddPlanCommands(CLI::App* root, CommandList* commands) {
          }
          if (planner == planning::Planner::kAico) EndProgress();
          const nlohmann::json report = WritePlanOutputs(*scenario, result, pa->seed, out.staging());
+         std::string frames_note;
          if (pa->frames && result.trajectory.num_points() > 0) {
-           WritePlanFrames(
+           const PlanFrames frames = WritePlanFrames(
                *scenario, result.trajectory, out.staging(),
                [&stop](const render::Image&, const render::Image*) { stop.Poll(); }, nullptr,
                PlanFrameOptions{.stamp = !pa->no_stamp, .formats = pa->formats});
+           // Named in the output folder, never in the staging area (gone after Commit).
+           frames_note = ", " + pa->output + "/frames/ (" + std::to_string(frames.labels.size()) +
+                         " frames" + (frames.frames.video.empty() ? "" : ", movie") + ")";
          }
          out.Commit();
          if (pa->json) {
            std::printf("%s\n", report.dump(2).c_str());
          } else {
            std::printf("%s\n", planning::PlanSummaryLine(*scenario, result.report).c_str());
-           std::printf("wrote %s/trajectory.csv, %s/report.json\n", pa->output.c_str(),
-                       pa->output.c_str());
+           Note("wrote %s/trajectory.csv, %s/report.json%s", pa->output.c_str(),
+                pa->output.c_str(), frames_note.c_str());
          }
          return result.report.success ? kExitOk : kExitFailed;
        }});
@@ -408,8 +424,8 @@ void AddPlanCommands(CLI::App* root, CommandList* commands) {
   CLI::App* unwrap = bench->add_subcommand(
       "unwrap", "Thesis Fig. 4.5: collision checks vs angle to unwrap, AICO vs RRT vs BiRRT");
   unwrap->add_option("--angles", ba->angles, "start wraps a:b:step in degrees (default 0:900:90)");
-  unwrap->add_option("--seeds", ba->seeds, "runs per angle and planner, seeds 0..N-1 (default 3)")
-      ->check(CLI::Range(1, 1000));
+  IntIn(unwrap->add_option("--seeds", ba->seeds, "runs per angle and planner, seeds 0..N-1 (default 3)"),
+        1, 1000);
   unwrap->add_option(
       "--planners", ba->planners,
       "comma-separated planners, each at most once (default: all of this build: " +
@@ -420,10 +436,10 @@ void AddPlanCommands(CLI::App* root, CommandList* commands) {
             return c;
           }() +
           ")");
-  unwrap
+  IntIn(unwrap
       ->add_option("--budget", ba->budget,
-                   "collision-check budget of the RRTs (default: the scenario's, 100000)")
-      ->check(CLI::Range(1L, 1000000000L));
+                   "collision-check budget of the RRTs (default: the scenario's, 100000)"),
+        1L, 1000000000L);
   unwrap->add_option("--perturb", ba->perturb,
                      "move the pole of each seed by a random offset of at most M metres "
                      "perpendicular to its axis (seeded, reproducible; 0 <= M <= 1, default 0)");
@@ -466,14 +482,15 @@ void AddPlanCommands(CLI::App* root, CommandList* commands) {
          }
          options.perturb_m = ba->perturb;
          options.aico_stop_when_solved = ParseAicoStop(ba->aico_stop);
-         OutputDir out(ba->output, "-o");  // checked before any work
-         std::unique_ptr<OutputDir> log_dir;
+         OutputDir out(ba->output, "-o", "bench unwrap", {options.scenario_path});
+         const bool ompl_log = unwrap->count("--ompl-log") > 0;  // "" is refused, not ignored
          OmplLogInfo log_info;
-         if (unwrap->count("--ompl-log") > 0) {  // "" is refused, not ignored
-           CheckOutputFile(ba->ompl_log, "--ompl-log");
-           const fs::path folder = fs::path(ba->ompl_log).parent_path();
-           log_dir =
-               std::make_unique<OutputDir>(folder.empty() ? "." : folder.string(), "--ompl-log");
+         if (ompl_log) {
+           if (ba->ompl_log.empty()) throw std::invalid_argument("--ompl-log: empty output path");
+           for (double angle : options.angles_deg) {  // each log file, before any work
+             base::CheckOutputFile(OmplLogPath(ba->ompl_log, angle), "--ompl-log",
+                                   {options.scenario_path});
+           }
            log_info = BenchLogInfo(options);
          }
          const StopCheck stop(ba->timeout);
@@ -494,34 +511,29 @@ void AddPlanCommands(CLI::App* root, CommandList* commands) {
          } catch (const StopRequested& e) {
            // Keep the finished rows under a name that says so (no figure of a partial sweep);
            // unwrap.csv and unwrap.png of an earlier complete run in DIR stay as they were.
-           WriteFileAtomic((fs::path(out.staging()) / "unwrap.partial.csv").string(),
+           base::WriteFileAtomic((fs::path(out.staging()) / "unwrap.partial.csv").string(),
                            planning::UnwrapCsv(finished));
            out.Commit();
            std::fprintf(stderr, "\n%s: wrote %s/unwrap.partial.csv (%zu of %d runs)\n", e.what(),
                         ba->output.c_str(), finished.runs.size(), total);
            return e.timeout ? kExitFailed : kExitInterrupted;
          }
-         WriteFileAtomic((fs::path(out.staging()) / "unwrap.csv").string(), planning::UnwrapCsv(result));
+         base::WriteFileAtomic((fs::path(out.staging()) / "unwrap.csv").string(), planning::UnwrapCsv(result));
          if (const auto figure = visualize::UnwrapFigure(result)) {
            const std::string png = (fs::path(out.staging()) / "unwrap.png").string();
            render::WriteFigure(png, *figure);
            visualize::WriteVectorFormats(png, *figure, ba->formats);
          }
-         if (log_dir) {
-           for (size_t a = 0; a < result.angles_deg.size(); ++a) {
-             const std::string name =
-                 fs::path(OmplLogPath(ba->ompl_log, result.angles_deg[a])).filename().string();
-             WriteFileAtomic((fs::path(log_dir->staging()) / name).string(),
-                             OmplBenchmarkLog(result, a, log_info));
-           }
-         }
          out.Commit();
-         if (log_dir) {
-           log_dir->Commit();
-           std::printf("wrote %zu OMPL benchmark logs %s\n", result.angles_deg.size(),
+         if (ompl_log) {  // each log written whole
+           for (size_t a = 0; a < result.angles_deg.size(); ++a) {
+             base::WriteFileAtomic(OmplLogPath(ba->ompl_log, result.angles_deg[a]),
+                                   OmplBenchmarkLog(result, a, log_info));
+           }
+           Note("wrote %zu OMPL benchmark logs %s", result.angles_deg.size(),
                        OmplLogPath(ba->ompl_log, result.angles_deg.front()).c_str());
          }
-         std::printf("wrote %s/unwrap.csv and %s/unwrap.png (%d runs)\n", ba->output.c_str(),
+         Note("wrote %s/unwrap.csv and %s/unwrap.png (%d runs)", ba->output.c_str(),
                      ba->output.c_str(), total);
          return kExitOk;
        }});

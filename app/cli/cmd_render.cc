@@ -94,8 +94,9 @@ void AddRenderCommands(CLI::App* root, CommandList* commands) {
       "Exit codes: 0 ok, 2 bad scene/flags (the message names the JSON path), 3 no GL.");
   commands->push_back(
       {render_cmd, [ra]() {
-         CheckOutputFile(ra->output, "-o");
+         base::CheckOutputFile(ra->output, "-o");
          visualize::SceneDocument doc = LoadRenderInput(ra->input, ra->q, *ra);
+         ReportWarnings(doc.warnings);
          int width = doc.width > 0 ? doc.width : 640, height = doc.height > 0 ? doc.height : 480;
          if (!ra->size.empty()) visualize::ParseImageSize(ra->size, "--size", &width, &height);
          if (!ra->camera.empty()) {
@@ -119,7 +120,7 @@ void AddRenderCommands(CLI::App* root, CommandList* commands) {
          options.shadows = !ra->no_shadows;
          const render::Image image = renderer.Render(doc.scene, doc.camera, width, height, options);
          render::WritePng(ra->output, image);
-         std::printf("wrote %s (%dx%d, %s)\n", ra->output.c_str(), width, height,
+         Note("wrote %s (%dx%d, %s)", ra->output.c_str(), width, height,
                      render::GlBackendName(context.backend()));
          return kExitOk;
        }});
@@ -153,7 +154,7 @@ void AddRenderCommands(CLI::App* root, CommandList* commands) {
       {heatmap, [ha]() {
          int width = 0, height = 0;
          visualize::ParseImageSize(ha->size, "--size", &width, &height);
-         CheckOutputFile(ha->output, "-o");
+         base::CheckOutputFile(ha->output, "-o");
          render::FigureFormatForPath(ha->output, "-o");  // the format, checked before the work
          const topology::Chain a = topology::ReadChainCsv(ha->a_path);
          const topology::Chain b = topology::ReadChainCsv(ha->b_path);
@@ -171,7 +172,7 @@ void AddRenderCommands(CLI::App* root, CommandList* commands) {
          f.limit = ha->clim;
          f.mark_peak = ha->mark_peak;
          render::WriteFigure(ha->output, visualize::WritheFigure(w, Stem(ha->a_path), Stem(ha->b_path), f));
-         std::printf("wrote %s (%ldx%ld writhe matrix, total %.6f)\n", ha->output.c_str(),
+         Note("wrote %s (%ldx%ld writhe matrix, total %.6f)", ha->output.c_str(),
                      static_cast<long>(w.rows()), static_cast<long>(w.cols()), w.sum());
          return kExitOk;
        }});
@@ -186,15 +187,15 @@ void AddRenderCommands(CLI::App* root, CommandList* commands) {
                    "write a diff image (differing pixels red, anti-aliasing yellow)");
   diff->add_option("--threshold", da->threshold, "YIQ threshold in [0,1] (default 0.1)")
       ->check(FiniteIn(0.0, 1.0));
-  diff->add_option("--max-pixels", da->max_pixels,
-                   "allowed differing pixels (default max(10, 0.005% of the pixels))")
-      ->check(CLI::Range(0L, std::numeric_limits<long>::max()));
+  IntIn(diff->add_option("--max-pixels", da->max_pixels,
+                         "allowed differing pixels (default max(10, 0.005% of the pixels))"),
+        0, 1000000000);
   diff->footer(
       "Exit codes: 0 within tolerance, 1 images differ, 2 bad input (missing file, not "
       "a PNG, sizes differ).");
   commands->push_back(
       {diff, [da, diff]() {
-         if (diff->count("-o") > 0) CheckOutputFile(da->output, "-o");  // "" is refused
+         if (diff->count("-o") > 0) base::CheckOutputFile(da->output, "-o");  // "" is refused
          const render::Image a = render::ReadPng(da->expected);
          const render::Image b = render::ReadPng(da->actual);
          render::DiffOptions options;

@@ -88,7 +88,10 @@ void AddRobotCommands(CLI::App* root, CommandList* commands) {
   commands->push_back({fk, [fa]() {
                          const planning::RobotScene scene = planning::LoadRobotScene(fa->urdf, fa->input);
                          const planning::Robot& robot = scene.robot;
-                         const Eigen::VectorXd q = planning::ChooseQ(scene, fa->q, fa->pose);
+                         std::vector<std::string> warnings = scene.warnings;
+                         const Eigen::VectorXd q =
+                             planning::ChooseQ(scene, fa->q, fa->pose, &warnings);
+                         ReportWarnings(warnings);
                          planning::KinematicsData kin(robot);
                          planning::ForwardKinematics(robot, q, &kin);
                          if (fa->json) {
@@ -147,7 +150,9 @@ void AddRobotCommands(CLI::App* root, CommandList* commands) {
       {check, [ca]() {
          planning::RobotScene scene = planning::LoadRobotScene(ca->input, ca->robot_input);
          for (const std::string& spec : ca->objects) planning::AddObjectSpec(spec, &scene);
-         scene.q = planning::ChooseQ(scene, ca->q, ca->pose);
+         std::vector<std::string> warnings = scene.warnings;
+         scene.q = planning::ChooseQ(scene, ca->q, ca->pose, &warnings);
+         ReportWarnings(warnings);  // the pose asked about is checked, even outside the limits
          planning::CollisionOptions options = scene.collision_options;
          options.self_collision = options.self_collision && !ca->no_self;
          planning::KinematicsData kin(scene.robot);

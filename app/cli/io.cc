@@ -1,5 +1,6 @@
 #include "app/cli/io.h"
 
+#include <signal.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -12,7 +13,10 @@
 #include <sstream>
 #include <stdexcept>
 
+#include <nlohmann/json.hpp>
+
 #include "base/file_read.h"
+#include "base/version.h"
 
 namespace app {
 
@@ -23,7 +27,73 @@ bool StderrIsTerminal() {
 }
 }  // namespace
 
+namespace {
+Verbosity g_verbosity = Verbosity::kNormal;
+}  // namespace
+
+void SetVerbosity(Verbosity v) { g_verbosity = v; }
+
+namespace {
+bool g_strict = false;
+}  // namespace
+
+void SetStrict(bool strict) { g_strict = strict; }
+bool Strict() { return g_strict; }
+
+void ReportWarnings(const std::vector<std::string>& warnings) {
+  if (warnings.empty()) return;
+  if (g_strict) throw std::invalid_argument("--strict: " + warnings.front());
+  for (const std::string& w : warnings) std::fprintf(stderr, "topoplan: warning: %s\n", w.c_str());
+}
+
+namespace {
+std::string g_command_line;
+}  // namespace
+
+void SetCommandLine(int argc, char** argv) {
+  if (!g_command_line.empty()) return;  // the outermost command's
+  for (int i = 0; i < argc; ++i) {
+    std::string a = argv[i] ? argv[i] : "";
+    if (i == 0) a = "topoplan";
+    const bool plain = !a.empty() && a.find_first_not_of("abcdefghijklmnopqrstuvwxyz"
+                                                         "ABCDEFGHIJKLMNOPQRSTUVWXYZ"
+                                                         "0123456789_-+=.,:/@%") == std::string::npos;
+    if (!plain) {
+      std::string q = "'";
+      for (char c : a) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+      a = q + "'";
+    }
+    g_command_line += (i ? " " : "") + a;
+  }
+}
+
+const std::string& CommandLine() { return g_command_line; }
+
+nlohmann::json ProvenanceJson() {
+  return {{"version", base::Version()}, {"commit", base::Commit()}, {"command", g_command_line}};
+}
+Verbosity GetVerbosity() { return g_verbosity; }
+
+void Note(const char* format, ...) {
+  if (g_verbosity == Verbosity::kQuiet) return;
+  va_list args;
+  va_start(args, format);
+  std::vprintf(format, args);
+  va_end(args);
+  std::fputc('\n', stdout);
+}
+
+void Detail(const char* format, ...) {
+  if (g_verbosity != Verbosity::kVerbose) return;
+  va_list args;
+  va_start(args, format);
+  std::vfprintf(stderr, format, args);
+  va_end(args);
+  std::fputc('\n', stderr);
+}
+
 void Progress(const char* format, ...) {
+  if (g_verbosity == Verbosity::kQuiet) return;
   const bool tty = StderrIsTerminal();
   char line[512];
   va_list args;
@@ -38,31 +108,52 @@ void Progress(const char* format, ...) {
 }
 
 void EndProgress() {
-  if (StderrIsTerminal()) std::fputc('\n', stderr);
+  if (StderrIsTerminal() && g_verbosity != Verbosity::kQuiet) std::fputc('\n', stderr);
 }
 
-void WriteFileAtomic(const std::string& path, const std::string& contents) {
-  namespace fs = std::filesystem;
-  const fs::path target(path);
-  if (target.has_parent_path()) fs::create_directories(target.parent_path());
-  const fs::path tmp = target.string() + ".tmp." + std::to_string(::getpid());
-  {
-    std::ofstream out(tmp, std::ios::binary);
-    if (!out) throw std::runtime_error(path + ": cannot write output file");
-    out.write(contents.data(), static_cast<std::streamsize>(contents.size()));
-    out.flush();
-    if (!out) {
-      std::error_code ignored;
-      fs::remove(tmp, ignored);
-      throw std::runtime_error(path + ": write failed");
-    }
+namespace {
+
+// Rewrites a decimal integer to its plain form ("+010" -> "10") for CLI11, which would read a
+// leading 0 as octal; anything else is an error.
+CLI::Validator DecimalInteger() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        const std::optional<long long> v = base::ParseInteger(text);
+        if (!v) return "'" + text + "' is not a whole decimal number";
+        text = std::to_string(*v);
+        return "";
+      },
+      "");
+}
+
+bool IsIntegerType(const CLI::Option* o) {
+  const std::string t = o->get_type_name();
+  return t.rfind("INT", 0) == 0 || t.rfind("UINT", 0) == 0;
+}
+
+}  // namespace
+
+CLI::Option* IntIn(CLI::Option* option, long long lo, long long hi) {
+  option->check(CLI::Validator(
+      [lo, hi](std::string& text) -> std::string {
+        const std::optional<long long> v = base::ParseInteger(text);
+        if (!v) return "'" + text + "' is not a whole decimal number";
+        if (*v < lo || *v > hi) {
+          return "'" + text + "' is out of range [" + std::to_string(lo) + ", " +
+                 std::to_string(hi) + "]";
+        }
+        return "";
+      },
+      ""));
+  option->type_name("INT in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+  return option;
+}
+
+void StrictIntegerOptions(CLI::App* app) {
+  for (CLI::Option* o : app->get_options()) {
+    if (IsIntegerType(o)) o->transform(DecimalInteger());
   }
-  std::error_code ec;
-  fs::rename(tmp, target, ec);
-  if (ec) {
-    fs::remove(tmp, ec);
-    throw std::runtime_error(path + ": cannot move output into place");
-  }
+  for (CLI::App* sub : app->get_subcommands({})) StrictIntegerOptions(sub);
 }
 
 CLI::Validator FiniteIn(double lo, double hi) {
@@ -78,37 +169,6 @@ CLI::Validator FiniteIn(double lo, double hi) {
       "NUMBER in " + range.str());
 }
 
-void CheckOutputDir(const std::string& dir, const std::string& flag) {
-  namespace fs = std::filesystem;
-  if (dir.empty()) throw std::invalid_argument(flag + ": empty output path");
-  std::error_code ec;
-  fs::path p = fs::absolute(fs::path(dir), ec);
-  if (ec) throw std::invalid_argument(flag + ": '" + dir + "': " + ec.message());
-  // The folder itself, or its nearest existing ancestor (which would hold the new folders).
-  while (!fs::exists(p, ec)) {
-    if (!p.has_parent_path() || p.parent_path() == p) break;
-    p = p.parent_path();
-  }
-  if (!fs::is_directory(p, ec)) {
-    throw std::invalid_argument(flag + ": '" + dir + "': " + p.string() + " is not a folder");
-  }
-  if (::access(p.c_str(), W_OK | X_OK) != 0) {
-    throw std::invalid_argument(flag + ": '" + dir + "': folder " + p.string() +
-                                " is not writable");
-  }
-}
-
-void CheckOutputFile(const std::string& path, const std::string& flag) {
-  namespace fs = std::filesystem;
-  if (path.empty()) throw std::invalid_argument(flag + ": empty output path");
-  std::error_code ec;
-  if (fs::is_directory(path, ec)) {
-    throw std::invalid_argument(flag + ": '" + path + "' is a folder, expected a file name");
-  }
-  const fs::path parent = fs::path(path).parent_path();
-  CheckOutputDir(parent.empty() ? "." : parent.string(), flag);
-}
-
 void CheckWrithePairs(long long rows_points, long long cols_points) {
   const double pairs = static_cast<double>(std::max(0LL, rows_points - 1)) *
                        static_cast<double>(std::max(0LL, cols_points - 1));
@@ -121,42 +181,139 @@ void CheckWrithePairs(long long rows_points, long long cols_points) {
   }
 }
 
-OutputDir::OutputDir(const std::string& dir, const std::string& flag) : dir_(dir) {
-  namespace fs = std::filesystem;
-  CheckOutputDir(dir, flag);
-  fs::path target = fs::path(dir).lexically_normal();
-  if (!target.has_filename()) target = target.parent_path();  // "out/" -> "out"
-  staging_ = target.string() + ".partial-" + std::to_string(::getpid());
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr const char* kManifest = ".topoplan-outputs.json";
+constexpr const char* kStagingPrefix = ".topoplan-staging-";
+
+// The manifest of an output folder: per command, the entries its last run wrote.
+nlohmann::json ReadManifest(const fs::path& dir) {
+  const fs::path path = dir / kManifest;
   std::error_code ec;
+  if (!fs::exists(path, ec)) return nullptr;
+  try {
+    nlohmann::json j = nlohmann::json::parse(base::ReadFileBounded(path.string(), "manifest"));
+    if (j.is_object() && j.value("tool", "") == "topoplan" && j.contains("outputs") &&
+        j["outputs"].is_object()) {
+      return j;
+    }
+  } catch (const std::exception&) {
+  }
+  return nullptr;
+}
+
+// Removes staging folders left by processes that no longer run (killed before they could clean
+// up).
+void RemoveStaleStaging(const fs::path& dir) {
+  std::error_code ec;
+  for (const fs::directory_entry& e : fs::directory_iterator(dir, ec)) {
+    const std::string name = e.path().filename().string();
+    if (name.rfind(kStagingPrefix, 0) != 0) continue;
+    const std::optional<long long> pid =
+        base::ParseInteger(name.substr(std::string(kStagingPrefix).size()));
+    if (!pid || *pid <= 0) continue;
+    if (::kill(static_cast<pid_t>(*pid), 0) != 0 && errno == ESRCH) fs::remove_all(e.path(), ec);
+  }
+}
+
+// Moves `from` to `to` (replacing it), copying when they are on different file systems.
+void MoveEntry(const fs::path& from, const fs::path& to) {
+  std::error_code ec;
+  fs::remove_all(to, ec);
+  fs::rename(from, to, ec);
+  if (!ec) return;
+  if (ec.value() == EXDEV) {
+    fs::copy(from, to, fs::copy_options::recursive, ec);
+    if (!ec) {
+      fs::remove_all(from, ec);
+      return;
+    }
+  }
+  throw base::WriteError(to.string() + ": cannot move the output into place: " +
+                         base::ErrnoText(ec.value()));
+}
+
+}  // namespace
+
+OutputDir::OutputDir(const std::string& dir, const std::string& flag, const std::string& command,
+                     const std::vector<std::string>& inputs)
+    : dir_(dir), command_(command) {
+  base::CheckOutputDir(dir, flag, inputs);
+  std::error_code ec;
+  if (fs::exists(dir, ec)) {
+    RemoveStaleStaging(dir);
+    // Only a folder of this tool's outputs (or an empty one) is written into: a run never mixes
+    // its files with someone else's, and a re-run can replace exactly what it wrote before.
+    if (ReadManifest(dir).is_null()) {
+      for (const fs::directory_entry& e : fs::directory_iterator(dir, ec)) {
+        const std::string name = e.path().filename().string();
+        if (name.rfind(kStagingPrefix, 0) == 0) continue;
+        throw std::invalid_argument(flag + ": '" + dir + "' holds files topoplan did not write ('" +
+                                    name + "', ...); give a new or an empty folder");
+      }
+    }
+  } else {
+    fs::create_directories(dir, ec);
+    if (ec) throw std::invalid_argument(flag + ": cannot create '" + dir + "': " + ec.message());
+    created_ = true;
+  }
+  // Staged inside the destination: the same file system, so that Commit is a rename.
+  staging_ = (fs::path(dir) / (kStagingPrefix + std::to_string(::getpid()))).string();
   fs::remove_all(staging_, ec);
   fs::create_directories(staging_, ec);
-  if (ec) throw std::invalid_argument(flag + ": cannot create " + staging_ + ": " + ec.message());
+  if (ec) {
+    throw std::invalid_argument(flag + ": cannot write into '" + dir + "': " + ec.message());
+  }
 }
 
 OutputDir::~OutputDir() {
   if (committed_) return;
   std::error_code ignored;
-  std::filesystem::remove_all(staging_, ignored);
+  fs::remove_all(staging_, ignored);
+  if (created_ && fs::is_empty(dir_, ignored)) fs::remove(dir_, ignored);
 }
 
 void OutputDir::Commit() {
-  namespace fs = std::filesystem;
   std::error_code ec;
-  if (!fs::exists(dir_, ec)) {
-    if (fs::path(dir_).has_parent_path()) fs::create_directories(fs::path(dir_).parent_path(), ec);
-    fs::rename(staging_, dir_, ec);  // one atomic step
-    if (!ec) {
-      committed_ = true;
-      return;
-    }
-    fs::create_directories(dir_, ec);
-  }
+  nlohmann::json manifest = ReadManifest(dir_);
+  if (manifest.is_null()) manifest = {{"tool", "topoplan"}, {"outputs", nlohmann::json::object()}};
+  std::vector<std::string> written;
   for (const fs::directory_entry& e : fs::directory_iterator(staging_)) {
-    const fs::path to = fs::path(dir_) / e.path().filename();
-    if (e.is_directory()) fs::remove_all(to, ec);
-    fs::rename(e.path(), to, ec);
-    if (ec) throw std::runtime_error(to.string() + ": cannot move output into place");
+    written.push_back(e.path().filename().string());
   }
+  std::sort(written.begin(), written.end());
+  // What the previous run of this command wrote and this one did not: gone (no stale frames).
+  nlohmann::json& outputs = manifest["outputs"];
+  if (outputs.contains(command_) && outputs[command_].is_array()) {
+    for (const nlohmann::json& old : outputs[command_]) {
+      if (!old.is_string()) continue;
+      const std::string name = old.get<std::string>();
+      if (std::find(written.begin(), written.end(), name) != written.end()) continue;
+      if (name.empty() || name.find('/') != std::string::npos || name == "." || name == "..") {
+        continue;
+      }
+      fs::remove_all(fs::path(dir_) / name, ec);
+    }
+  }
+  for (const std::string& name : written) {
+    MoveEntry(fs::path(staging_) / name, fs::path(dir_) / name);
+  }
+  // Other commands no longer own what this one replaced.
+  for (auto& [cmd, list] : outputs.items()) {
+    if (cmd == command_ || !list.is_array()) continue;
+    nlohmann::json kept = nlohmann::json::array();
+    for (const nlohmann::json& n : list) {
+      if (n.is_string() &&
+          std::find(written.begin(), written.end(), n.get<std::string>()) == written.end()) {
+        kept.push_back(n);
+      }
+    }
+    list = kept;
+  }
+  outputs[command_] = written;
+  base::WriteFileAtomic((fs::path(dir_) / kManifest).string(), manifest.dump(1) + "\n");
   fs::remove_all(staging_, ec);
   committed_ = true;
 }

@@ -2,10 +2,12 @@
 // checked flag parsing, interrupts and time limits.
 #pragma once
 
-#include "base/numbers.h"  // ParseNumberList, ParseFiniteDouble
+#include "base/file_write.h"  // WriteFileAtomic, CheckOutputFile, CheckOutputDir
+#include "base/numbers.h"     // ParseNumberList, ParseFiniteDouble
 #include "render/figure.h"
 
 #include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
 #include <Eigen/Core>
 #include <chrono>
 #include <optional>
@@ -21,24 +23,40 @@ namespace app {
 void Progress(const char* format, ...) __attribute__((format(printf, 1, 2)));
 void EndProgress();
 
-// Writes `contents` to `path` atomically: a temporary file in the same folder, then rename, so a
-// failure never leaves a half-written output. Creates missing parent folders. Throws
-// std::runtime_error naming the path on failure.
-void WriteFileAtomic(const std::string& path, const std::string& contents);
+// How much a command says on stdout/stderr besides its results and errors: -q/--quiet (kQuiet:
+// no progress, no "wrote ..." notes), default (kNormal), -v/--verbose (kVerbose: also Detail()
+// lines). Errors and the results a command exists to print (tables, --json) are never silenced.
+enum class Verbosity { kQuiet, kNormal, kVerbose };
+void SetVerbosity(Verbosity v);
+Verbosity GetVerbosity();
+// The command line of this process ("topoplan plan unwrap -o out"), set once by the outermost
+// RunCommandLine (the demo's commands keep the demo's), shell-quoted where needed.
+void SetCommandLine(int argc, char** argv);
+const std::string& CommandLine();
+
+// {"version", "commit", "command"}: where a report came from (no clock time, so that the same
+// inputs give the same file).
+nlohmann::json ProvenanceJson();
+
+// --strict: every warning is an error (exit 2).
+void SetStrict(bool strict);
+bool Strict();
+// Prints each warning on stderr ("topoplan: warning: ..."); with --strict throws
+// std::invalid_argument with the first one instead.
+void ReportWarnings(const std::vector<std::string>& warnings);
+
+// A note for the user on stdout ("wrote out/report.json"), one line; silent with -q.
+void Note(const char* format, ...) __attribute__((format(printf, 1, 2)));
+// A detail on stderr, one line; only with -v.
+void Detail(const char* format, ...) __attribute__((format(printf, 1, 2)));
+
 
 
 // CLI11 check of a number flag: the text is a finite number (as ParseNumberList) in [lo, hi].
 // "--start-wrap nan" or "--threshold 2" fail at parsing with exit code 2.
 CLI::Validator FiniteIn(double lo, double hi);
 
-// Checks, before any computation, that `dir` can be used as an output folder: not empty, and
-// either a writable folder or creatable (its nearest existing ancestor is a writable folder).
-// Throws std::invalid_argument naming `flag` otherwise.
-void CheckOutputDir(const std::string& dir, const std::string& flag);
 
-// Checks, before any computation, that `path` can be written as an output file: not empty, not a
-// folder, and its folder usable (CheckOutputDir). Throws std::invalid_argument naming `flag`.
-void CheckOutputFile(const std::string& path, const std::string& flag);
 
 // Largest writhe matrix computed from chain files: (N_A − 1)(N_B − 1) segment pairs, 8 bytes each.
 inline constexpr long long kMaxWrithePairs = 25'000'000;  // 200 MB
@@ -47,14 +65,20 @@ inline constexpr long long kMaxWrithePairs = 25'000'000;  // 200 MB
 // `rows` and `cols` points would exceed kMaxWrithePairs (the message gives the memory needed).
 void CheckWrithePairs(long long rows_points, long long cols_points);
 
-// An output folder whose files appear together or not at all. The constructor checks `dir`
-// (CheckOutputDir) and creates an empty staging folder next to it ("<dir>.partial-<pid>"); the
-// run writes into staging(). Commit() moves every staged entry into `dir` (created if missing;
-// entries of the same name are replaced) and removes the staging folder. Without Commit (an
-// exception, an interrupt) the destructor removes the staging folder and `dir` is untouched.
+// An output folder written as a whole by one command (its staging area is a hidden folder inside
+// it, on the same file system). The constructor checks, before any work, that `dir` is absent
+// (then created), empty, or a folder of topoplan's outputs (it holds the manifest
+// `.topoplan-outputs.json`), and not one of `inputs`; a folder with other files is refused
+// (std::invalid_argument naming `flag`, exit 2). Staging folders of processes that were killed
+// are removed. The run writes into staging(). Commit() replaces what the previous run of the same
+// `command` wrote there ("plan", "bench unwrap": its entries not written again are removed, so no
+// stale frames stay behind), moves every staged entry into `dir` and records them in the
+// manifest. Without Commit (an exception, an interrupt) staging is removed and `dir` is as it
+// was (a folder this run created is removed again).
 class OutputDir {
  public:
-  OutputDir(const std::string& dir, const std::string& flag);
+  OutputDir(const std::string& dir, const std::string& flag, const std::string& command,
+            const std::vector<std::string>& inputs = {});
   ~OutputDir();
   OutputDir(const OutputDir&) = delete;
   OutputDir& operator=(const OutputDir&) = delete;
@@ -64,7 +88,8 @@ class OutputDir {
   void Commit();
 
  private:
-  std::string dir_, staging_;
+  std::string dir_, staging_, command_;
+  bool created_ = false;
   bool committed_ = false;
 };
 
@@ -96,6 +121,13 @@ class StopCheck {
  private:
   std::optional<std::chrono::steady_clock::time_point> previous_deadline_;
 };
+
+// An integer flag in [lo, hi]: decimal digits only ("010" is 10, never octal; "", "0x10", "1.5"
+// and "12abc" are refused at parsing, exit 2), its help type shown as "INT in [lo, hi]".
+CLI::Option* IntIn(CLI::Option* option, long long lo, long long hi);
+// Makes every integer option of `app` and its subcommands strictly decimal (as IntIn, without a
+// range); called once the command line is built.
+void StrictIntegerOptions(CLI::App* app);
 
 // --timeout SECONDS on a command (0 = none, at most 1e6 s).
 void AddTimeoutFlag(CLI::App* command, double* seconds);

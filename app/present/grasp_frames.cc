@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "base/file_write.h"
 #include "visualize/grasp_scene.h"
 #include "planning/robot/kinematics.h"
 
@@ -65,7 +66,7 @@ void GraspFrameWriter::Transfer(const std::string& dir, const planning::Transfer
   }
   writer.Finish();
   if (t.trajectory.q.cols() > 0) {
-    render::WriteFileAtomically((std::filesystem::path(dir) / "side_by_side.png").string(),
+    base::WriteFileAtomic((std::filesystem::path(dir) / "side_by_side.png").string(),
                                 render::EncodePng(SideBySide(human, last, view_)));
   }
 }

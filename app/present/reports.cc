@@ -32,13 +32,16 @@ namespace phys = planning::physics;
 
 nlohmann::json WritePlanOutputs(const planning::Scenario& s, const planning::PlanResult& result,
                                 unsigned seed, const std::string& dir) {
-  const nlohmann::json report = planning::PlanReportJson(s, result.report, seed);
-  WriteFileAtomic((fs::path(dir) / "trajectory.csv").string(), planning::TrajectoryCsv(s, result.trajectory));
-  WriteFileAtomic((fs::path(dir) / "report.json").string(), report.dump(2) + "\n");
+  nlohmann::json report = planning::PlanReportJson(s, result.report, seed);
+  report["provenance"] = ProvenanceJson();
+  base::WriteFileAtomic((fs::path(dir) / "trajectory.csv").string(),
+                        planning::TrajectoryCsv(s, result.trajectory));
+  base::WriteFileAtomic((fs::path(dir) / "report.json").string(), report.dump(2) + "\n");
   return report;
 }
 
 nlohmann::json StoppedReportJson(const StopRequested& stop, nlohmann::json fields) {
+  fields["provenance"] = ProvenanceJson();
   fields["success"] = false;
   fields["status"] = stop.timeout ? "timeout" : "interrupted";
   return fields;
@@ -156,7 +159,6 @@ PlanFrames WritePlanFrames(
   EndProgress();
   out.frames = frame_writer.Finish();
   out.heatmaps = heatmap_writer.Finish();
-  if (!out.frames.video.empty()) std::fprintf(stderr, "wrote %s\n", out.frames.video.c_str());
   const render::Figure plot = visualize::WritheCostFigure(s.name, x, writhe, cost);
   render::WriteFigure((fs::path(dir) / "writhe_cost.png").string(), plot);
   visualize::WriteVectorFormats((fs::path(dir) / "writhe_cost.png").string(), plot, frame_opts.formats);
@@ -215,9 +217,11 @@ std::string WriteGraspOutputs(const phys::GraspTrialsResult& result, const std::
                               const nlohmann::json& report,
                               const std::vector<render::FigureFormat>& formats) {
   fs::create_directories(dir);
-  const std::string text = report.dump(1) + "\n";
-  WriteFileAtomic((fs::path(dir) / "report.json").string(), text);
-  WriteFileAtomic((fs::path(dir) / "summary.md").string(), planning::physics::GraspSummaryMarkdown(result));
+  nlohmann::json with_provenance = report;
+  with_provenance["provenance"] = ProvenanceJson();
+  const std::string text = with_provenance.dump(1) + "\n";
+  base::WriteFileAtomic((fs::path(dir) / "report.json").string(), text);
+  base::WriteFileAtomic((fs::path(dir) / "summary.md").string(), planning::physics::GraspSummaryMarkdown(result));
   if (!result.grasps.empty()) {  // a run stopped before its first grasp has nothing to plot
     const render::Figure figure = visualize::GraspSummaryFigure(visualize::GraspSummaryDataOf(result));
     const std::string png = (fs::path(dir) / "summary.png").string();

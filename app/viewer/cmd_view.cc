@@ -49,7 +49,7 @@ void AddViewCommand(CLI::App* root, CommandList* commands) {
   commands->push_back({view, [o, size, view]() {
                          // Checked before the window opens ("" is refused, not "no screenshot").
                          if (view->count("--screenshot") > 0) {
-                           CheckOutputFile(o->screenshot, "--screenshot");
+                           base::CheckOutputFile(o->screenshot, "--screenshot");
                          }
                          visualize::ParseImageSize(*size, "--size", &o->width, &o->height);
                          if (o->width < 64 || o->height < 64) {

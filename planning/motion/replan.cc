@@ -13,6 +13,7 @@
 #include "planning/motion/success.h"
 #include "planning/robot/kinematics.h"
 #include "base/file_read.h"
+#include "base/numbers.h"
 #include "topology/winding.h"
 
 namespace planning {
@@ -95,15 +96,14 @@ ObjectPath ReadObjectPath(const std::string& path) {
     std::string cell;
     while (std::getline(ss, cell, ',')) {
       const std::string c = Trim(cell);
-      size_t used = 0;
       double value = 0.0;
-      try {
-        value = std::stod(c, &used);
-      } catch (const std::exception&) {
-        used = 0;
-      }
-      if (c.empty() || used != c.size()) {
-        throw std::invalid_argument(where + "'" + c + "' is not a number");
+      switch (base::ClassifyNumber(c, &value)) {
+        case base::NumberKind::kFinite:
+          break;
+        case base::NumberKind::kNonFinite:
+          throw std::invalid_argument(where + "non-finite value '" + c + "'");
+        case base::NumberKind::kNotANumber:
+          throw std::invalid_argument(where + "'" + c + "' is not a number");
       }
       v.push_back(value);
     }

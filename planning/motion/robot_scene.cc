@@ -175,8 +175,9 @@ namespace {
 void AttachSrdf(const std::string& srdf_path, RobotScene* s) {
   if (srdf_path.empty()) return;
   s->srdf = LoadSrdf(srdf_path);
-  CheckSrdf(*s->srdf, s->robot);
-  for (const auto& pair : DisabledPairs(*s->srdf)) {
+  const std::vector<std::string> warnings = CheckSrdf(*s->srdf, s->robot);
+  s->warnings.insert(s->warnings.end(), warnings.begin(), warnings.end());
+  for (const auto& pair : DisabledPairs(*s->srdf, &s->robot)) {
     s->collision_options.disabled_pairs.push_back(pair);
   }
 }
@@ -240,6 +241,16 @@ RobotScene LoadRobotSceneImpl(const std::string& path, const std::vector<std::st
   }
   if (!doc.is_object() || !doc.contains("robot") || !doc["robot"].is_string()) {
     throw std::invalid_argument(path + ": robot: expected a URDF path (string)");
+  }
+  // Every key is known: a misspelt one ("postion") would otherwise be ignored silently and change
+  // the scene (the object at the origin).
+  const base::JsonNode root(doc, path);
+  root.CheckKeys({"robot", "q", "srdf", "package_paths", "objects", "camera", "size"});
+  if (doc.contains("objects") && doc["objects"].is_array()) {
+    for (size_t i = 0; i < doc["objects"].size(); ++i) {
+      const base::JsonNode o = root.At("objects").At(i);
+      if (o.IsObject()) o.CheckKeys({"name", "urdf", "position", "xyz", "rpy", "collide"});
+    }
   }
   const std::vector<std::string> scene_paths = ScenePackagePaths(doc, path, base);
   options.package_paths.insert(options.package_paths.begin() + flag_paths.size(),
@@ -312,7 +323,7 @@ RobotScene LoadRobotScene(const std::string& path, const RobotInputOptions& opti
 }
 
 Eigen::VectorXd ChooseQ(const RobotScene& scene, const std::string& q_text,
-                        const std::string& pose) {
+                        const std::string& pose, std::vector<std::string>* warnings) {
   if (!q_text.empty() && !pose.empty()) {
     throw std::invalid_argument("--q and --pose: give at most one of them");
   }
@@ -322,7 +333,7 @@ Eigen::VectorXd ChooseQ(const RobotScene& scene, const std::string& q_text,
     throw std::invalid_argument("--pose " + pose + ": robot '" + scene.robot.name +
                                 "' has no SRDF (give --srdf FILE)");
   }
-  return NamedPose(scene.robot, *scene.srdf, pose);
+  return NamedPose(scene.robot, *scene.srdf, pose, warnings);
 }
 
 }  // namespace planning

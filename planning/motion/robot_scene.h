@@ -45,6 +45,9 @@ struct RobotScene {
   // The robot's SRDF (--srdf, the file's "srdf", or found next to the URDF); its disabled pairs
   // are in collision_options.
   std::optional<Srdf> srdf;
+  // What was accepted but is worth saying (names of the SRDF the robot lacks, ...): printed by
+  // the commands as warnings, errors with --strict.
+  std::vector<std::string> warnings;
 };
 
 // What the robot-loading flags add: --package-path (repeatable) and --srdf.
@@ -65,8 +68,10 @@ RobotScene LoadRobotScene(const std::string& path, const RobotInputOptions& opti
 
 // The configuration chosen by `--q` text or `--pose` name (a group_state of scene.srdf); neither:
 // scene.q. Throws std::invalid_argument when both are given or a pose has no SRDF.
+// A pose value outside its joint's limits is kept and described in `warnings` when given (the
+// user asked about that pose), an error otherwise.
 Eigen::VectorXd ChooseQ(const RobotScene& scene, const std::string& q_text,
-                        const std::string& pose);
+                        const std::string& pose, std::vector<std::string>* warnings = nullptr);
 
 // True if `path` names something LoadRobotScene accepts: a .urdf file, or a .json whose top-level
 // object has a "robot" key.

@@ -112,6 +112,9 @@ struct Scenario {
   // Writhe report pair: robot chain × object chain (for report fields and heatmaps).
   int report_chain = -1;
   SuccessCriteria success;
+  // Accepted but worth saying (an SRDF's names the robot lacks, ...); commands print them as
+  // warnings, errors with --strict.
+  std::vector<std::string> warnings;
   ScenarioState initial;  // the world as loaded: every object where the file puts it
 };
 

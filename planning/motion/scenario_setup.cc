@@ -309,7 +309,7 @@ std::unique_ptr<Scenario> SetUpScenario(ScenarioSpec spec,
   std::optional<Srdf> srdf;
   if (!srdf_path.empty()) {
     srdf = LoadSrdf(srdf_path);
-    CheckSrdf(*srdf, s->robot);
+    s->warnings = CheckSrdf(*srdf, s->robot);
   }
   if (sp.start.kind == StartKind::kPose) {
     if (!srdf) throw std::invalid_argument(sp.start.where + ": a pose start needs an SRDF");
@@ -323,7 +323,9 @@ std::unique_ptr<Scenario> SetUpScenario(ScenarioSpec spec,
   }
   SetUpCollision(s.get());
   if (srdf) {
-    for (const auto& pair : DisabledPairs(*srdf)) s->collision.disabled_pairs.push_back(pair);
+    for (const auto& pair : DisabledPairs(*srdf, &s->robot)) {
+      s->collision.disabled_pairs.push_back(pair);
+    }
   }
   if (sp.writhe_report) {
     s->report_chain = FindIn(sp.writhe_report->chain, FindChain, s->robot);

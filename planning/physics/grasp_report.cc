@@ -21,7 +21,6 @@ nlohmann::json VecJson(const Eigen::VectorXd& v) {
 
 double Round(double v, double scale = 1e6) { return std::round(v * scale) / scale; }
 
-
 // {trials, stable, rate, ci95: [lo, hi]} (Wilson 95 %) of perturbed repetitions.
 nlohmann::json PerturbedJson(int trials, int stable) {
   nlohmann::json j = {{"trials", trials}, {"stable", stable}};
@@ -58,6 +57,133 @@ nlohmann::json EpsilonOutcomeJson(const GraspTrialsResult& result) {
           {"spearman_directions", value(SpearmanCorrelation(eps, directions))}};
 }
 
+// The stability protocol: times, contact model, grip travel, thresholds and ODE's constraint
+// solver (the same for every hand and method).
+nlohmann::json ProtocolJson(const GraspTrialsResult& result) {
+  const StabilityOptions& stab = result.stability;
+  nlohmann::json protocol = {{"close_time_s", stab.close_time},
+                             {"trial_time_s", stab.trial_time},
+                             {"dt_s", stab.sim.dt},
+                             {"contact_patch_radius_m", stab.sim.contact_patch_radius},
+                             {"close_by_rad", result.close_by},
+                             {"max_slip_m", stab.max_slip},
+                             {"max_rotation_deg", stab.max_rotation_deg},
+                             {"min_contact_links", stab.min_contact_links}};
+  protocol["stepper"] = base::ToName(stab.sim.stepper);
+  if (stab.sim.stepper == Stepper::kQuickStep) {
+    protocol["quickstep_iterations"] = stab.sim.quickstep_iterations;
+  }
+  return protocol;
+}
+
+// The outcome under each gravity direction of a stability test.
+nlohmann::json DirectionsJson(const StabilityResult& r) {
+  nlohmann::json dirs = nlohmann::json::array();
+  for (const auto& d : r.directions) {
+    dirs.push_back({{"gravity", d.label},
+                    {"passed", d.passed},
+                    {"slip_m", Round(d.slip_m)},
+                    {"rotation_deg", Round(d.rotation_deg, 1e3)},
+                    {"contact_links", d.contact_links},
+                    {"blown_up", d.blown_up}});
+  }
+  return dirs;
+}
+
+// Each perturbed repetition of a trial: outcome, ε and how far the object was moved and turned
+// from the grasp's pose.
+nlohmann::json RepetitionsJson(const GraspTrial& trial, const HumanGrasp& g) {
+  nlohmann::json reps = nlohmann::json::array();
+  for (const PerturbedTrial& p : trial.perturbed) {
+    const Eigen::Isometry3d delta = g.world_from_object.inverse() * p.world_from_object;
+    reps.push_back(
+        {{"stable", p.stable},
+         {"directions_passed", p.directions_passed},
+         {"epsilon_quality", Round(p.epsilon_quality)},
+         {"offset_m",
+          VecJson(p.world_from_object.translation() - g.world_from_object.translation())},
+         {"rotation_deg", Round(Eigen::AngleAxisd(delta.linear()).angle() * 180.0 / M_PI, 1e3)}});
+  }
+  return reps;
+}
+
+// One method's entry of a grasp: windings, transfer solver, stability and, with perturb > 0,
+// the perturbed repetitions.
+nlohmann::json TrialJson(const GraspTrial& trial, const HumanGrasp& g, int perturb) {
+  const TransferResult& t = trial.transfer;
+  const StabilityResult& r = trial.stability;
+  nlohmann::json j;
+  j["target_winding"] = VecJson(t.target_winding);
+  j["robot_winding"] = VecJson(t.robot_winding);
+  // Per extra reference curve of the object (objects.json "extra_references"), stacked: the
+  // opposition pair (max, min over the fingers) asked for and reached; [] without such curves.
+  j["target_extra_winding"] = VecJson(t.target_extra_winding);
+  j["robot_extra_winding"] = VecJson(t.robot_extra_winding);
+  nlohmann::json ph = nlohmann::json::array();
+  for (const Eigen::VectorXd& v : t.robot_phalanx_winding) ph.push_back(VecJson(v));
+  j["robot_phalanx_winding"] = ph;
+  j["winding_error"] = Round(trial.winding_error);
+  j["epsilon_quality"] = Round(trial.epsilon_quality);
+  j["min_clearance_m"] = Round(t.min_clearance);
+  j["solver"] = t.solver;
+  j["solver_iterations"] = t.iterations;
+  j["q"] = VecJson(t.q);
+  j["status"] = ToString(r.status);
+  j["message"] = r.message;
+  j["closure_contact_links"] = r.closure_contact_links;
+  j["directions_passed"] = r.directions_passed;
+  j["max_slip_m"] = Round(r.max_slip_m);
+  j["max_rotation_deg"] = Round(r.max_rotation_deg, 1e3);
+  j["stable"] = r.stable;
+  j["directions"] = DirectionsJson(r);
+  if (perturb > 0) {
+    j["perturbed"] =
+        PerturbedJson(static_cast<int>(trial.perturbed.size()), trial.perturbed_stable);
+    j["perturbed"]["repetitions"] = RepetitionsJson(trial, g);
+  }
+  return j;
+}
+
+// Grasp `gi`: name, type, object, file, the human windings (from its first method's transfer)
+// and one entry per method.
+nlohmann::json GraspJson(const GraspTrialsResult& result, size_t gi) {
+  const HumanGrasp& g = result.grasps[gi];
+  nlohmann::json gj;
+  gj["name"] = g.name;
+  gj["type"] = g.type;
+  gj["object"] = g.object;
+  gj["file"] = fs::path(g.source).filename().string();
+  nlohmann::json mj = nlohmann::json::object();
+  for (size_t mi = 0; mi < result.methods.size(); ++mi) {
+    const GraspTrial& trial = result.trials[gi][mi];
+    const TransferResult& t = trial.transfer;
+    if (!gj.contains("human_winding")) {
+      gj["human_winding"] = VecJson(t.human_winding);
+      nlohmann::json hp = nlohmann::json::array();
+      for (const Eigen::VectorXd& v : t.human_phalanx_winding) hp.push_back(VecJson(v));
+      gj["human_phalanx_winding"] = hp;
+    }
+    mj[ToString(result.methods[mi])] = TrialJson(trial, g, result.perturb);
+  }
+  gj["methods"] = mj;
+  return gj;
+}
+
+// Per method: stable grasps, success rate and its Wilson 95 % interval (and the perturbed
+// repetitions' with perturb > 0).
+nlohmann::json SummaryJson(const GraspTrialsResult& result) {
+  nlohmann::json summary = nlohmann::json::object();
+  for (const GraspMethodSummary& s : result.summary) {
+    nlohmann::json sj = {{"stable", s.stable},
+                         {"grasps", s.grasps},
+                         {"success_rate", Round(s.rate, 1e4)},
+                         {"ci95", {Round(s.ci95[0], 1e4), Round(s.ci95[1], 1e4)}}};
+    if (result.perturb > 0) sj["perturbed"] = PerturbedJson(s.perturbed_trials, s.perturbed_stable);
+    summary[ToString(s.method)] = sj;
+  }
+  return summary;
+}
+
 }  // namespace
 
 std::string RateText(int stable, int trials, const Eigen::Vector2d& ci) {
@@ -71,107 +197,14 @@ std::string RateText(int stable, int trials, const Eigen::Vector2d& ci) {
 }
 
 nlohmann::json GraspReportJson(const GraspTrialsResult& result) {
-  const StabilityOptions& stab = result.stability;
   nlohmann::json report;
-  report["mu"] = stab.sim.mu;
-  report["protocol"] = {{"close_time_s", stab.close_time},
-                        {"trial_time_s", stab.trial_time},
-                        {"dt_s", stab.sim.dt},
-                        {"contact_patch_radius_m", stab.sim.contact_patch_radius},
-                        {"close_by_rad", result.close_by},
-                        {"max_slip_m", stab.max_slip},
-                        {"max_rotation_deg", stab.max_rotation_deg},
-                        {"min_contact_links", stab.min_contact_links}};
-  // ODE's constraint solver, the same for every hand and method.
-  report["protocol"]["stepper"] = base::ToName(stab.sim.stepper);
-  if (stab.sim.stepper == Stepper::kQuickStep) {
-    report["protocol"]["quickstep_iterations"] = stab.sim.quickstep_iterations;
-  }
+  report["mu"] = result.stability.sim.mu;
+  report["protocol"] = ProtocolJson(result);
   report["grasps"] = nlohmann::json::array();
   for (size_t gi = 0; gi < result.grasps.size(); ++gi) {
-    const HumanGrasp& g = result.grasps[gi];
-    nlohmann::json gj;
-    gj["name"] = g.name;
-    gj["type"] = g.type;
-    gj["object"] = g.object;
-    gj["file"] = fs::path(g.source).filename().string();
-    nlohmann::json mj = nlohmann::json::object();
-    for (size_t mi = 0; mi < result.methods.size(); ++mi) {
-      const GraspTrial& trial = result.trials[gi][mi];
-      const TransferResult& t = trial.transfer;
-      const StabilityResult& r = trial.stability;
-      if (!gj.contains("human_winding")) {
-        gj["human_winding"] = VecJson(t.human_winding);
-        nlohmann::json hp = nlohmann::json::array();
-        for (const Eigen::VectorXd& v : t.human_phalanx_winding) hp.push_back(VecJson(v));
-        gj["human_phalanx_winding"] = hp;
-      }
-      nlohmann::json j;
-      j["target_winding"] = VecJson(t.target_winding);
-      j["robot_winding"] = VecJson(t.robot_winding);
-      // Per extra reference curve of the object (objects.json "extra_references"), stacked: the
-      // opposition pair (max, min over the fingers) asked for and reached; [] without such curves.
-      j["target_extra_winding"] = VecJson(t.target_extra_winding);
-      j["robot_extra_winding"] = VecJson(t.robot_extra_winding);
-      nlohmann::json ph = nlohmann::json::array();
-      for (const Eigen::VectorXd& v : t.robot_phalanx_winding) ph.push_back(VecJson(v));
-      j["robot_phalanx_winding"] = ph;
-      j["winding_error"] = Round(trial.winding_error);
-      j["epsilon_quality"] = Round(trial.epsilon_quality);
-      j["min_clearance_m"] = Round(t.min_clearance);
-      j["solver"] = t.solver;
-      j["solver_iterations"] = t.iterations;
-      j["q"] = VecJson(t.q);
-      j["status"] = ToString(r.status);
-      j["message"] = r.message;
-      j["closure_contact_links"] = r.closure_contact_links;
-      j["directions_passed"] = r.directions_passed;
-      j["max_slip_m"] = Round(r.max_slip_m);
-      j["max_rotation_deg"] = Round(r.max_rotation_deg, 1e3);
-      j["stable"] = r.stable;
-      nlohmann::json dirs = nlohmann::json::array();
-      for (const auto& d : r.directions) {
-        dirs.push_back({{"gravity", d.label},
-                        {"passed", d.passed},
-                        {"slip_m", Round(d.slip_m)},
-                        {"rotation_deg", Round(d.rotation_deg, 1e3)},
-                        {"contact_links", d.contact_links},
-                        {"blown_up", d.blown_up}});
-      }
-      j["directions"] = dirs;
-      if (result.perturb > 0) {
-        j["perturbed"] =
-            PerturbedJson(static_cast<int>(trial.perturbed.size()), trial.perturbed_stable);
-        // Each repetition: outcome, ε and how far the object was moved and turned from the
-        // grasp's pose.
-        nlohmann::json reps = nlohmann::json::array();
-        for (const PerturbedTrial& p : trial.perturbed) {
-          const Eigen::Isometry3d delta = g.world_from_object.inverse() * p.world_from_object;
-          reps.push_back({{"stable", p.stable},
-                          {"directions_passed", p.directions_passed},
-                          {"epsilon_quality", Round(p.epsilon_quality)},
-                          {"offset_m", VecJson(p.world_from_object.translation() -
-                                               g.world_from_object.translation())},
-                          {"rotation_deg",
-                           Round(Eigen::AngleAxisd(delta.linear()).angle() * 180.0 / M_PI, 1e3)}});
-        }
-        j["perturbed"]["repetitions"] = reps;
-      }
-      mj[ToString(result.methods[mi])] = j;
-    }
-    gj["methods"] = mj;
-    report["grasps"].push_back(gj);
+    report["grasps"].push_back(GraspJson(result, gi));
   }
-  nlohmann::json summary = nlohmann::json::object();
-  for (const GraspMethodSummary& s : result.summary) {
-    nlohmann::json sj = {{"stable", s.stable},
-                         {"grasps", s.grasps},
-                         {"success_rate", Round(s.rate, 1e4)},
-                         {"ci95", {Round(s.ci95[0], 1e4), Round(s.ci95[1], 1e4)}}};
-    if (result.perturb > 0) sj["perturbed"] = PerturbedJson(s.perturbed_trials, s.perturbed_stable);
-    summary[ToString(s.method)] = sj;
-  }
-  report["summary"] = summary;
+  report["summary"] = SummaryJson(result);
   report["epsilon_vs_outcome"] = EpsilonOutcomeJson(result);
   if (result.perturb > 0) {
     report["perturb"] = {{"repetitions", result.perturb},

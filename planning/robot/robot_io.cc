@@ -16,11 +16,11 @@
 #include <set>
 #include <stdexcept>
 
+#include "base/file_read.h"
+#include "base/json_reader.h"
 #include "planning/robot/chain_json.h"
 #include "planning/robot/internal/xml_text.h"
-#include "base/json_reader.h"
 #include "planning/robot/mesh_io.h"
-#include "base/file_read.h"
 
 namespace planning {
 namespace {
@@ -45,6 +45,8 @@ struct XmlSummary {
   std::map<std::string, int> link_line;
   std::map<std::string, std::array<size_t, 2>> geometry_count;  // link → (visuals, collisions)
   std::vector<XmlJoint> joints;                                 // file order
+  std::map<std::string, int> joint_line;
+  std::map<std::string, std::string> parent_of;  // child link → joint name
 };
 
 std::string Attr(const TiXmlElement* e, const char* name) { return internal::XmlAttr(e, name); }
@@ -98,115 +100,100 @@ void ValidateGeometryElement(const TiXmlElement* e, const std::string& source,
   }
 }
 
-XmlSummary ValidateXml(const std::string& xml, const std::string& source) {
-  internal::CheckXmlUtf8(xml, source);
-  internal::CheckXmlDepth(xml, source);
-  TiXmlDocument doc;
-  doc.Parse(xml.c_str());
-  if (doc.Error()) {
-    Fail(source, doc.ErrorRow(), std::string("XML error: ") + doc.ErrorDesc());
-  }
-  const TiXmlElement* robot = doc.RootElement();
-  if (!robot || std::string(robot->Value()) != "robot") {
-    Fail(source, robot ? robot->Row() : 0, "the root element must be <robot>");
-  }
-  XmlSummary s;
-  s.robot_name = Attr(robot, "name");
+// The <link> elements: unique names, at most kMaxUrdfLinks, valid geometry; at least one.
+void ValidateLinks(const TiXmlElement* robot, const std::string& source, XmlSummary* s) {
   for (const TiXmlElement* e = robot->FirstChildElement("link"); e;
        e = e->NextSiblingElement("link")) {
     const std::string name = Attr(e, "name");
     if (name.empty()) Fail(source, e->Row(), "<link> without a name");
-    if (s.link_line.count(name)) {
+    if (s->link_line.count(name)) {
       Fail(source, e->Row(),
            "duplicate link '" + name + "' (first defined at line " +
-               std::to_string(s.link_line[name]) + ")");
+               std::to_string(s->link_line[name]) + ")");
     }
-    s.link_line[name] = e->Row();
-    s.links.push_back(name);
-    if (s.links.size() > kMaxUrdfLinks) {
+    s->link_line[name] = e->Row();
+    s->links.push_back(name);
+    if (s->links.size() > kMaxUrdfLinks) {
       Fail(source, e->Row(), "more than " + std::to_string(kMaxUrdfLinks) + " links");
     }
     for (int kind = 0; kind < 2; ++kind) {
       const char* tag = kind == 0 ? "visual" : "collision";
-      size_t& k = s.geometry_count[name][kind];
+      size_t& k = s->geometry_count[name][kind];
       for (const TiXmlElement* v = e->FirstChildElement(tag); v;
            v = v->NextSiblingElement(tag), ++k) {
         ValidateGeometryElement(v, source, "link '" + name + "' " + tag + " " + std::to_string(k));
       }
     }
   }
-  if (s.links.empty()) Fail(source, robot->Row(), "the robot has no <link>");
-  std::map<std::string, int> joint_line;
-  std::map<std::string, std::string> parent_of;  // child link → joint name
-  for (const TiXmlElement* e = robot->FirstChildElement("joint"); e;
-       e = e->NextSiblingElement("joint")) {
-    XmlJoint j;
-    j.line = e->Row();
-    j.name = Attr(e, "name");
-    j.type = Attr(e, "type");
-    if (j.name.empty()) Fail(source, j.line, "<joint> without a name");
-    if (joint_line.count(j.name)) {
-      Fail(source, j.line,
-           "duplicate joint '" + j.name + "' (first defined at line " +
-               std::to_string(joint_line[j.name]) + ")");
-    }
-    joint_line[j.name] = j.line;
-    const std::string where = "joint '" + j.name + "': ";
-    if (j.type == "floating" || j.type == "planar") {
-      Fail(source, j.line,
-           where + "joint type '" + j.type +
-               "' is not supported (use revolute/continuous/prismatic/fixed; "
-               "model a free base with 6 single-axis joints)");
-    }
-    if (j.type != "revolute" && j.type != "continuous" && j.type != "prismatic" &&
-        j.type != "fixed") {
-      Fail(source, j.line,
-           where + "unknown joint type '" + j.type +
-               "' (expected revolute, continuous, prismatic or fixed)");
-    }
-    const TiXmlElement* parent = e->FirstChildElement("parent");
-    const TiXmlElement* child = e->FirstChildElement("child");
-    if (!parent || Attr(parent, "link").empty())
-      Fail(source, j.line, where + "missing <parent link=...>");
-    if (!child || Attr(child, "link").empty())
-      Fail(source, j.line, where + "missing <child link=...>");
-    j.parent = Attr(parent, "link");
-    j.child = Attr(child, "link");
-    if (!s.link_line.count(j.parent)) {
-      Fail(source, j.line, where + "parent link '" + j.parent + "' does not exist");
-    }
-    if (!s.link_line.count(j.child)) {
-      Fail(source, j.line, where + "child link '" + j.child + "' does not exist");
-    }
-    if (j.parent == j.child) Fail(source, j.line, where + "parent and child are the same link");
-    if (parent_of.count(j.child)) {
-      Fail(source, j.line,
-           where + "link '" + j.child + "' already has parent joint '" + parent_of[j.child] +
-               "' (a link can have only one parent)");
-    }
-    parent_of[j.child] = j.name;
-    if ((j.type == "revolute" || j.type == "prismatic") && !e->FirstChildElement("limit")) {
-      Fail(source, j.line,
-           where + j.type + " joint needs a <limit lower= upper= effort= velocity=>");
-    }
-    if (const TiXmlElement* m = e->FirstChildElement("mimic")) {
-      j.mimic = Attr(m, "joint");
-      if (j.mimic.empty()) Fail(source, m->Row(), where + "<mimic> without joint=");
-    }
-    s.joints.push_back(j);
+  if (s->links.empty()) Fail(source, robot->Row(), "the robot has no <link>");
+}
+
+// One <joint> (after the links): a unique name, a supported type, existing distinct parent and
+// child links, one parent per link, limits where needed; recorded in s->joint_line, parent_of.
+XmlJoint ValidateJoint(const TiXmlElement* e, const std::string& source, XmlSummary* s) {
+  XmlJoint j;
+  j.line = e->Row();
+  j.name = Attr(e, "name");
+  j.type = Attr(e, "type");
+  if (j.name.empty()) Fail(source, j.line, "<joint> without a name");
+  if (s->joint_line.count(j.name)) {
+    Fail(source, j.line,
+         "duplicate joint '" + j.name + "' (first defined at line " +
+             std::to_string(s->joint_line[j.name]) + ")");
   }
-  for (const XmlJoint& j : s.joints) {
-    if (!j.mimic.empty() && !joint_line.count(j.mimic)) {
-      Fail(source, j.line, "joint '" + j.name + "': mimics unknown joint '" + j.mimic + "'");
-    }
+  s->joint_line[j.name] = j.line;
+  const std::string where = "joint '" + j.name + "': ";
+  if (j.type == "floating" || j.type == "planar") {
+    Fail(source, j.line,
+         where + "joint type '" + j.type +
+             "' is not supported (use revolute/continuous/prismatic/fixed; "
+             "model a free base with 6 single-axis joints)");
   }
-  // Roots and cycles: exactly one link without a parent, and every link reachable from it.
+  if (j.type != "revolute" && j.type != "continuous" && j.type != "prismatic" &&
+      j.type != "fixed") {
+    Fail(source, j.line,
+         where + "unknown joint type '" + j.type +
+             "' (expected revolute, continuous, prismatic or fixed)");
+  }
+  const TiXmlElement* parent = e->FirstChildElement("parent");
+  const TiXmlElement* child = e->FirstChildElement("child");
+  if (!parent || Attr(parent, "link").empty())
+    Fail(source, j.line, where + "missing <parent link=...>");
+  if (!child || Attr(child, "link").empty())
+    Fail(source, j.line, where + "missing <child link=...>");
+  j.parent = Attr(parent, "link");
+  j.child = Attr(child, "link");
+  if (!s->link_line.count(j.parent)) {
+    Fail(source, j.line, where + "parent link '" + j.parent + "' does not exist");
+  }
+  if (!s->link_line.count(j.child)) {
+    Fail(source, j.line, where + "child link '" + j.child + "' does not exist");
+  }
+  if (j.parent == j.child) Fail(source, j.line, where + "parent and child are the same link");
+  if (s->parent_of.count(j.child)) {
+    Fail(source, j.line,
+         where + "link '" + j.child + "' already has parent joint '" + s->parent_of[j.child] +
+             "' (a link can have only one parent)");
+  }
+  s->parent_of[j.child] = j.name;
+  if ((j.type == "revolute" || j.type == "prismatic") && !e->FirstChildElement("limit")) {
+    Fail(source, j.line, where + j.type + " joint needs a <limit lower= upper= effort= velocity=>");
+  }
+  if (const TiXmlElement* m = e->FirstChildElement("mimic")) {
+    j.mimic = Attr(m, "joint");
+    if (j.mimic.empty()) Fail(source, m->Row(), where + "<mimic> without joint=");
+  }
+  return j;
+}
+
+// Roots and cycles: exactly one link without a parent, and every link reachable from it.
+void CheckSingleTree(const XmlSummary& s, int robot_line, const std::string& source) {
   std::vector<std::string> roots;
   for (const std::string& l : s.links) {
-    if (!parent_of.count(l)) roots.push_back(l);
+    if (!s.parent_of.count(l)) roots.push_back(l);
   }
   if (roots.empty())
-    Fail(source, s.link_line[s.links[0]], "kinematic cycle through link '" + s.links[0] + "'");
+    Fail(source, s.link_line.at(s.links[0]), "kinematic cycle through link '" + s.links[0] + "'");
   if (roots.size() == 1) {
     // Every link has at most one parent, so a link not reachable from the single root lies on
     // a cycle (or hangs below one). Breadth-first from the root: O(links + joints).
@@ -221,18 +208,21 @@ XmlSummary ValidateXml(const std::string& xml, const std::string& source) {
     }
     for (const std::string& l : s.links) {
       if (!reached.count(l)) {
-        Fail(source, s.link_line[l], "kinematic cycle through link '" + l + "'");
+        Fail(source, s.link_line.at(l), "kinematic cycle through link '" + l + "'");
       }
     }
   }
   if (roots.size() != 1) {
     std::string list;
     for (const std::string& r : roots) list += (list.empty() ? "" : ", ") + r;
-    Fail(source, robot->Row(),
+    Fail(source, robot_line,
          "the links must form one tree with a single root, found " + std::to_string(roots.size()) +
              " roots (" + list + "); connect them with joints");
   }
-  // Mimic chains must end at an independent joint.
+}
+
+// Mimic chains must end at an independent joint.
+void CheckMimicChains(const XmlSummary& s, const std::string& source) {
   std::map<std::string, std::string> mimic_of;
   for (const XmlJoint& j : s.joints) {
     if (!j.mimic.empty()) mimic_of[j.name] = j.mimic;
@@ -253,6 +243,36 @@ XmlSummary ValidateXml(const std::string& xml, const std::string& source) {
     }
     for (const std::string& w : walk) state[w] = 2;
   }
+}
+
+XmlSummary ValidateXml(const std::string& xml, const std::string& source) {
+  internal::CheckXmlUtf8(xml, source);
+  internal::CheckXmlDepth(xml, source);
+  TiXmlDocument doc;
+  doc.Parse(xml.c_str());
+  if (doc.Error()) {
+    Fail(source, doc.ErrorRow(), std::string("XML error: ") + doc.ErrorDesc());
+  }
+  const TiXmlElement* robot = doc.RootElement();
+  if (!robot || std::string(robot->Value()) != "robot") {
+    Fail(source, robot ? robot->Row() : 0, "the root element must be <robot>");
+  }
+  internal::CheckSingleRoot(doc, source);
+  internal::CheckNoTrailingText(xml, source);
+  XmlSummary s;
+  s.robot_name = Attr(robot, "name");
+  ValidateLinks(robot, source, &s);
+  for (const TiXmlElement* e = robot->FirstChildElement("joint"); e;
+       e = e->NextSiblingElement("joint")) {
+    s.joints.push_back(ValidateJoint(e, source, &s));
+  }
+  for (const XmlJoint& j : s.joints) {
+    if (!j.mimic.empty() && !s.joint_line.count(j.mimic)) {
+      Fail(source, j.line, "joint '" + j.name + "': mimics unknown joint '" + j.mimic + "'");
+    }
+  }
+  CheckSingleTree(s, robot->Row(), source);
+  CheckMimicChains(s, source);
   return s;
 }
 
@@ -392,6 +412,103 @@ struct GeometryBuilder {
   }
 };
 
+// Links in topological order: breadth-first from the root, children in joint file order.
+std::vector<std::string> LinkOrder(const XmlSummary& summary) {
+  std::map<std::string, std::vector<const XmlJoint*>> children;
+  for (const XmlJoint& j : summary.joints) children[j.parent].push_back(&j);
+  std::string root;
+  for (const std::string& l : summary.links) {
+    if (!summary.parent_of.count(l)) root = l;
+  }
+  std::vector<std::string> order{root};
+  for (size_t i = 0; i < order.size(); ++i) {
+    for (const XmlJoint* j : children[order[i]]) order.push_back(j->child);
+  }
+  return order;
+}
+
+// Joints in file order; q = the independent movable ones, also in file order.
+void ConvertJoints(const urdf::ModelInterface& model, const XmlSummary& summary,
+                   const std::map<std::string, int>& link_index, Robot* robot) {
+  for (size_t i = 0; i < summary.joints.size(); ++i) {
+    const XmlJoint& xj = summary.joints[i];
+    const urdf::JointConstSharedPtr uj = model.getJoint(xj.name);
+    if (!uj) Fail(robot->source, xj.line, "urdfdom lost joint '" + xj.name + "'");
+    Joint& j = robot->joints[i];
+    j.name = xj.name;
+    j.parent_link = link_index.at(xj.parent);
+    j.child_link = link_index.at(xj.child);
+    robot->links[j.child_link].parent_joint = static_cast<int>(i);
+    j.parent_from_joint = ToIsometry(uj->parent_to_joint_origin_transform);
+    switch (uj->type) {
+      case urdf::Joint::REVOLUTE:
+        j.type = JointType::kRevolute;
+        break;
+      case urdf::Joint::CONTINUOUS:
+        j.type = JointType::kContinuous;
+        break;
+      case urdf::Joint::PRISMATIC:
+        j.type = JointType::kPrismatic;
+        break;
+      case urdf::Joint::FIXED:
+        j.type = JointType::kFixed;
+        break;
+      default:
+        Fail(robot->source, xj.line, "joint '" + xj.name + "': unsupported joint type");
+    }
+    if (j.type != JointType::kFixed) {
+      Eigen::Vector3d a(uj->axis.x, uj->axis.y, uj->axis.z);
+      if (!(a.norm() > 1e-9)) Fail(robot->source, xj.line, "joint '" + xj.name + "': zero axis");
+      j.axis = a.normalized();
+    }
+    if (uj->limits) {
+      if (j.type == JointType::kRevolute || j.type == JointType::kPrismatic) {
+        j.limits.lower = uj->limits->lower;
+        j.limits.upper = uj->limits->upper;
+        if (j.limits.lower > j.limits.upper) {
+          Fail(robot->source, xj.line, "joint '" + xj.name + "': lower limit > upper limit");
+        }
+      }
+      if (uj->limits->velocity > 0) j.limits.velocity = uj->limits->velocity;
+      if (uj->limits->effort > 0) j.limits.effort = uj->limits->effort;
+    }
+    if (uj->mimic && j.type != JointType::kFixed) {
+      j.is_mimic = true;
+      j.mimic_multiplier = uj->mimic->multiplier;
+      j.mimic_offset = uj->mimic->offset;
+    } else if (j.type != JointType::kFixed) {
+      j.dof = static_cast<int>(robot->dof_joints.size());
+      robot->dof_joints.push_back(static_cast<int>(i));
+    }
+  }
+}
+
+// Resolve mimic joints transitively to an independent master.
+void ResolveMimicJoints(const XmlSummary& summary, Robot* robot) {
+  std::map<std::string, int> joint_index;
+  for (size_t i = 0; i < summary.joints.size(); ++i)
+    joint_index[summary.joints[i].name] = static_cast<int>(i);
+  for (size_t i = 0; i < robot->joints.size(); ++i) {
+    Joint& j = robot->joints[i];
+    if (!j.is_mimic) continue;
+    double mult = j.mimic_multiplier, off = j.mimic_offset;
+    int master = joint_index.at(summary.joints[i].mimic);
+    while (robot->joints[master].is_mimic) {
+      const Joint& m = robot->joints[master];
+      off = mult * m.mimic_offset + off;
+      mult = mult * m.mimic_multiplier;
+      master = joint_index.at(summary.joints[master].mimic);
+    }
+    if (robot->joints[master].dof < 0) {
+      Fail(robot->source, summary.joints[i].line,
+           "joint '" + j.name + "': mimics fixed joint '" + robot->joints[master].name + "'");
+    }
+    j.dof = robot->joints[master].dof;
+    j.mimic_multiplier = mult;
+    j.mimic_offset = off;
+  }
+}
+
 }  // namespace
 
 // ---- Chains ------------------------------------------------------------------------------------
@@ -417,36 +534,14 @@ Robot ParseRobot(const std::string& urdf_xml, const std::string& source_name,
   Robot robot;
   robot.name = summary.robot_name;
   robot.source = source_name;
-
-  // Links in topological order: breadth-first from the root, children in joint file order.
-  std::map<std::string, std::vector<const XmlJoint*>> children;
-  std::set<std::string> has_parent;
-  for (const XmlJoint& j : summary.joints) {
-    children[j.parent].push_back(&j);
-    has_parent.insert(j.child);
-  }
-  std::string root;
-  for (const std::string& l : summary.links) {
-    if (!has_parent.count(l)) root = l;
-  }
+  const std::vector<std::string> order = LinkOrder(summary);
   std::map<std::string, int> link_index;
-  std::map<std::string, int> joint_index;
-  for (size_t i = 0; i < summary.joints.size(); ++i)
-    joint_index[summary.joints[i].name] = static_cast<int>(i);
-  robot.joints.resize(summary.joints.size());
-  std::vector<std::string> order{root};
-  for (size_t i = 0; i < order.size(); ++i) {
-    for (const XmlJoint* j : children[order[i]]) order.push_back(j->child);
-  }
   for (size_t i = 0; i < order.size(); ++i) link_index[order[i]] = static_cast<int>(i);
+  robot.joints.resize(summary.joints.size());
   robot.links.resize(order.size());
 
-  GeometryBuilder geo{model.get(),
-                      MeshResolver{source_name, fs::path(base_dir), options.package_paths},
-                      options.load_meshes,
-                      &robot.meshes,
-                      {}};
-
+  const MeshResolver resolver{source_name, fs::path(base_dir), options.package_paths};
+  GeometryBuilder geo{model.get(), resolver, options.load_meshes, &robot.meshes, {}};
   for (size_t i = 0; i < order.size(); ++i) {
     Link& link = robot.links[i];
     link.name = order[i];
@@ -479,79 +574,8 @@ Robot ParseRobot(const std::string& urdf_xml, const std::string& source_name,
       link.collisions.push_back(g);
     }
   }
-
-  // Joints in file order; q = the independent movable ones, also in file order.
-  for (size_t i = 0; i < summary.joints.size(); ++i) {
-    const XmlJoint& xj = summary.joints[i];
-    const urdf::JointConstSharedPtr uj = model->getJoint(xj.name);
-    if (!uj) Fail(source_name, xj.line, "urdfdom lost joint '" + xj.name + "'");
-    Joint& j = robot.joints[i];
-    j.name = xj.name;
-    j.parent_link = link_index.at(xj.parent);
-    j.child_link = link_index.at(xj.child);
-    robot.links[j.child_link].parent_joint = static_cast<int>(i);
-    j.parent_from_joint = ToIsometry(uj->parent_to_joint_origin_transform);
-    switch (uj->type) {
-      case urdf::Joint::REVOLUTE:
-        j.type = JointType::kRevolute;
-        break;
-      case urdf::Joint::CONTINUOUS:
-        j.type = JointType::kContinuous;
-        break;
-      case urdf::Joint::PRISMATIC:
-        j.type = JointType::kPrismatic;
-        break;
-      case urdf::Joint::FIXED:
-        j.type = JointType::kFixed;
-        break;
-      default:
-        Fail(source_name, xj.line, "joint '" + xj.name + "': unsupported joint type");
-    }
-    if (j.type != JointType::kFixed) {
-      Eigen::Vector3d a(uj->axis.x, uj->axis.y, uj->axis.z);
-      if (!(a.norm() > 1e-9)) Fail(source_name, xj.line, "joint '" + xj.name + "': zero axis");
-      j.axis = a.normalized();
-    }
-    if (uj->limits) {
-      if (j.type == JointType::kRevolute || j.type == JointType::kPrismatic) {
-        j.limits.lower = uj->limits->lower;
-        j.limits.upper = uj->limits->upper;
-        if (j.limits.lower > j.limits.upper) {
-          Fail(source_name, xj.line, "joint '" + xj.name + "': lower limit > upper limit");
-        }
-      }
-      if (uj->limits->velocity > 0) j.limits.velocity = uj->limits->velocity;
-      if (uj->limits->effort > 0) j.limits.effort = uj->limits->effort;
-    }
-    if (uj->mimic && j.type != JointType::kFixed) {
-      j.is_mimic = true;
-      j.mimic_multiplier = uj->mimic->multiplier;
-      j.mimic_offset = uj->mimic->offset;
-    } else if (j.type != JointType::kFixed) {
-      j.dof = static_cast<int>(robot.dof_joints.size());
-      robot.dof_joints.push_back(static_cast<int>(i));
-    }
-  }
-  // Resolve mimic joints transitively to an independent master.
-  for (size_t i = 0; i < robot.joints.size(); ++i) {
-    Joint& j = robot.joints[i];
-    if (!j.is_mimic) continue;
-    double mult = j.mimic_multiplier, off = j.mimic_offset;
-    int master = joint_index.at(summary.joints[i].mimic);
-    while (robot.joints[master].is_mimic) {
-      const Joint& m = robot.joints[master];
-      off = mult * m.mimic_offset + off;
-      mult = mult * m.mimic_multiplier;
-      master = joint_index.at(summary.joints[master].mimic);
-    }
-    if (robot.joints[master].dof < 0) {
-      Fail(source_name, summary.joints[i].line,
-           "joint '" + j.name + "': mimics fixed joint '" + robot.joints[master].name + "'");
-    }
-    j.dof = robot.joints[master].dof;
-    j.mimic_multiplier = mult;
-    j.mimic_offset = off;
-  }
+  ConvertJoints(*model, summary, link_index, &robot);
+  ResolveMimicJoints(summary, &robot);
 
   // Chains sidecar.
   std::string chains = options.chains_path;

@@ -1,9 +1,12 @@
 // SRDF reading (planning/robot/srdf.h): TinyXML after the depth pre-scan.
 #include "planning/robot/srdf.h"
 
+#include "base/numbers.h"
+
 #include <tinyxml.h>
 
 #include <filesystem>
+#include <algorithm>
 #include <set>
 #include <stdexcept>
 
@@ -33,6 +36,8 @@ Srdf ParseSrdf(const std::string& xml, const std::string& source) {
   if (!robot || std::string(robot->Value()) != "robot") {
     Fail(source, robot ? robot->Row() : 0, "the root element of an SRDF must be <robot>");
   }
+  internal::CheckSingleRoot(doc, source);
+  internal::CheckNoTrailingText(xml, source);
   Srdf s;
   s.source = source;
   s.robot_name = XmlAttr(robot, "name");
@@ -53,7 +58,7 @@ Srdf ParseSrdf(const std::string& xml, const std::string& source) {
       }
       for (const TiXmlElement* j = e->FirstChildElement("joint"); j;
            j = j->NextSiblingElement("joint")) {
-        SrdfJointValue v{XmlAttr(j, "name"), 0.0, j->Row()};
+        SrdfJointValue v{XmlAttr(j, "name"), {}, j->Row()};
         if (v.joint.empty())
           Fail(source, j->Row(), "group_state '" + pose.name + "': <joint> without a name");
         std::vector<double> numbers;
@@ -62,7 +67,7 @@ Srdf ParseSrdf(const std::string& xml, const std::string& source) {
                "group_state '" + pose.name + "' joint '" + v.joint +
                    "': value= must be finite numbers, got '" + XmlAttr(j, "value") + "'");
         }
-        v.value = numbers[0];  // multi-valued joints are virtual ones, skipped in NamedPose
+        v.values = numbers;  // the arity is checked against the joint (NamedPose)
         pose.joints.push_back(v);
       }
       s.poses.push_back(pose);
@@ -79,17 +84,27 @@ Srdf LoadSrdf(const std::string& path) {
   return ParseSrdf(base::ReadFileBounded(path, "SRDF"), path);
 }
 
-void CheckSrdf(const Srdf& srdf, const Robot& robot) {
+std::vector<std::string> CheckSrdf(const Srdf& srdf, const Robot& robot) {
+  std::vector<std::string> warnings;
+  auto where = [&](int line) {
+    std::string w = srdf.source;
+    if (line > 0) w.append(":").append(std::to_string(line));
+    return w.append(": ");
+  };
+  if (!srdf.robot_name.empty() && !robot.name.empty() && srdf.robot_name != robot.name) {
+    warnings.push_back(where(0) + "written for robot '" + srdf.robot_name + "', not '" +
+                       robot.name + "' (" + robot.source + ")");
+  }
   std::set<std::string> links, joints;
   for (const Link& l : robot.links) links.insert(l.name);
   for (const Joint& j : robot.joints) joints.insert(j.name);
   const std::set<std::string> virtuals(srdf.virtual_joints.begin(), srdf.virtual_joints.end());
-  std::string unknown;
-  int first_line = 0;
+  constexpr size_t kMaxListed = 20;  // a long list is cut, with the count of the rest
+  size_t unknown = 0;
   auto note = [&](const std::string& what, int line) {
-    if (first_line == 0) first_line = line;
-    if (unknown.size() < 2000) {
-      unknown += (unknown.empty() ? "" : ", ") + what + " (line " + std::to_string(line) + ")";
+    if (++unknown <= kMaxListed) {
+      warnings.push_back(where(line) + what + " is not part of robot '" + robot.name +
+                         "' (skipped)");
     }
   };
   for (const SrdfPair& p : srdf.disabled_pairs) {
@@ -100,47 +115,74 @@ void CheckSrdf(const Srdf& srdf, const Robot& robot) {
   for (const SrdfPose& pose : srdf.poses) {
     for (const SrdfJointValue& v : pose.joints) {
       if (!joints.count(v.joint) && !virtuals.count(v.joint)) {
-        note("joint '" + v.joint + "' in group_state '" + pose.name + "'", v.line);
+        note("joint '" + v.joint + "' of group_state '" + pose.name + "'", v.line);
       }
     }
   }
-  if (!unknown.empty()) {
-    Fail(srdf.source, first_line,
-         "names that robot '" + robot.name + "' (" + robot.source + ") does not have: " + unknown);
+  if (unknown > kMaxListed) {
+    warnings.push_back(where(0) + std::to_string(unknown - kMaxListed) +
+                       " more names the robot does not have (skipped)");
   }
+  return warnings;
 }
 
-std::vector<std::pair<std::string, std::string>> DisabledPairs(const Srdf& srdf) {
+std::vector<std::pair<std::string, std::string>> DisabledPairs(const Srdf& srdf,
+                                                               const Robot* robot) {
+  std::set<std::string> links;
+  if (robot != nullptr) {
+    for (const Link& l : robot->links) links.insert(l.name);
+  }
   std::vector<std::pair<std::string, std::string>> out;
   out.reserve(srdf.disabled_pairs.size());
-  for (const SrdfPair& p : srdf.disabled_pairs) out.emplace_back(p.link1, p.link2);
+  for (const SrdfPair& p : srdf.disabled_pairs) {
+    if (robot != nullptr && (!links.count(p.link1) || !links.count(p.link2))) continue;
+    out.emplace_back(p.link1, p.link2);
+  }
   return out;
 }
 
-Eigen::VectorXd NamedPose(const Robot& robot, const Srdf& srdf, const std::string& name) {
+Eigen::VectorXd NamedPose(const Robot& robot, const Srdf& srdf, const std::string& name,
+                          std::vector<std::string>* warnings) {
   const SrdfPose* pose = nullptr;
-  std::string names;
+  std::vector<std::string> names;
   for (const SrdfPose& p : srdf.poses) {
     if (p.name == name) pose = &p;
-    names += (names.empty() ? "" : ", ") + p.name;
+    names.push_back(p.name);
   }
   if (!pose) {
+    std::string have;  // at most 20 names, then how many more
+    for (size_t i = 0; i < names.size() && i < 20; ++i) have += (i ? ", " : "") + names[i];
+    if (names.size() > 20) have += ", ... (" + std::to_string(names.size() - 20) + " more)";
     throw std::invalid_argument(srdf.source + ": no group_state named '" + name + "' (" +
-                                (names.empty() ? "the SRDF has none" : "have: " + names) + ")");
+                                (names.empty() ? "the SRDF has none" : "have: " + have) + ")");
   }
   Eigen::VectorXd q = Eigen::VectorXd::Zero(num_dofs(robot));
   const std::set<std::string> virtuals(srdf.virtual_joints.begin(), srdf.virtual_joints.end());
+  std::set<std::string> joints;
+  for (const Joint& j : robot.joints) joints.insert(j.name);
   for (const SrdfJointValue& v : pose->joints) {
-    if (virtuals.count(v.joint)) continue;
+    if (virtuals.count(v.joint) || !joints.count(v.joint)) continue;  // CheckSrdf warns
     const Joint& j = robot.joints[FindJoint(robot, v.joint)];
-    if (j.is_mimic || j.dof < 0) continue;
-    if (v.value < j.limits.lower || v.value > j.limits.upper) {
+    const size_t arity = j.dof >= 0 || j.is_mimic ? 1 : 0;
+    if (v.values.size() != std::max<size_t>(arity, 1)) {
       Fail(srdf.source, v.line,
-           "group_state '" + name + "' joint '" + v.joint + "': value " + std::to_string(v.value) +
-               " outside its limits [" + std::to_string(j.limits.lower) + ", " +
-               std::to_string(j.limits.upper) + "]");
+           "group_state '" + name + "' joint '" + v.joint + "': value= has " +
+               std::to_string(v.values.size()) + " numbers, the joint takes " +
+               std::to_string(std::max<size_t>(arity, 1)));
     }
-    q[j.dof] = v.value;
+    if (j.is_mimic || j.dof < 0) continue;
+    const double value = v.values[0];
+    if (value < j.limits.lower || value > j.limits.upper) {
+      const std::string what = "group_state '" + name + "' joint '" + v.joint + "': value " +
+                               base::FormatShortest(value) + " outside its limits [" +
+                               base::FormatShortest(j.limits.lower) + ", " +
+                               base::FormatShortest(j.limits.upper) + "]";
+      if (warnings == nullptr) Fail(srdf.source, v.line, what);
+      std::string w = srdf.source;
+      w.append(":").append(std::to_string(v.line)).append(": ").append(what);
+      warnings->push_back(w);
+    }
+    q[j.dof] = value;
   }
   return q;
 }

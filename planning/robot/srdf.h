@@ -17,9 +17,12 @@
 // <link_sphere_approximations> and any other element.
 //
 // Errors (std::invalid_argument, "FILE:LINE: ..."): unreadable file, XML errors, XML nested
-// deeper than 100 elements, a root other than <robot>, a <disable_collisions> without link1/link2,
-// a <group_state> without a name or with a duplicate name, a <joint> without name or whose value
-// is not a finite number. CheckSrdf (against a robot) lists every unknown link and joint name.
+// deeper than 100 elements, a root other than <robot> or more than one top-level element or text
+// after it, a <disable_collisions> without link1/link2, a <group_state> without a name or with a
+// duplicate name, a <joint> without name or whose value is not a finite number. Against a robot:
+// a value with more numbers than its joint has variables is an error (NamedPose); names the robot
+// does not have and an SRDF written for another robot name are warnings (CheckSrdf): the
+// entries are skipped, as MoveIt skips them, and `--strict` turns the warnings into errors.
 //
 // Where an SRDF comes from when none is given (FindSrdf): NAME.srdf next to NAME.urdf, else
 // ../srdf/NAME.srdf (the sibling srdf/ folder of the URDF's folder).
@@ -41,7 +44,7 @@ struct SrdfPair {
 
 struct SrdfJointValue {
   std::string joint;
-  double value = 0.0;  // rad or m
+  std::vector<double> values;  // rad or m; one per variable of the joint (several: multi-DOF)
   int line = 0;
 };
 
@@ -66,18 +69,26 @@ Srdf ParseSrdf(const std::string& xml, const std::string& source);
 // Reads and parses an SRDF file.
 Srdf LoadSrdf(const std::string& path);
 
-// Throws std::invalid_argument "FILE:LINE: unknown link(s) ..." naming every link of a disabled
-// pair and every group_state joint (other than virtual joints) that `robot` does not have.
-void CheckSrdf(const Srdf& srdf, const Robot& robot);
+// The warnings of `srdf` against `robot` ("FILE:LINE: ..."): an SRDF <robot name=> other than the
+// URDF's; every link of a disabled pair and every group_state joint (other than virtual joints)
+// that `robot` does not have (such entries are skipped by DisabledPairs and NamedPose). Empty when
+// the SRDF fits the robot.
+std::vector<std::string> CheckSrdf(const Srdf& srdf, const Robot& robot);
 
-// The disabled pairs as (link1, link2) names, for CollisionOptions::disabled_pairs.
-std::vector<std::pair<std::string, std::string>> DisabledPairs(const Srdf& srdf);
+// The disabled pairs as (link1, link2) names, for CollisionOptions::disabled_pairs; pairs that name
+// links the robot does not have are left out when `robot` is given.
+std::vector<std::pair<std::string, std::string>> DisabledPairs(const Srdf& srdf,
+                                                               const Robot* robot = nullptr);
 
 // Configuration q (size num_dofs) of the group_state `name`: zeros, with each named independent
-// joint set to its value (mimic and fixed joints are skipped: they follow q). Throws
-// std::invalid_argument listing the available names when there is no such pose, and naming the
-// joint when a value lies outside its limits.
-Eigen::VectorXd NamedPose(const Robot& robot, const Srdf& srdf, const std::string& name);
+// joint set to its value (mimic and fixed joints are skipped: they follow q; joints the robot does
+// not have are skipped, CheckSrdf warns of them). Throws std::invalid_argument listing the
+// available names when there is no such pose, and naming the joint and line when a value has
+// more numbers than the joint has variables. A value outside the joint's limits: with `warnings`
+// given, kept and described there (the caller asked about that pose: `check`, `fk`, `render`);
+// without, an error naming the joint and its limits (a start for planning).
+Eigen::VectorXd NamedPose(const Robot& robot, const Srdf& srdf, const std::string& name,
+                          std::vector<std::string>* warnings = nullptr);
 
 // NAME.srdf next to `urdf_path` (NAME.urdf), else ../srdf/NAME.srdf; "" when neither exists.
 std::string FindSrdf(const std::string& urdf_path);

@@ -1,7 +1,5 @@
 // The planning layer in Python: robots (forward kinematics, Jacobians, chains, collision),
 // scenarios and their planners, grasp transfer with the ODE stability test.
-#include "python/bind/planning_types.h"
-
 #include "base/assets.h"
 #include "planning/grasp/grasp_inputs.h"
 #include "planning/grasp/grasp_object.h"
@@ -12,6 +10,7 @@
 #include "planning/motion/unwrap_benchmark.h"
 #include "planning/physics/grasp_report.h"
 #include "planning/physics/grasp_trials.h"
+#include "python/bind/planning_types.h"
 
 namespace topoplan_py {
 namespace {
@@ -79,13 +78,157 @@ py::tuple PlanPy(PyScenario& s, const std::string& planner_name, unsigned seed,
   return py::make_tuple(Eigen::MatrixXd(result.trajectory.q.transpose()), JsonToPython(report));
 }
 
-}  // namespace
+// Robot.distances: every checked pair closer than margin as a list of dicts.
+py::list DistancesPy(PyRobot& r, const py::handle& q, double margin) {
+  if (!(margin >= 0.0)) ThrowValue("margin: must be >= 0");
+  r.Fk(q);
+  std::vector<planning::ProximityPair> pairs;
+  planning::ComputeProximity(r.robot, *r.kin, margin, r.Coll(), &pairs);
+  py::list out;
+  for (const auto& p : pairs) {
+    py::dict d;
+    d["link_a"] = r.robot.links[p.link_a].name;
+    d["other"] = p.object >= 0 ? r.env.objects[p.object].name : r.robot.links[p.link_b].name;
+    d["is_object"] = p.object >= 0;
+    d["distance"] = p.distance;
+    d["point_a"] = p.point_a;
+    d["point_b"] = p.point_b;
+    d["normal"] = p.normal;
+    out.append(d);
+  }
+  return out;
+}
 
-void BindPlanning(py::module_& m) {
-  // robots
-  py::class_<PyRobot>(m, "Robot",
-                      "A robot model loaded from a URDF, with placed collision objects. q is an\n"
-                      "array in joint_names order or a dict {joint name: value} (others 0).")
+// load_scenario's move_objects as {name: (3,) offset} (each offset checked).
+std::map<std::string, Eigen::Vector3d> ObjectOffsets(
+    const std::map<std::string, py::object>& move_objects) {
+  std::map<std::string, Eigen::Vector3d> offsets;
+  for (const auto& [name, xyz] : move_objects) {
+    offsets[name] = ToVector(xyz, "move_objects['" + name + "']", 3);
+  }
+  return offsets;
+}
+
+// Adds each offset to the position of the scenario's object of that name.
+void MoveScenarioObjects(const std::map<std::string, Eigen::Vector3d>& offsets,
+                         planning::ScenarioSpec* spec) {
+  for (const auto& [name, offset] : offsets) {
+    auto it = std::find_if(spec->objects.begin(), spec->objects.end(),
+                           [&](const auto& o) { return o.name == name; });
+    if (it == spec->objects.end()) {
+      ThrowValue("move_objects: the scenario has no object '" + name + "'");
+    }
+    it->xyz += offset;
+  }
+}
+
+// load_scenario's resolved: the dict of Scenario.resolved_poses(), or nothing for None.
+std::optional<planning::ResolvedPoses> ResolvedPosesFromPython(const py::object& resolved) {
+  std::optional<planning::ResolvedPoses> given;
+  if (resolved.is_none()) return given;
+  if (!py::isinstance<py::dict>(resolved)) {
+    ThrowValue("resolved: expected a dict from Scenario.resolved_poses()");
+  }
+  const py::dict d = resolved.cast<py::dict>();
+  for (const char* key : {"q0", "unwinding", "goal_q"}) {
+    if (!d.contains(key)) ThrowValue(std::string("resolved: no key '") + key + "'");
+  }
+  given.emplace();
+  given->q0 = ToVector(d["q0"], "resolved['q0']", -1);
+  given->goal_q = ToVector(d["goal_q"], "resolved['goal_q']", -1);
+  const Array u = ToArray(d["unwinding"], "resolved['unwinding']");
+  if (u.ndim() != 2) ThrowValue("resolved['unwinding']: expected a 2-D array");
+  if (u.size() > 0) given->unwinding = ToMatrix(d["unwinding"], "resolved['unwinding']");
+  return given;
+}
+
+// load_scenario: checks the overrides, parses and moves, then sets up without the GIL.
+PyScenario LoadScenarioPy(const fs::path& arg_path, std::optional<double> start_wrap,
+                          long rrt_budget, const std::map<std::string, py::object>& move_objects,
+                          const py::object& resolved, std::optional<bool> stop_when_solved) {
+  const std::string arg = arg_path.string();
+  if (start_wrap && !std::isfinite(*start_wrap)) ThrowValue("start_wrap: must be finite");
+  if (start_wrap && !(*start_wrap >= 0.0 && *start_wrap <= 2000.0)) {
+    ThrowValue("start_wrap: must be in [0, 2000] degrees");
+  }
+  const std::string path = Named(
+      "path_or_name", [&] { return base::ResolveScenarioPath(arg); }, PyExc_FileNotFoundError);
+  planning::ScenarioOverrides overrides;
+  overrides.start_wrap_deg = start_wrap;
+  overrides.search_roots = {base::AssetRoot()};
+  const std::map<std::string, Eigen::Vector3d> offsets = ObjectOffsets(move_objects);
+  planning::ScenarioSpec spec = planning::ParseScenarioSpec(path, overrides.search_roots);
+  MoveScenarioObjects(offsets, &spec);
+  const std::optional<planning::ResolvedPoses> given = ResolvedPosesFromPython(resolved);
+  PyScenario s;
+  {
+    py::gil_scoped_release release;
+    // Bad resolved poses throw std::invalid_argument "resolved: ..." (a ValueError).
+    s.scenario = planning::SetUpScenario(std::move(spec), start_wrap, given ? &*given : nullptr);
+  }
+  if (rrt_budget > 0) s.scenario->rrt.max_checks = rrt_budget;
+  if (stop_when_solved) s.scenario->stop_when_solved = *stop_when_solved;
+  return s;
+}
+
+// unwrap_perturbation: the pole offsets of `bench unwrap --perturb`.
+py::dict UnwrapPerturbationPy(const fs::path& arg_path, int seeds, double perturb) {
+  const std::string path = Named(
+      "path_or_name", [&] { return base::ResolveScenarioPath(arg_path.string()); },
+      PyExc_FileNotFoundError);
+  if (seeds < 1) ThrowValue("seeds: must be >= 1");
+  if (!(perturb >= 0.0) || !std::isfinite(perturb)) ThrowValue("perturb: must be >= 0");
+  planning::UnwrapPerturbation p;
+  {
+    py::gil_scoped_release release;
+    const planning::ScenarioSpec spec = planning::ParseScenarioSpec(path, {base::AssetRoot()});
+    p = planning::MakeUnwrapPerturbation(spec, 0.0, seeds, perturb);
+  }
+  Eigen::MatrixXd offsets(seeds, 3);
+  for (int s = 0; s < seeds; ++s) offsets.row(s) = p.offsets[s].transpose();
+  py::dict d;
+  d["object"] = p.object_name;
+  d["offsets"] = offsets;
+  return d;
+}
+
+// grasp_transfer: one grasp and method through RunGraspTrials, its report.json entry.
+py::object GraspTransferPy(const fs::path& grasp_path, const std::string& method, double mu,
+                           int perturb, std::uint32_t seed, double close_by) {
+  const std::string grasp = grasp_path.string();
+  if (!(mu >= 0.0) || !std::isfinite(mu)) ThrowValue("mu: must be finite and >= 0");
+  if (!(close_by >= 0.0 && close_by <= planning::physics::GraspTrialsOptions::kMaxCloseBy))
+    ThrowValue("close_by: must be in [0, 0.5] rad");
+  if (perturb < 0 || perturb > 1000) ThrowValue("perturb: must be in 0..1000");
+  const planning::TransferMethod tm =
+      Named("method", [&] { return planning::ParseTransferMethod(method); });
+  const std::vector<std::string> files = Named(
+      "grasp", [&] { return planning::SelectGraspFiles(grasp); }, PyExc_FileNotFoundError);
+  if (files.size() != 1) ThrowValue("grasp: name one grasp (a name or a file), not 'all'");
+  nlohmann::json report;
+  {
+    py::gil_scoped_release release;
+    // ODE is initialised once per process (OdeRuntime allows one instance at a time): calls
+    // from several Python threads (a multi-threaded Dask worker) take turns here.
+    static std::mutex ode_mutex;
+    const std::lock_guard<std::mutex> lock(ode_mutex);
+    const planning::GraspInputs in = planning::LoadGraspInputs(files);
+    const planning::physics::OdeRuntime ode;
+    planning::physics::GraspTrialsOptions options;
+    options.mu = mu;
+    options.perturb = perturb;
+    options.seed = seed;
+    options.close_by = close_by;
+    const auto result = planning::physics::RunGraspTrials(ode, in.human, in.lwr_sdh, in.objects,
+                                                          in.grasps, {tm}, options);
+    report = planning::physics::GraspReportJson(result);
+  }
+  return JsonToPython(report["grasps"][0]);
+}
+
+// Robot: loading, names, limits and forward kinematics.
+void BindRobotModel(py::class_<PyRobot>& robot) {
+  robot
       .def_static("load", &PyRobot::Load, py::arg("urdf"),
                   py::arg("package_paths") = std::vector<fs::path>{},
                   "Loads a URDF (meshes through assimp; package:// URIs resolved against\n"
@@ -109,7 +252,12 @@ void BindPlanning(py::module_& m) {
           },
           "(lower, upper): joint limits in q order (+-inf for continuous joints).")
       .def("fk", &FkPy, py::arg("q"), py::arg("link") = py::none(),
-           "Forward kinematics: {link name: 4x4 world_from_link}, or one 4x4 when link is given.")
+           "Forward kinematics: {link name: 4x4 world_from_link}, or one 4x4 when link is given.");
+}
+
+// Robot: Jacobians of link points and frames, chain points and their Jacobian.
+void BindRobotJacobians(py::class_<PyRobot>& robot) {
+  robot
       .def(
           "point_jacobian",
           [](PyRobot& r, const py::handle& q, const std::string& link, const py::handle& point) {
@@ -155,7 +303,12 @@ void BindPlanning(py::module_& m) {
             return J;
           },
           py::arg("q"), py::arg("chain"),
-          "(3N) x n Jacobian of the chain points: rows 3k..3k+2 = d p_k / d q.")
+          "(3N) x n Jacobian of the chain points: rows 3k..3k+2 = d p_k / d q.");
+}
+
+// Robot: placed objects and the collision and distance queries.
+void BindRobotCollision(py::class_<PyRobot>& robot) {
+  robot
       .def(
           "add_object",
           [](PyRobot& r, const fs::path& urdf_path, const py::handle& position,
@@ -189,33 +342,24 @@ void BindPlanning(py::module_& m) {
           py::arg("q"),
           "Minimum signed distance [m] over the checked pairs (negative: penetration; inf when\n"
           "nothing is checked).")
-      .def(
-          "distances",
-          [](PyRobot& r, const py::handle& q, double margin) {
-            if (!(margin >= 0.0)) ThrowValue("margin: must be >= 0");
-            r.Fk(q);
-            std::vector<planning::ProximityPair> pairs;
-            planning::ComputeProximity(r.robot, *r.kin, margin, r.Coll(), &pairs);
-            py::list out;
-            for (const auto& p : pairs) {
-              py::dict d;
-              d["link_a"] = r.robot.links[p.link_a].name;
-              d["other"] =
-                  p.object >= 0 ? r.env.objects[p.object].name : r.robot.links[p.link_b].name;
-              d["is_object"] = p.object >= 0;
-              d["distance"] = p.distance;
-              d["point_a"] = p.point_a;
-              d["point_b"] = p.point_b;
-              d["normal"] = p.normal;
-              out.append(d);
-            }
-            return out;
-          },
-          py::arg("q"), py::arg("margin") = 0.1,
-          "Every checked pair closer than margin [m]: list of dicts with link_a, other (link or\n"
-          "object name), is_object, distance, point_a, point_b, normal (world frame).");
+      .def("distances", &DistancesPy, py::arg("q"), py::arg("margin") = 0.1,
+           "Every checked pair closer than margin [m]: list of dicts with link_a, other (link or\n"
+           "object name), is_object, distance, point_a, point_b, normal (world frame).");
+}
 
-  // scenarios
+// The Robot class.
+void BindRobot(py::module_& m) {
+  py::class_<PyRobot> robot(
+      m, "Robot",
+      "A robot model loaded from a URDF, with placed collision objects. q is an\n"
+      "array in joint_names order or a dict {joint name: value} (others 0).");
+  BindRobotModel(robot);
+  BindRobotJacobians(robot);
+  BindRobotCollision(robot);
+}
+
+// The Scenario class: its poses, writhe and planners.
+void BindScenario(py::module_& m) {
   py::class_<PyScenario>(m, "Scenario", "A set-up planning scenario (see load_scenario).")
       .def_property_readonly(
           "name", [](const PyScenario& s) { return s.scenario->name; }, "Scenario name.")
@@ -262,63 +406,13 @@ void BindPlanning(py::module_& m) {
           "(cancel: PlanCancelled is raised); any other return value is a TypeError, and an\n"
           "exception in the callback ends the plan and propagates. The GIL is released while\n"
           "planning.");
+}
+
+// load_scenario and unwrap_perturbation: scenario files and the unwrap benchmark's set-ups.
+void BindScenarioLoading(py::module_& m) {
   m.def(
-      "load_scenario",
-      [](const fs::path& arg_path, std::optional<double> start_wrap, long rrt_budget,
-         const std::map<std::string, py::object>& move_objects, const py::object& resolved,
-         std::optional<bool> stop_when_solved) {
-        const std::string arg = arg_path.string();
-        if (start_wrap && !std::isfinite(*start_wrap)) ThrowValue("start_wrap: must be finite");
-        if (start_wrap && !(*start_wrap >= 0.0 && *start_wrap <= 2000.0)) {
-          ThrowValue("start_wrap: must be in [0, 2000] degrees");
-        }
-        const std::string path = Named(
-            "path_or_name", [&] { return base::ResolveScenarioPath(arg); }, PyExc_FileNotFoundError);
-        planning::ScenarioOverrides overrides;
-        overrides.start_wrap_deg = start_wrap;
-        overrides.search_roots = {base::AssetRoot()};
-        std::map<std::string, Eigen::Vector3d> offsets;
-        for (const auto& [name, xyz] : move_objects) {
-          offsets[name] = ToVector(xyz, "move_objects['" + name + "']", 3);
-        }
-        planning::ScenarioSpec spec = planning::ParseScenarioSpec(path, overrides.search_roots);
-        for (const auto& [name, offset] : offsets) {
-          auto it = std::find_if(spec.objects.begin(), spec.objects.end(),
-                                 [&](const auto& o) { return o.name == name; });
-          if (it == spec.objects.end()) {
-            ThrowValue("move_objects: the scenario has no object '" + name + "'");
-          }
-          it->xyz += offset;
-        }
-        std::optional<planning::ResolvedPoses> given;
-        if (!resolved.is_none()) {
-          if (!py::isinstance<py::dict>(resolved)) {
-            ThrowValue("resolved: expected a dict from Scenario.resolved_poses()");
-          }
-          const py::dict d = resolved.cast<py::dict>();
-          for (const char* key : {"q0", "unwinding", "goal_q"}) {
-            if (!d.contains(key)) ThrowValue(std::string("resolved: no key '") + key + "'");
-          }
-          given.emplace();
-          given->q0 = ToVector(d["q0"], "resolved['q0']", -1);
-          given->goal_q = ToVector(d["goal_q"], "resolved['goal_q']", -1);
-          const Array u = ToArray(d["unwinding"], "resolved['unwinding']");
-          if (u.ndim() != 2) ThrowValue("resolved['unwinding']: expected a 2-D array");
-          if (u.size() > 0) given->unwinding = ToMatrix(d["unwinding"], "resolved['unwinding']");
-        }
-        PyScenario s;
-        {
-          py::gil_scoped_release release;
-          // Bad resolved poses throw std::invalid_argument "resolved: ..." (a ValueError).
-          s.scenario =
-              planning::SetUpScenario(std::move(spec), start_wrap, given ? &*given : nullptr);
-        }
-        if (rrt_budget > 0) s.scenario->rrt.max_checks = rrt_budget;
-        if (stop_when_solved) s.scenario->stop_when_solved = *stop_when_solved;
-        return s;
-      },
-      py::arg("path_or_name"), py::arg("start_wrap") = py::none(), py::arg("rrt_budget") = -1,
-      py::arg("move_objects") = std::map<std::string, py::object>{},
+      "load_scenario", &LoadScenarioPy, py::arg("path_or_name"), py::arg("start_wrap") = py::none(),
+      py::arg("rrt_budget") = -1, py::arg("move_objects") = std::map<std::string, py::object>{},
       py::arg("resolved") = py::none(), py::arg("stop_when_solved") = py::none(),
       "Loads a scenario file, or a name in the shipped assets/scenarios (e.g. 'unwrap'), and\n"
       "sets it up (start coil, final-pose estimate). start_wrap overrides the coil's angle to\n"
@@ -328,68 +422,20 @@ void BindPlanning(py::module_& m) {
       "stop_when_solved (bool) replaces the scenario's aico.stop_when_solved (True: AICO stops at\n"
       "the first accepted sweep whose trajectory meets the success criteria, status 'solved').");
   m.def(
-      "unwrap_perturbation",
-      [](const fs::path& arg_path, int seeds, double perturb) {
-        const std::string path = Named(
-            "path_or_name", [&] { return base::ResolveScenarioPath(arg_path.string()); },
-            PyExc_FileNotFoundError);
-        if (seeds < 1) ThrowValue("seeds: must be >= 1");
-        if (!(perturb >= 0.0) || !std::isfinite(perturb)) ThrowValue("perturb: must be >= 0");
-        planning::UnwrapPerturbation p;
-        {
-          py::gil_scoped_release release;
-          const planning::ScenarioSpec spec = planning::ParseScenarioSpec(path, {base::AssetRoot()});
-          p = planning::MakeUnwrapPerturbation(spec, 0.0, seeds, perturb);
-        }
-        Eigen::MatrixXd offsets(seeds, 3);
-        for (int s = 0; s < seeds; ++s) offsets.row(s) = p.offsets[s].transpose();
-        py::dict d;
-        d["object"] = p.object_name;
-        d["offsets"] = offsets;
-        return d;
-      },
-      py::arg("path_or_name"), py::arg("seeds"), py::arg("perturb"),
+      "unwrap_perturbation", &UnwrapPerturbationPy, py::arg("path_or_name"), py::arg("seeds"),
+      py::arg("perturb"),
       "The pole perturbation of `topoplan bench unwrap --perturb M --seeds N`: dict with\n"
       "'object' (the moved object's name, '' when perturb is 0) and 'offsets' (N x 3 world-frame\n"
       "offsets [m], row s for seed s; at most perturb from the pole's line). Pass\n"
       "move_objects={object: offsets[s]} to load_scenario for seed s's set-up.");
+}
 
+// grasp_transfer and the grasp experiment's names and statistics.
+void BindGrasp(py::module_& m) {
   m.def(
-      "grasp_transfer",
-      [](const fs::path& grasp_path, const std::string& method, double mu, int perturb,
-         std::uint32_t seed, double close_by) {
-        const std::string grasp = grasp_path.string();
-        if (!(mu >= 0.0) || !std::isfinite(mu)) ThrowValue("mu: must be finite and >= 0");
-        if (!(close_by >= 0.0 && close_by <= planning::physics::GraspTrialsOptions::kMaxCloseBy))
-          ThrowValue("close_by: must be in [0, 0.5] rad");
-        if (perturb < 0 || perturb > 1000) ThrowValue("perturb: must be in 0..1000");
-        const planning::TransferMethod tm =
-            Named("method", [&] { return planning::ParseTransferMethod(method); });
-        const std::vector<std::string> files = Named(
-            "grasp", [&] { return planning::SelectGraspFiles(grasp); }, PyExc_FileNotFoundError);
-        if (files.size() != 1) ThrowValue("grasp: name one grasp (a name or a file), not 'all'");
-        nlohmann::json report;
-        {
-          py::gil_scoped_release release;
-          // ODE is initialised once per process (OdeRuntime allows one instance at a time): calls
-          // from several Python threads (a multi-threaded Dask worker) take turns here.
-          static std::mutex ode_mutex;
-          const std::lock_guard<std::mutex> lock(ode_mutex);
-          const planning::GraspInputs in = planning::LoadGraspInputs(files);
-          const planning::physics::OdeRuntime ode;
-          planning::physics::GraspTrialsOptions options;
-          options.mu = mu;
-          options.perturb = perturb;
-          options.seed = seed;
-          options.close_by = close_by;
-          const auto result = planning::physics::RunGraspTrials(
-              ode, in.human, in.lwr_sdh, in.objects, in.grasps, {tm}, options);
-          report = planning::physics::GraspReportJson(result);
-        }
-        return JsonToPython(report["grasps"][0]);
-      },
-      py::arg("grasp"), py::arg("method") = "winding", py::arg("mu") = 1.0, py::arg("perturb") = 0,
-      py::arg("seed") = 0, py::arg("close_by") = planning::physics::HandBuildOptions{}.close_by,
+      "grasp_transfer", &GraspTransferPy, py::arg("grasp"), py::arg("method") = "winding",
+      py::arg("mu") = 1.0, py::arg("perturb") = 0, py::arg("seed") = 0,
+      py::arg("close_by") = planning::physics::HandBuildOptions{}.close_by,
       "Transfers one human grasp (a name in assets/grasps or a file) to the SDH with method\n"
       "(winding, winding_only, contact_only, fingertip, joint, human), tests it in ODE with\n"
       "friction mu and returns its entry of `topoplan grasp transfer`'s report.json. perturb = N\n"
@@ -429,6 +475,10 @@ void BindPlanning(py::module_& m) {
       },
       py::arg("successes"), py::arg("trials"),
       "Wilson score 95 % interval (lo, hi) of a success rate successes / trials (Wilson 1927).");
+}
+
+// available_planners and asset_root: what this build and installation provide.
+void BindBuildInfo(py::module_& m) {
   m.def(
       "available_planners",
       [] {
@@ -441,6 +491,17 @@ void BindPlanning(py::module_& m) {
       "Names of the planners of this build (aico, rrt, birrt, and ompl-* with OMPL).");
   m.def("asset_root", &base::AssetRoot,
         "Root of the asset tree ($TOPOPLAN_ASSETS, else the installed or source assets/).");
+}
+
+}  // namespace
+
+void BindPlanning(py::module_& m) {
+  // Classes before the functions that take or return them (their signatures name them).
+  BindRobot(m);
+  BindScenario(m);
+  BindScenarioLoading(m);
+  BindGrasp(m);
+  BindBuildInfo(m);
 }
 
 }  // namespace topoplan_py

@@ -24,6 +24,8 @@ def test_unwrap_360_matches_cli(unwrap360, cli, tmp_path):
     assert len(sweeps) == report["iterations"]
     cli("plan", "unwrap", "--start-wrap", 360, "--planner", "aico", "--seed", 0, "-o", tmp_path)
     expected = json.loads((tmp_path / "report.json").read_text())
+    # The file also says which build and command made it (Python returns the plan's fields).
+    assert set(expected.pop("provenance")) == {"version", "commit", "command"}
     assert set(report) == set(expected)
     for key in expected:
         if key != "time_s":
@@ -58,7 +60,7 @@ def test_rrt_seed_is_deterministic(cli, tmp_path):
     assert r.returncode in (0, 1), r.stderr
     expected = json.loads((tmp_path / "report.json").read_text())
     assert {k: v for k, v in r1.items() if k != "time_s"} == {
-        k: v for k, v in expected.items() if k != "time_s"
+        k: v for k, v in expected.items() if k not in ("time_s", "provenance")
     }
 
 

@@ -1,6 +1,8 @@
 // XML depth pre-scan and strict number lists (planning/robot/internal/xml_text.h).
 #include "planning/robot/internal/xml_text.h"
 
+#include "base/numbers.h"
+
 #include <tinyxml.h>
 
 #include <cerrno>
@@ -9,6 +11,7 @@
 #include <cstdlib>
 #include <sstream>
 #include <stdexcept>
+#include <utility>
 
 namespace planning::internal {
 
@@ -94,15 +97,9 @@ bool ParseNumbers(const std::string& text, int count, std::vector<double>* out) 
   std::istringstream ss(text);
   std::string token;
   while (ss >> token) {
-    errno = 0;
-    char* end = nullptr;
-    const double v = std::strtod(token.c_str(), &end);
-    if (end != token.c_str() + token.size() || !std::isfinite(v) || errno == ERANGE) {
-      if (!(errno == ERANGE && std::isfinite(v) && end == token.c_str() + token.size())) {
-        return false;
-      }
-    }
-    out->push_back(v);
+    const std::optional<double> v = base::ParseFiniteDouble(token);  // locale-independent
+    if (!v) return false;
+    out->push_back(*v);
   }
   if (out->empty()) return false;
   return count <= 0 || static_cast<int>(out->size()) == count;
@@ -111,6 +108,57 @@ bool ParseNumbers(const std::string& text, int count, std::vector<double>* out) 
 std::string XmlAttr(const TiXmlElement* e, const char* name) {
   const char* v = e->Attribute(name);
   return v ? std::string(v) : std::string();
+}
+
+namespace {
+
+// The line (1-based) of `pos` in `text`.
+int LineOf(const std::string& text, std::size_t pos) {
+  int line = 1;
+  for (std::size_t i = 0; i < pos && i < text.size(); ++i) line += text[i] == '\n';
+  return line;
+}
+
+}  // namespace
+
+void CheckNoTrailingText(const std::string& xml, const std::string& source) {
+  // Comments and processing instructions blanked out (newlines kept, so positions still map to
+  // lines); what is left must end with the '>' of the document's element.
+  std::string t = xml;
+  for (const auto& [open, close] : {std::pair<const char*, const char*>{"<!--", "-->"},
+                                    std::pair<const char*, const char*>{"<?", "?>"}}) {
+    std::size_t i = 0;
+    while ((i = t.find(open, i)) != std::string::npos) {
+      const std::size_t j = t.find(close, i);
+      const std::size_t end = j == std::string::npos ? t.size() : j + std::string(close).size();
+      for (std::size_t k = i; k < end; ++k) {
+        if (t[k] != '\n') t[k] = ' ';
+      }
+      i = end;
+    }
+  }
+  const std::size_t last = t.find_last_not_of(" \t\r\n");
+  if (last == std::string::npos || t[last] == '>') return;
+  std::size_t start = t.rfind('>', last);
+  start = start == std::string::npos ? 0 : start + 1;
+  start = t.find_first_not_of(" \t\r\n", start);
+  throw std::invalid_argument(source + ":" + std::to_string(LineOf(xml, start)) +
+                              ": text after the document's element");
+}
+
+void CheckSingleRoot(const TiXmlDocument& doc, const std::string& source) {
+  int elements = 0;
+  for (const TiXmlNode* n = doc.FirstChild(); n != nullptr; n = n->NextSibling()) {
+    const int type = n->Type();
+    if (type == TiXmlNode::TINYXML_DECLARATION || type == TiXmlNode::TINYXML_COMMENT) continue;
+    if (type == TiXmlNode::TINYXML_ELEMENT && ++elements == 1) continue;
+    const int row = n->Row();
+    throw std::invalid_argument(
+        source + (row > 0 ? ":" + std::to_string(row) : "") + ": " +
+        (type == TiXmlNode::TINYXML_ELEMENT
+             ? "a second top-level element <" + std::string(n->Value()) + "> (a file holds one)"
+             : std::string("text after the document's element")));
+  }
 }
 
 }  // namespace planning::internal

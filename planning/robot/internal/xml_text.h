@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+class TiXmlDocument;
 class TiXmlElement;
 
 namespace planning::internal {
@@ -25,6 +26,13 @@ void CheckXmlUtf8(const std::string& xml, const std::string& source);
 
 // Parses `text` as whitespace-separated finite numbers. Returns false on anything else (an empty
 // text, a non-number token, inf or nan, or a count other than `count` when count > 0).
+// Throws std::invalid_argument "<source>:<line>: ..." when the parsed document has more than one
+// top-level element (a second <robot>) or any text after its element: a file is one document.
+void CheckSingleRoot(const TiXmlDocument& doc, const std::string& source);
+// Throws "<source>:<line>: text after the document's element" when `xml` (the raw text) has
+// anything but white space, comments and processing instructions after its last '>'.
+void CheckNoTrailingText(const std::string& xml, const std::string& source);
+
 bool ParseNumbers(const std::string& text, int count, std::vector<double>* out);
 
 // Attribute value or "" when absent.

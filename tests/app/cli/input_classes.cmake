@@ -11,9 +11,9 @@ topoplan_empty_output_test(writhe --heatmap "writhe ${CHAINS}/hopf_a.csv ${CHAIN
 topoplan_empty_output_test(synthesize -o "grasp synthesize ${SPEC}")
 topoplan_empty_output_test(ompl_log --ompl-log "bench unwrap --angles 0:0:15 --planners birrt -o ${CLI_TMP}/empty_ompl_log")
 topoplan_empty_output_test(view_screenshot --screenshot "view unwrap")
-topoplan_cli_test(limit_view_unusable_screenshot 2 "--screenshot: '/dev/null': /dev/null is not a folder"
+topoplan_cli_test(limit_view_unusable_screenshot 2 "--screenshot: '/dev/null/x.png': /dev/null is not a folder"
                   view unwrap --screenshot /dev/null/x.png)
-topoplan_cli_test(limit_synthesize_unusable_output 2 "-o: '/dev/null': /dev/null is not a folder"
+topoplan_cli_test(limit_synthesize_unusable_output 2 "-o: '/dev/null/g.json': /dev/null is not a folder"
                   grasp synthesize ${SPEC} -o /dev/null/g.json)
 # A re-plan period longer than the plan means no re-plan within it (1e300 s overflowed lround and
 # became one slice: re-planning every slice).

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <csignal>
 #include <filesystem>
 #include <fstream>
@@ -41,41 +42,54 @@ TEST(ParseNumberList, FiniteRangeAndSubnormals) {
 }
 
 TEST(OutputChecks, EmptyUnusableAndFolders) {
-  EXPECT_EQ(Message([] { CheckOutputDir("", "-o"); }), "-o: empty output path");
-  EXPECT_NE(Message([] { CheckOutputDir("/dev/null/x", "-o"); }).find("is not a folder"),
+  EXPECT_EQ(Message([] { base::CheckOutputDir("", "-o"); }), "-o: empty output path");
+  EXPECT_NE(Message([] { base::CheckOutputDir("/dev/null/x", "-o"); }).find("is not a folder"),
             std::string::npos);
   const fs::path d = TempDir("checks");
-  EXPECT_EQ(Message([&] { CheckOutputDir((d / "new" / "deeper").string(), "-o"); }), "");
+  EXPECT_EQ(Message([&] { base::CheckOutputDir((d / "new" / "deeper").string(), "-o"); }), "");
   EXPECT_FALSE(fs::exists(d / "new"));  // checking creates nothing
-  EXPECT_NE(Message([&] { CheckOutputFile(d.string(), "-o"); }).find("is a folder"),
+  EXPECT_NE(Message([&] { base::CheckOutputFile(d.string(), "-o"); }).find("is a folder"),
             std::string::npos);
   EXPECT_NE(Message([] { CheckWrithePairs(100001, 100001); }).find("would need 80 GB"),
             std::string::npos);
   EXPECT_EQ(Message([] { CheckWrithePairs(5001, 5001); }), "");
 }
 
+// Everything a folder holds apart from the hidden manifest.
+std::vector<std::string> Entries(const fs::path& dir) {
+  std::vector<std::string> names;
+  for (const auto& e : fs::directory_iterator(dir)) {
+    if (e.path().filename() != ".topoplan-outputs.json") names.push_back(e.path().filename());
+  }
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
 TEST(OutputDir, FilesAppearTogetherOrNotAtAll) {
   const fs::path d = TempDir("stage");
   const fs::path out = d / "out";
   {
-    OutputDir o(out.string(), "-o");
+    OutputDir o(out.string(), "-o", "plan");
     std::ofstream(fs::path(o.staging()) / "a.txt") << "a";
-    EXPECT_FALSE(fs::exists(out));
+    EXPECT_FALSE(fs::exists(out / "a.txt"));
+    // Staged inside the destination (same file system), hidden.
+    EXPECT_EQ(fs::path(o.staging()).parent_path(), out);
+    EXPECT_EQ(fs::path(o.staging()).filename().string().front(), '.');
     // No Commit: an exception or interrupt leaves nothing behind.
   }
   EXPECT_FALSE(fs::exists(out));
   EXPECT_TRUE(fs::is_empty(d));
   {
-    OutputDir o(out.string(), "-o");
+    OutputDir o(out.string(), "-o", "plan");
     std::ofstream(fs::path(o.staging()) / "a.txt") << "a";
     fs::create_directories(fs::path(o.staging()) / "frames");
+    std::ofstream(fs::path(o.staging()) / "frames" / "frame_0099.png") << "old";
     o.Commit();
   }
-  EXPECT_TRUE(fs::exists(out / "a.txt"));
-  EXPECT_TRUE(fs::is_directory(out / "frames"));
-  {  // an existing folder: staged entries replace those of the same name, others stay
+  EXPECT_EQ(Entries(out), (std::vector<std::string>{"a.txt", "frames"}));
+  {  // a re-run replaces that command's outputs as a whole: no stale frames; others stay
     std::ofstream(out / "keep.txt") << "k";
-    OutputDir o(out.string(), "-o");
+    OutputDir o(out.string(), "-o", "plan");
     std::ofstream(fs::path(o.staging()) / "a.txt") << "b";
     o.Commit();
   }
@@ -83,8 +97,36 @@ TEST(OutputDir, FilesAppearTogetherOrNotAtAll) {
   std::string text;
   a >> text;
   EXPECT_EQ(text, "b");
-  EXPECT_TRUE(fs::exists(out / "keep.txt"));
+  EXPECT_EQ(Entries(out), (std::vector<std::string>{"a.txt", "keep.txt"}));
+  {  // another command's outputs live beside them
+    OutputDir o(out.string(), "-o", "bench unwrap");
+    std::ofstream(fs::path(o.staging()) / "unwrap.csv") << "x";
+    o.Commit();
+  }
+  {
+    OutputDir o(out.string(), "-o", "plan");
+    std::ofstream(fs::path(o.staging()) / "report.json") << "{}";
+    o.Commit();
+  }
+  EXPECT_EQ(Entries(out), (std::vector<std::string>{"keep.txt", "report.json", "unwrap.csv"}));
   for (const auto& e : fs::directory_iterator(d)) EXPECT_EQ(e.path().filename(), "out");
+}
+
+TEST(OutputDir, RefusesFoldersOfOtherFilesAndCleansStaleStaging) {
+  const fs::path d = TempDir("foreign");
+  std::ofstream(d / "thesis.tex") << "mine";
+  EXPECT_NE(Message([&] { OutputDir o(d.string(), "-o", "plan"); })
+                .find("holds files topoplan did not write ('thesis.tex'"),
+            std::string::npos);
+  EXPECT_TRUE(fs::exists(d / "thesis.tex"));
+  // An empty folder is fine; a staging folder of a process that no longer runs is removed.
+  const fs::path e = TempDir("stale");
+  fs::create_directories(e / ".topoplan-staging-999999999");
+  {
+    OutputDir o(e.string(), "-o", "plan");
+    o.Commit();
+  }
+  EXPECT_FALSE(fs::exists(e / ".topoplan-staging-999999999"));
 }
 
 TEST(StopCheck, TimeoutAndSignal) {

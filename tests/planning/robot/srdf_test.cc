@@ -78,7 +78,7 @@ TEST(Srdf, ParsesPairsPosesAndListsIgnoredJoints) {
               HasSubstr("no group_state named 'home' (have: apart)"));
 }
 
-TEST(Srdf, MalformedAndUnknownNamesAreErrorsWithLines) {
+TEST(Srdf, MalformedIsAnErrorUnknownNamesAreWarningsWithLines) {
   EXPECT_THAT(Message([] { ParseSrdf("<robot>\n<disable_collisions link1=\"a\"/>", "m.srdf"); }),
               HasSubstr("m.srdf:"));
   EXPECT_THAT(
@@ -95,10 +95,31 @@ TEST(Srdf, MalformedAndUnknownNamesAreErrorsWithLines) {
       "<robot>\n<disable_collisions link1=\"base\" link2=\"nose\"/>\n"
       "<group_state name=\"p\"><joint name=\"elbow\" value=\"1\"/></group_state></robot>",
       "bad.srdf");
-  const std::string m = Message([&] { CheckSrdf(bad, TwoBoxes()); });
-  EXPECT_THAT(m, HasSubstr("bad.srdf:2:"));
-  EXPECT_THAT(m, HasSubstr("link 'nose' (line 2)"));
-  EXPECT_THAT(m, HasSubstr("joint 'elbow' in group_state 'p' (line 3)"));
+  // Names the robot lacks are warnings (skipped, as MoveIt skips them), one per name with its line.
+  const std::vector<std::string> w = CheckSrdf(bad, TwoBoxes());
+  ASSERT_EQ(w.size(), 2u);
+  EXPECT_THAT(w[0], HasSubstr("bad.srdf:2: link 'nose' is not part of robot"));
+  EXPECT_THAT(w[1], HasSubstr("bad.srdf:3: joint 'elbow' of group_state 'p' is not part of robot"));
+  const Robot two = TwoBoxes();
+  EXPECT_TRUE(DisabledPairs(bad, &two).empty());  // the pair with 'nose' is skipped
+  EXPECT_EQ(NamedPose(two, bad, "p"), Eigen::VectorXd::Zero(num_dofs(two)));
+  // An SRDF written for another robot is a warning too.
+  const Srdf other = ParseSrdf("<robot name=\"ur5\"/>", "other.srdf");
+  const std::vector<std::string> w2 = CheckSrdf(other, TwoBoxes());
+  ASSERT_EQ(w2.size(), 1u);
+  EXPECT_THAT(w2[0], HasSubstr("written for robot 'ur5'"));
+  // One document per file; a value's arity is the joint's.
+  EXPECT_THAT(Message([] { ParseSrdf("<robot/>\n<robot/>", "two.srdf"); }),
+              HasSubstr("two.srdf:2: a second top-level element <robot>"));
+  EXPECT_THAT(Message([] { ParseSrdf("<robot/>\ngarbage", "tail.srdf"); }),
+              HasSubstr("tail.srdf"));
+  const Srdf pair = ParseSrdf(
+      "<robot>\n<group_state name=\"p\"><joint name=\"slide\" value=\"0.1 0.2\"/>"
+      "</group_state></robot>",
+      "pair.srdf");
+  EXPECT_THAT(Message([&] { NamedPose(TwoBoxes(), pair, "p"); }),
+              HasSubstr("pair.srdf:2: group_state 'p' joint 'slide': value= has 2 numbers, the joint "
+                        "takes 1"));
 }
 
 TEST(Srdf, DisabledPairIsNotReported) {
