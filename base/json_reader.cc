@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <locale>
 #include <sstream>
 #include <stdexcept>
 
@@ -199,6 +200,7 @@ double JsonNode::Number(const std::string& key, double fallback) const {
 namespace {
 std::string Shortest(double v) {
   std::ostringstream out;
+  out.imbue(std::locale::classic());  // "0.5" whatever the global locale
   out << v;
   return out.str();
 }

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <limits>
+#include <locale>
 #include <sstream>
 #include <stdexcept>
 #include <system_error>
@@ -58,6 +59,7 @@ std::vector<double> ParseNumberList(const std::string& text, const std::string& 
                                     int expected_size, double max_abs) {
   std::vector<double> values;
   std::stringstream ss(text);
+  ss.imbue(std::locale::classic());  // "0.5" whatever the global locale
   std::string field;
   while (std::getline(ss, field, ',')) {
     const std::optional<double> v = ParseFiniteDouble(field);

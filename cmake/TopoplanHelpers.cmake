@@ -1,7 +1,8 @@
-# topoplan_add_test(NAME name SOURCES a.cc [b.cc] LIBS lib... LABEL unit|property|snapshot [ENV K=V])
+# topoplan_add_test(NAME name SOURCES a.cc [b.cc] LIBS lib... LABEL unit|property|snapshot [ENV K=V]
+#                   [FIXTURES fixture])
 # Builds one GoogleTest executable and registers its cases with CTest under the given labels.
 function(topoplan_add_test)
-  cmake_parse_arguments(T "" "NAME" "SOURCES;LIBS;LABELS;ENV" ${ARGN})
+  cmake_parse_arguments(T "" "NAME;FIXTURES" "SOURCES;LIBS;LABELS;ENV" ${ARGN})
   add_executable(${T_NAME} ${T_SOURCES})
   target_link_libraries(${T_NAME} PRIVATE ${T_LIBS} GTest::gtest GTest::gtest_main)
   target_include_directories(${T_NAME} PRIVATE ${PROJECT_SOURCE_DIR})
@@ -9,8 +10,12 @@ function(topoplan_add_test)
     TOPOPLAN_SOURCE_DIR="${PROJECT_SOURCE_DIR}" TOPOPLAN_BINARY_DIR="${PROJECT_BINARY_DIR}")
   # One label per executable (gtest_discover_tests cannot carry a list of labels); ENV entries
   # are joined the same way, so pass at most one.
+  set(fixtures)
+  if(T_FIXTURES)
+    set(fixtures FIXTURES_REQUIRED ${T_FIXTURES})
+  endif()
   gtest_discover_tests(${T_NAME}
-    PROPERTIES LABELS "${T_LABELS}" ENVIRONMENT "${T_ENV}"
+    PROPERTIES LABELS "${T_LABELS}" ENVIRONMENT "${T_ENV}" ${fixtures}
     DISCOVERY_TIMEOUT 60)
 endfunction()
 

@@ -1,6 +1,8 @@
 // Perceptual image diff and golden-image checks (see diff.h).
 #include "render/diff.h"
 
+#include "base/numbers.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
@@ -110,7 +112,7 @@ DiffResult CompareImages(const Image& expected, const Image& actual, const DiffO
   }
   if (!(options.threshold >= 0.0 && options.threshold <= 1.0)) {
     throw std::invalid_argument("diff threshold must be in [0, 1], got " +
-                                std::to_string(options.threshold));
+                                base::FormatShortest(options.threshold));
   }
   DiffResult r;
   r.allowed = options.max_diff_pixels >= 0

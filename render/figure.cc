@@ -2,6 +2,7 @@
 #include "render/figure.h"
 
 #include "base/file_write.h"
+#include "base/numbers.h"
 
 #include <algorithm>
 #include <cctype>
@@ -73,9 +74,7 @@ std::string PathWithFormat(const std::string& path, FigureFormat format) {
 
 std::string FormatNumber(double v, int decimals, bool plus) {
   if (!std::isfinite(v)) return std::isnan(v) ? "nan" : (v > 0 ? "\u221e" : "\u2212\u221e");
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.*f", std::clamp(decimals, 0, 17), std::abs(v));
-  const std::string digits = buf;
+  const std::string digits = base::FormatFixed(std::abs(v), std::clamp(decimals, 0, 17));
   // Negative only when some digit survives the rounding (no "−0.000").
   const bool zero = digits.find_first_not_of("0.") == std::string::npos;
   if (v < 0.0 && !zero) return "\u2212" + digits;
@@ -83,19 +82,51 @@ std::string FormatNumber(double v, int decimals, bool plus) {
 }
 
 std::string XmlEscape(std::string_view s) {
+  // Well-formed XML whatever the bytes: the five markup characters escaped, control characters
+  // (XML 1.0 allows only tab, newline and carriage return) and bytes that are not valid UTF-8
+  // replaced by U+FFFD.
+  static const std::string kReplacement = "\xEF\xBF\xBD";
   std::string out;
-  for (char c : s) {
-    if (c == '<') {
-      out += "&lt;";
-    } else if (c == '>') {
-      out += "&gt;";
-    } else if (c == '&') {
-      out += "&amp;";
-    } else if (c == '"') {
-      out += "&quot;";
-    } else {
-      out += c;
+  const auto* p = reinterpret_cast<const unsigned char*>(s.data());
+  const std::size_t n = s.size();
+  for (std::size_t i = 0; i < n;) {
+    const unsigned char c = p[i];
+    if (c < 0x80) {
+      if (c == '<') {
+        out += "&lt;";
+      } else if (c == '>') {
+        out += "&gt;";
+      } else if (c == '&') {
+        out += "&amp;";
+      } else if (c == '"') {
+        out += "&quot;";
+      } else if ((c < 0x20 && c != '\t' && c != '\n' && c != '\r') || c == 0x7f) {
+        out += kReplacement;
+      } else {
+        out += static_cast<char>(c);
+      }
+      ++i;
+      continue;
     }
+    // A UTF-8 sequence: its length from the lead byte, continuation bytes 10xxxxxx, no overlong
+    // forms, no surrogates, at most U+10FFFF.
+    const std::size_t len = (c >= 0xF0 && c <= 0xF4)   ? 4
+                            : (c >= 0xE0 && c <= 0xEF) ? 3
+                            : (c >= 0xC2 && c <= 0xDF) ? 2
+                                                       : 0;
+    bool ok = len > 0 && i + len <= n;
+    for (std::size_t k = 1; ok && k < len; ++k) ok = (p[i + k] & 0xC0) == 0x80;
+    if (ok && len == 3) {
+      ok = !(c == 0xE0 && p[i + 1] < 0xA0) && !(c == 0xED && p[i + 1] >= 0xA0);
+    }
+    if (ok && len == 4) ok = !(c == 0xF0 && p[i + 1] < 0x90) && !(c == 0xF4 && p[i + 1] >= 0x90);
+    if (!ok) {
+      out += kReplacement;
+      ++i;
+      continue;
+    }
+    out.append(reinterpret_cast<const char*>(p + i), len);
+    i += len;
   }
   return out;
 }

@@ -38,7 +38,27 @@ const char* GlBackendName(GlBackend backend) {
   return "auto";
 }
 
+namespace {
+
+// Mesa reads GALLIUM_DRIVER when the context is made; a name it does not know crashes OSMesa's
+// context creation (seen with "GALLIUM_DRIVER=nonsense"). Only the software drivers a headless
+// machine has are accepted; anything else is an environment error naming the variable.
+void CheckGalliumDriver() {
+  const char* driver = std::getenv("GALLIUM_DRIVER");
+  if (driver == nullptr || *driver == '\0') return;
+  const std::string d = driver;
+  if (d == "llvmpipe" || d == "softpipe") return;
+  std::string shown;
+  for (char c : d.substr(0, 40)) shown += (static_cast<unsigned char>(c) < 0x20) ? '?' : c;
+  throw ContextError("GALLIUM_DRIVER='" + shown +
+                     "' is not a driver topoplan can render with (llvmpipe or softpipe; unset it "
+                     "for the default)");
+}
+
+}  // namespace
+
 OffscreenContext::OffscreenContext(GlBackend backend) {
+  CheckGalliumDriver();
   switch (ResolveGlBackend(backend)) {
     case GlBackend::kEgl:
       impl_ = internal::CreateEglContext();

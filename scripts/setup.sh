@@ -15,6 +15,7 @@ REQUIRED=(
   libplplot-dev plplot-driver-cairo               # plots
   libcairo2-dev                                   # PDF figures (heatmaps)
   fonts-dejavu-core                               # font for labels
+  locales                                         # locale definitions (tests: a comma-decimal locale)
   libassimp-dev liburdfdom-dev libtinyxml-dev     # meshes, URDF (+ TinyXML, used directly)
   libfcl-dev libccd-dev libqhull-dev              # collision, convex hulls of meshes
   libode-dev                                      # physics

@@ -4,6 +4,7 @@
 #include <iomanip>
 #include <limits>
 #include <optional>
+#include <locale>
 #include <sstream>
 #include <stdexcept>
 #include <vector>
@@ -36,6 +37,7 @@ Chain ParseChainCsv(std::istream& in, const std::string& source_name) {
     const std::string line = Trim(raw);
     if (line.empty() || line[0] == '#') continue;
     std::stringstream fields(line);
+    fields.imbue(std::locale::classic());  // "0.5" whatever the global locale
     std::string field;
     int count = 0;
     while (std::getline(fields, field, ',')) {
@@ -69,6 +71,7 @@ Chain ParseChainCsv(std::istream& in, const std::string& source_name) {
 
 Chain ReadChainCsv(const std::string& path) {
   std::istringstream in(base::ReadFileBounded(path, "chain"));
+  in.imbue(std::locale::classic());  // "0.5" whatever the global locale
   return ParseChainCsv(in, path);
 }
 

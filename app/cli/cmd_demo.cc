@@ -414,7 +414,8 @@ void AddDemoCommand(CLI::App* root, CommandList* commands) {
   auto args = std::make_shared<DemoArgs>();
   CLI::App* demo = root->add_subcommand(
       "demo", "Run the main job: every scenario, figure and table, with DIR/index.html");
-  demo->add_option("-o,--out", args->out_dir, "output folder")->capture_default_str();
+  demo->add_option("-o,--output", args->out_dir, "output folder")->capture_default_str();
+  AddDeprecatedAlias(demo, "--out", "--output", &args->out_dir);
   demo->add_flag("--full", args->full,
                  "the whole Fig. 4.5 sweep (0..1080 deg every 15 deg, 3 seeds)");
   demo->add_flag("--no-grasp", args->no_grasp, "skip the grasp-transfer stage");

@@ -199,11 +199,12 @@ void AddGraspCommands(CLI::App* root, CommandList* commands) {
                      "also write frames of the transfer and stability test");
   transfer->add_flag("--json", ta->json, "print report.json to stdout");
   IntIn(transfer->add_option(
-            "--perturb", ta->perturb,
+            "--repeats", ta->perturb,
             "also repeat every grasp and method N times with the object moved by up to "
             "+-5 mm per axis and turned by up to +-5 deg (seeded); report.json then gives "
             "per grasp and method perturbed: {trials, stable, ci95} (Wilson 95 %)"),
         1, 1000);
+  IntIn(AddDeprecatedAlias(transfer, "--perturb", "--repeats", &ta->perturb), 1, 1000);
   transfer->add_option("--seed", ta->seed, "seed of the perturbations (default 0)");
   IntIn(transfer->add_option("--threads", ta->threads,
                              "threads computing transfers ahead of the simulations (default: the "

@@ -440,9 +440,10 @@ void AddPlanCommands(CLI::App* root, CommandList* commands) {
       ->add_option("--budget", ba->budget,
                    "collision-check budget of the RRTs (default: the scenario's, 100000)"),
         1L, 1000000000L);
-  unwrap->add_option("--perturb", ba->perturb,
+  unwrap->add_option("--pole-offset", ba->perturb,
                      "move the pole of each seed by a random offset of at most M metres "
                      "perpendicular to its axis (seeded, reproducible; 0 <= M <= 1, default 0)");
+  AddDeprecatedAlias(unwrap, "--perturb", "--pole-offset", &ba->perturb);
   unwrap->add_option("--aico-stop", ba->aico_stop, kAicoStopHelp)
       ->check(CLI::IsMember({"solved", "converged"}));
   AddTimeoutFlag(unwrap, &ba->timeout);
@@ -471,7 +472,7 @@ void AddPlanCommands(CLI::App* root, CommandList* commands) {
          options.seeds = ba->seeds;
          options.rrt_budget = ba->budget;
          if (!(ba->perturb >= 0.0 && ba->perturb <= kMaxPerturbM)) {
-           throw std::invalid_argument("--perturb: expected a distance in metres in [0, 1]");
+           throw std::invalid_argument("--pole-offset: expected a distance in metres in [0, 1]");
          }
          const long runs = static_cast<long>(options.angles_deg.size()) *
                            static_cast<long>(options.planners.size()) * ba->seeds;

@@ -139,7 +139,8 @@ void AddRobotCommands(CLI::App* root, CommandList* commands) {
                     "add an object: URDF[@x,y,z[,roll,pitch,yaw]] (repeatable; angles in rad)");
   AddRobotInputFlags(check, &ca->robot_input, &ca->pose);
   check->add_option("--margin", ca->margin,
-                    "also list every link pair closer than this distance [m] (default 0)");
+                    "also list every link pair closer than this distance [m] (default 0)")
+      ->check(FiniteIn(0.0, 10.0));
   check->add_flag("--no-self", ca->no_self, "skip self-collision (robot vs environment only)");
   check->add_flag("--json", ca->json,
                   "print {\"in_collision\", \"min_distance\", \"closest\", \"pairs\", ...}");

@@ -55,6 +55,10 @@ auto ParseFlag(const std::string& flag, F&& parse) -> decltype(parse()) {
 
 // Runs `run`, mapping exceptions to exit codes and printing "topoplan <name>: error: ..." to
 // stderr.
+// `text` safe to print: control bytes (a NUL included) as \xNN, at most `max_bytes` bytes and then
+// "... (N more bytes)".
+std::string PrintableMessage(const std::string& text, std::size_t max_bytes);
+
 int RunGuarded(const std::string& name, const std::function<int()>& run);
 
 }  // namespace app

@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 #include <Eigen/Core>
 #include <chrono>
+#include <cstdio>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -128,6 +129,24 @@ CLI::Option* IntIn(CLI::Option* option, long long lo, long long hi);
 // Makes every integer option of `app` and its subcommands strictly decimal (as IntIn, without a
 // range); called once the command line is built.
 void StrictIntegerOptions(CLI::App* app);
+
+// An old spelling of a flag, kept working for one release: a hidden option storing into the same
+// variable as `new_flag` (with `configure` applied, e.g. the same checks) that prints
+// "topoplan: warning: OLD is deprecated; use NEW" when given. Returns the alias.
+template <typename T>
+CLI::Option* AddDeprecatedAlias(CLI::App* cmd, const std::string& old_flag,
+                                const std::string& new_flag, T* variable) {
+  CLI::Option* o = cmd->add_option(old_flag, *variable, "deprecated: use " + new_flag);
+  o->group("");  // not in --help
+  o->check(CLI::Validator(
+      [old_flag, new_flag](std::string&) -> std::string {
+        std::fprintf(stderr, "topoplan: warning: %s is deprecated; use %s\n", old_flag.c_str(),
+                     new_flag.c_str());
+        return "";
+      },
+      ""));
+  return o;
+}
 
 // --timeout SECONDS on a command (0 = none, at most 1e6 s).
 void AddTimeoutFlag(CLI::App* command, double* seconds);

@@ -6,6 +6,7 @@
 #include <iomanip>
 #include <limits>
 #include <nlohmann/json.hpp>
+#include <locale>
 #include <sstream>
 #include <stdexcept>
 
@@ -142,6 +143,7 @@ Eigen::VectorXd HumanConfiguration(const Robot& human, const HumanGrasp& grasp) 
     const JointLimits& lim = human.joints[human.dof_joints[k]].limits;
     if (v < lim.lower - 1e-6 || v > lim.upper + 1e-6) {
       std::ostringstream msg;
+      msg.imbue(std::locale::classic());  // "0.5" whatever the global locale
       msg << grasp.source << ": joints." << name << " = " << v << " is outside [" << lim.lower
           << ", " << lim.upper << "]";
       throw std::invalid_argument(msg.str());

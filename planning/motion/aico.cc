@@ -3,6 +3,8 @@
 // AicoSolver, SolveAico, TrajectoryCost. The messages of one sweep are in aico_messages.cc.
 #include "planning/motion/aico.h"
 
+#include "base/numbers.h"
+
 #include <algorithm>
 #include <cassert>
 #include <cmath>
@@ -333,7 +335,7 @@ void CheckInput(const MotionProblem& problem, const AicoOptions& options, const 
   }
   if (!(options.relocation_damping > 0.0 && options.relocation_damping <= 1.0)) {
     throw std::invalid_argument("SolveAico: need relocation_damping in (0, 1], got " +
-                                std::to_string(options.relocation_damping));
+                                base::FormatShortest(options.relocation_damping));
   }
   if (!(options.tolerance > 0.0) || !(options.damping >= 0.0) || !(options.max_step > 0.0) ||
       options.max_iterations < 0) {

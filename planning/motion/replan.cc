@@ -6,6 +6,7 @@
 #include <ctime>
 #include <limits>
 #include <optional>
+#include <locale>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -69,6 +70,7 @@ void ShiftTargets(const MotionProblem& base, int g, MotionProblem* window) {
 
 ObjectPath ReadObjectPath(const std::string& path) {
   std::istringstream in(base::ReadFileBounded(path, "object path"));
+  in.imbue(std::locale::classic());  // "0.5" whatever the global locale
   ObjectPath out;
   std::string line;
   int number = 0;
@@ -93,6 +95,7 @@ ObjectPath ReadObjectPath(const std::string& path) {
       throw std::invalid_argument(where + "empty value at the end of the row");
     std::vector<double> v;
     std::stringstream ss(text);
+    ss.imbue(std::locale::classic());  // "0.5" whatever the global locale
     std::string cell;
     while (std::getline(ss, cell, ',')) {
       const std::string c = Trim(cell);
@@ -116,6 +119,7 @@ ObjectPath ReadObjectPath(const std::string& path) {
     }
     if (!out.t.empty() && !(v[0] > out.t.back())) {
       std::ostringstream msg;
+      msg.imbue(std::locale::classic());  // "0.5" whatever the global locale
       msg << where << "time " << v[0] << " is not greater than the previous time " << out.t.back();
       throw std::invalid_argument(msg.str());
     }

@@ -1,7 +1,10 @@
 #include "planning/motion/report.h"
 
+#include "base/numbers.h"
+
 #include <cmath>
 #include <cstdio>
+#include <locale>
 #include <sstream>
 
 #include "planning/robot/kinematics.h"
@@ -44,6 +47,7 @@ nlohmann::json PlanReportJson(const Scenario& s, const PlanReport& r,
 
 std::string TrajectoryCsv(const Scenario& s, const Trajectory& tr) {
   std::ostringstream out;
+  out.imbue(std::locale::classic());  // "0.5" whatever the global locale
   out.precision(17);
   out << "step,time_s";
   for (const std::string& name : DofNames(s.robot)) out << "," << name;
@@ -60,21 +64,24 @@ std::string PlanSummaryLine(const Scenario& s, const PlanReport& r) {
   // The start wrap means something only for a coil start (unwrap); other starts name no angle.
   char wrap[64] = "";
   if (s.spec.start.kind == StartKind::kCoil) {
-    std::snprintf(wrap, sizeof(wrap), " (start wrap %.1f deg)", s.start_wrap_deg);
+    std::snprintf(wrap, sizeof(wrap), " (start wrap %s deg)",
+                  base::FormatFixed(s.start_wrap_deg, 1).c_str());
   }
-  char line[512];
-  std::snprintf(line, sizeof(line),
-                "%s on %s%s: %s [%s, %s], %ld collision checks, %ld "
-                "iterations, %.3f s, writhe %+.3f -> %+.3f, min clearance %.3f m",
-                r.planner.c_str(), s.name.c_str(), wrap, r.success ? "success" : "FAILED",
-                StatusName(r.status), FailureReasonName(r.failure_reason),
-                r.collision_checks, r.iterations, r.time_s, r.start_writhe_total,
-                r.final_writhe_total, r.min_clearance_m);
-  return line;
+  const auto sign = [](double v) {
+    std::string t = v >= 0 ? "+" : "";
+    return t.append(base::FormatFixed(v, 3));
+  };
+  return r.planner + " on " + s.name + wrap + ": " + (r.success ? "success" : "FAILED") + " [" +
+         StatusName(r.status) + ", " + FailureReasonName(r.failure_reason) + "], " +
+         std::to_string(r.collision_checks) + " collision checks, " +
+         std::to_string(r.iterations) + " iterations, " + base::FormatFixed(r.time_s, 3) +
+         " s, writhe " + sign(r.start_writhe_total) + " -> " + sign(r.final_writhe_total) +
+         ", min clearance " + base::FormatFixed(r.min_clearance_m, 3) + " m";
 }
 
 std::string UnwrapCsv(const UnwrapBenchmarkResult& result) {
   std::ostringstream csv;
+  csv.imbue(std::locale::classic());  // "0.5" whatever the global locale
   csv << "angle_deg,planner,seed,success,failure_reason,collision_checks,narrow_phase_calls,"
          "time_s,path_length,reach_error_m,pole_offset_m\n";
   for (const UnwrapRun& r : result.runs) {

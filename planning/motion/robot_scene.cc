@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <memory>
+#include <locale>
 #include <sstream>
 #include <stdexcept>
 
@@ -68,6 +69,7 @@ std::vector<std::string> PackagePaths(const std::vector<std::string>& extra) {
   std::vector<std::string> out = extra;
   if (const char* env = std::getenv("ROS_PACKAGE_PATH")) {
     std::stringstream ss(env);
+    ss.imbue(std::locale::classic());  // "0.5" whatever the global locale
     std::string item;
     while (std::getline(ss, item, ':')) {
       if (!item.empty()) out.push_back(item);
@@ -92,7 +94,8 @@ bool IsRobotSceneFile(const std::string& path) {
   return doc.is_object() && doc.contains("robot");
 }
 
-Eigen::VectorXd ParseQ(const Robot& robot, const std::string& text) {
+Eigen::VectorXd ParseQ(const Robot& robot, const std::string& text,
+                       std::vector<std::string>* warnings) {
   const int n = num_dofs(robot);
   if (text.empty()) return Eigen::VectorXd::Zero(n);
   std::vector<double> v;
@@ -105,25 +108,27 @@ Eigen::VectorXd ParseQ(const Robot& robot, const std::string& text) {
                                 std::to_string(n) + " values: " + names + ")");
   }
   const Eigen::VectorXd q = Eigen::Map<const Eigen::VectorXd>(v.data(), n);
-  CheckJointValues(robot, q, "--q");
+  CheckJointValues(robot, q, "--q", warnings);
   return q;
 }
 
-void CheckJointValues(const Robot& robot, const Eigen::VectorXd& q,
-                      const std::string& where) {
+void CheckJointValues(const Robot& robot, const Eigen::VectorXd& q, const std::string& where,
+                      std::vector<std::string>* warnings) {
   const Eigen::VectorXd lo = LowerLimits(robot), hi = UpperLimits(robot);
   const std::vector<std::string> names = DofNames(robot);
   for (Eigen::Index k = 0; k < q.size(); ++k) {
     const std::string at = where + "[" + std::to_string(k) + "] (" + names[k] + ")";
     if (!std::isfinite(q[k]) || std::fabs(q[k]) > kMaxJointValue) {
-      throw std::invalid_argument(at + ": " + std::to_string(q[k]) +
+      throw std::invalid_argument(at + ": " + base::FormatShortest(q[k]) +
                                   " is not a joint value (|q| <= 1e6)");
     }
     // A small tolerance keeps values printed at limited precision (e.g. 1.5708) usable.
     if (q[k] < lo[k] - 1e-6 || q[k] > hi[k] + 1e-6) {
-      throw std::invalid_argument(at + ": " + std::to_string(q[k]) +
-                                  " is outside the joint limits [" + std::to_string(lo[k]) + ", " +
-                                  std::to_string(hi[k]) + "]");
+      const std::string what = at + ": " + base::FormatShortest(q[k]) +
+                               " is outside the joint limits [" + base::FormatShortest(lo[k]) +
+                               ", " + base::FormatShortest(hi[k]) + "]";
+      if (warnings == nullptr) throw std::invalid_argument(what);
+      warnings->push_back(what);
     }
   }
 }
@@ -327,7 +332,7 @@ Eigen::VectorXd ChooseQ(const RobotScene& scene, const std::string& q_text,
   if (!q_text.empty() && !pose.empty()) {
     throw std::invalid_argument("--q and --pose: give at most one of them");
   }
-  if (!q_text.empty()) return ParseQ(scene.robot, q_text);
+  if (!q_text.empty()) return ParseQ(scene.robot, q_text, warnings);
   if (pose.empty()) return scene.q;
   if (!scene.srdf) {
     throw std::invalid_argument("--pose " + pose + ": robot '" + scene.robot.name +

@@ -79,7 +79,10 @@ bool IsRobotSceneFile(const std::string& path);
 
 // Parses "--q v1,...,vn" for `robot`; empty text gives zeros. Throws std::invalid_argument naming
 // the flag and listing the expected joints when the count differs.
-Eigen::VectorXd ParseQ(const Robot& robot, const std::string& text);
+// A value outside its joint's limits is described in `warnings` when given (`check`, `fk` and
+// `render` look at the pose asked about), an error otherwise.
+Eigen::VectorXd ParseQ(const Robot& robot, const std::string& text,
+                       std::vector<std::string>* warnings = nullptr);
 
 // Largest |q| accepted from a file or flag (rad or m); larger values break the collision library.
 inline constexpr double kMaxJointValue = 1e6;
@@ -87,8 +90,8 @@ inline constexpr double kMaxJointValue = 1e6;
 // Throws std::invalid_argument "<where>[k] (<joint>): ..." when q[k] is not finite, |q[k]| >
 // kMaxJointValue or q[k] is outside the joint's limits (1e-6 tolerance). Called for every q read
 // from a flag or file, before any collision query.
-void CheckJointValues(const Robot& robot, const Eigen::VectorXd& q,
-                      const std::string& where);
+void CheckJointValues(const Robot& robot, const Eigen::VectorXd& q, const std::string& where,
+                      std::vector<std::string>* warnings = nullptr);
 
 // Adds an object from "URDF[@x,y,z[,roll,pitch,yaw]]" (the `--object` flag).
 void AddObjectSpec(const std::string& spec, RobotScene* scene);

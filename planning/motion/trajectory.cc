@@ -1,5 +1,7 @@
 #include "planning/motion/trajectory.h"
 
+#include "base/numbers.h"
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -23,7 +25,7 @@ std::int64_t EdgeSteps(double distance, double resolution) {
   const double steps = std::ceil(distance / resolution);
   if (steps > static_cast<double>(kMaxEdgeSteps)) {
     throw std::invalid_argument("edge resolution " + std::to_string(resolution) +
-                                " is too fine: an edge of length " + std::to_string(distance) +
+                                " is too fine: an edge of length " + base::FormatShortest(distance) +
                                 " would need " + std::to_string(steps) + " states (limit " +
                                 std::to_string(kMaxEdgeSteps) + ")");
   }

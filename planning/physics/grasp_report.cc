@@ -1,9 +1,12 @@
 #include "planning/physics/grasp_report.h"
 
+#include "base/numbers.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <locale>
 #include <sstream>
 
 #include "planning/grasp/grasp_quality.h"
@@ -189,7 +192,8 @@ nlohmann::json SummaryJson(const GraspTrialsResult& result) {
 std::string RateText(int stable, int trials, const Eigen::Vector2d& ci) {
   char buf[64];
   if (trials > 0) {
-    std::snprintf(buf, sizeof buf, "%d/%d (%.2f-%.2f)", stable, trials, ci[0], ci[1]);
+    std::snprintf(buf, sizeof buf, "%d/%d (%s-%s)", stable, trials,
+                  base::FormatFixed(ci[0], 2).c_str(), base::FormatFixed(ci[1], 2).c_str());
   } else {
     std::snprintf(buf, sizeof buf, "0/0");
   }
@@ -217,6 +221,7 @@ nlohmann::json GraspReportJson(const GraspTrialsResult& result) {
 
 std::string GraspSummaryMarkdown(const GraspTrialsResult& result) {
   std::ostringstream md;
+  md.imbue(std::locale::classic());  // "0.5" whatever the global locale
   md << "# Grasp transfer to the SDH: ODE stability (mu = " << result.stability.sim.mu
      << ", soft-finger contact patch " << result.stability.sim.contact_patch_radius * 1e3
      << " mm, flexion set-points " << result.close_by << " rad past the grasp)\n\n"
@@ -239,9 +244,7 @@ std::string GraspSummaryMarkdown(const GraspTrialsResult& result) {
       md << " |";
     }
     for (const GraspTrial& trial : result.trials[gi]) {
-      char eps[32];
-      std::snprintf(eps, sizeof eps, " %.4f |", trial.epsilon_quality);
-      md << eps;
+      md << " " << base::FormatFixed(trial.epsilon_quality, 4) << " |";
     }
     md << "\n";
   }
@@ -264,10 +267,8 @@ std::string GraspSummaryMarkdown(const GraspTrialsResult& result) {
   }
   const nlohmann::json rank = EpsilonOutcomeJson(result);
   auto text = [](const nlohmann::json& r) {
-    char buf[32];
     if (r.is_null()) return std::string("undefined (one outcome only)");
-    std::snprintf(buf, sizeof buf, "%.2f", r.get<double>());
-    return std::string(buf);
+    return base::FormatFixed(r.get<double>(), 2);
   };
   md << "\nRank correlation (Spearman) of eps with the outcome over all "
      << rank["trials"].get<size_t>() << " trials"

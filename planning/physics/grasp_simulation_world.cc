@@ -9,6 +9,8 @@
 #include <vector>
 
 #include "planning/physics/grasp_simulation.h"
+
+#include "base/numbers.h"
 #include "planning/physics/internal/grasp_simulation_impl.h"
 #include "planning/physics/internal/ode_convert.h"
 
@@ -212,9 +214,9 @@ void GraspSimulation::Impl::ReadState(SimState* state) const {
     if (!p.allFinite() || !v.allFinite() || !w.allFinite()) {
       reason = "non-finite state";
     } else if (v.norm() > options.blowup_linear_speed) {
-      reason = "speed " + std::to_string(v.norm()) + " m/s";
+      reason = "speed " + base::FormatShortest(v.norm()) + " m/s";
     } else if (w.norm() > options.blowup_angular_speed) {
-      reason = "angular speed " + std::to_string(w.norm()) + " rad/s";
+      reason = "angular speed " + base::FormatShortest(w.norm()) + " rad/s";
     } else {
       return;
     }
@@ -226,7 +228,7 @@ void GraspSimulation::Impl::ReadState(SimState* state) const {
   check(object_body, -1);
   for (size_t i = 1; i < hand.links.size(); ++i) check(link_body[i], static_cast<int>(i));
   if (state->blown_up) {
-    state->blowup_reason += " at t = " + std::to_string(state->time) + " s";
+    state->blowup_reason += " at t = " + base::FormatShortest(state->time) + " s";
   }
 }
 

@@ -21,6 +21,8 @@
 #include <vector>
 
 #include "base/file_read.h"
+#include "planning/robot/internal/collada_check.h"
+#include "planning/robot/internal/xml_text.h"
 
 extern "C" {
 #include <libqhull_r/qhull_ra.h>
@@ -78,6 +80,9 @@ std::vector<std::string> AttributeValues(const std::string& xml, const std::stri
 // gigabytes (found by fuzzing): such files are refused before assimp reads them.
 void CheckColladaSources(const std::string& path) {
   const std::string xml = base::ReadFileBounded(path, "mesh", kMaxMeshFileBytes);
+  internal::CheckXmlDepth(xml, path);
+  // Node cycles and instance counts on the graph, before assimp expands anything.
+  internal::CheckColladaStructure(xml, path, kMaxMeshTriangles);
   const std::vector<std::string> ids = AttributeValues(xml, "id");
   const std::set<std::string> known(ids.begin(), ids.end());
   for (const std::string& source : AttributeValues(xml, "source")) {

@@ -61,10 +61,33 @@ auto Named(const std::string& arg, F f, PyObject* type = PyExc_ValueError) -> de
 }
 
 // A float64 array from any array-like; ValueError naming `arg` when it is not numeric.
+// Most numbers an array argument may hold (2^27 doubles, 1 GiB): checked before any copy.
+constexpr py::ssize_t kMaxArrayElements = py::ssize_t{1} << 27;
+
 inline Array ToArray(const py::handle& obj, const std::string& arg) {
+  // What it is before it is converted: real numbers only (a complex array would lose its
+  // imaginary part, strings and objects are not numbers), and of a size that can be copied.
+  py::array raw;
+  try {
+    raw = py::array::ensure(obj);
+  } catch (const py::error_already_set&) {
+    ThrowValue(arg + ": expected an array of numbers");
+  }
+  if (!raw) ThrowValue(arg + ": expected an array of numbers");
+  const char kind = raw.dtype().kind();
+  if (kind == 'c') {
+    ThrowValue(arg + ": complex numbers are not accepted (the imaginary part would be lost)");
+  }
+  if (kind != 'f' && kind != 'i' && kind != 'u' && kind != 'b') {
+    ThrowValue(arg + ": expected real numbers, got dtype " + py::str(raw.dtype()).cast<std::string>());
+  }
+  if (raw.size() > kMaxArrayElements) {
+    ThrowValue(arg + ": " + std::to_string(raw.size()) + " numbers, more than the limit of " +
+               std::to_string(kMaxArrayElements));
+  }
   Array a;
   try {
-    a = py::cast<Array>(obj);
+    a = py::cast<Array>(raw);
   } catch (const py::cast_error&) {
     ThrowValue(arg + ": expected an array of numbers");
   } catch (const py::error_already_set&) {

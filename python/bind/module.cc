@@ -1,5 +1,6 @@
 // The topoplan Python module (_core): one binding file per layer (python/bind/topology.cc,
 // planning.cc, render.cc), all into one flat namespace, re-exported by topoplan/__init__.py.
+#include "base/version.h"
 #include "python/bind/planning_types.h"
 
 using namespace topoplan_py;  // NOLINT(build/namespaces): the module's own helpers
@@ -22,6 +23,8 @@ PYBIND11_MODULE(_core, m) {
   plan_cancelled.doc() =
       "Raised by Scenario.plan when its callback returned False; has .sweep (the sweep index) and "
       ".trajectory (the (T+1) x n trajectory at that sweep).";
+  m.attr("__version__") = base::Version();
+  m.attr("__commit__") = base::Commit();
   BindTopology(m);
   BindPlanning(m);
   BindRender(m);

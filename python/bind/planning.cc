@@ -159,6 +159,9 @@ PyScenario LoadScenarioPy(const fs::path& arg_path, std::optional<double> start_
   const std::map<std::string, Eigen::Vector3d> offsets = ObjectOffsets(move_objects);
   planning::ScenarioSpec spec = planning::ParseScenarioSpec(path, overrides.search_roots);
   MoveScenarioObjects(offsets, &spec);
+  // Options go into the spec: the set-up scenario is the model, not changed afterwards.
+  if (rrt_budget > 0) spec.rrt.max_checks = rrt_budget;
+  if (stop_when_solved) spec.aico_stop_when_solved = *stop_when_solved;
   const std::optional<planning::ResolvedPoses> given = ResolvedPosesFromPython(resolved);
   PyScenario s;
   {
@@ -166,23 +169,32 @@ PyScenario LoadScenarioPy(const fs::path& arg_path, std::optional<double> start_
     // Bad resolved poses throw std::invalid_argument "resolved: ..." (a ValueError).
     s.scenario = planning::SetUpScenario(std::move(spec), start_wrap, given ? &*given : nullptr);
   }
-  if (rrt_budget > 0) s.scenario->rrt.max_checks = rrt_budget;
-  if (stop_when_solved) s.scenario->stop_when_solved = *stop_when_solved;
   return s;
 }
 
-// unwrap_perturbation: the pole offsets of `bench unwrap --perturb`.
-py::dict UnwrapPerturbationPy(const fs::path& arg_path, int seeds, double perturb) {
+// unwrap_perturbation: the pole offsets of `bench unwrap --pole-offset`.
+// An old keyword, kept working for one release: a DeprecationWarning naming the new one.
+void WarnDeprecated(const char* old_name, const char* new_name) {
+  PyErr_WarnFormat(PyExc_DeprecationWarning, 2, "%s= is deprecated; use %s=", old_name, new_name);
+}
+
+py::dict UnwrapPerturbationPy(const fs::path& arg_path, int seeds, double pole_offset,
+                              std::optional<double> perturb) {
+  if (perturb) {
+    WarnDeprecated("perturb", "pole_offset");
+    pole_offset = *perturb;
+  }
+  const double m = pole_offset;
   const std::string path = Named(
       "path_or_name", [&] { return base::ResolveScenarioPath(arg_path.string()); },
       PyExc_FileNotFoundError);
   if (seeds < 1) ThrowValue("seeds: must be >= 1");
-  if (!(perturb >= 0.0) || !std::isfinite(perturb)) ThrowValue("perturb: must be >= 0");
+  if (!(m >= 0.0) || !std::isfinite(m)) ThrowValue("pole_offset: must be >= 0");
   planning::UnwrapPerturbation p;
   {
     py::gil_scoped_release release;
     const planning::ScenarioSpec spec = planning::ParseScenarioSpec(path, {base::AssetRoot()});
-    p = planning::MakeUnwrapPerturbation(spec, 0.0, seeds, perturb);
+    p = planning::MakeUnwrapPerturbation(spec, 0.0, seeds, m);
   }
   Eigen::MatrixXd offsets(seeds, 3);
   for (int s = 0; s < seeds; ++s) offsets.row(s) = p.offsets[s].transpose();
@@ -194,12 +206,17 @@ py::dict UnwrapPerturbationPy(const fs::path& arg_path, int seeds, double pertur
 
 // grasp_transfer: one grasp and method through RunGraspTrials, its report.json entry.
 py::object GraspTransferPy(const fs::path& grasp_path, const std::string& method, double mu,
-                           int perturb, std::uint32_t seed, double close_by) {
+                           int repeats, std::uint32_t seed, double close_by,
+                           std::optional<int> perturb) {
+  if (perturb) {
+    WarnDeprecated("perturb", "repeats");
+    repeats = *perturb;
+  }
   const std::string grasp = grasp_path.string();
   if (!(mu >= 0.0) || !std::isfinite(mu)) ThrowValue("mu: must be finite and >= 0");
   if (!(close_by >= 0.0 && close_by <= planning::physics::GraspTrialsOptions::kMaxCloseBy))
     ThrowValue("close_by: must be in [0, 0.5] rad");
-  if (perturb < 0 || perturb > 1000) ThrowValue("perturb: must be in 0..1000");
+  if (repeats < 0 || repeats > 1000) ThrowValue("repeats: must be in 0..1000");
   const planning::TransferMethod tm =
       Named("method", [&] { return planning::ParseTransferMethod(method); });
   const std::vector<std::string> files = Named(
@@ -216,7 +233,7 @@ py::object GraspTransferPy(const fs::path& grasp_path, const std::string& method
     const planning::physics::OdeRuntime ode;
     planning::physics::GraspTrialsOptions options;
     options.mu = mu;
-    options.perturb = perturb;
+    options.perturb = repeats;
     options.seed = seed;
     options.close_by = close_by;
     const auto result = planning::physics::RunGraspTrials(ode, in.human, in.lwr_sdh, in.objects,
@@ -423,10 +440,11 @@ void BindScenarioLoading(py::module_& m) {
       "the first accepted sweep whose trajectory meets the success criteria, status 'solved').");
   m.def(
       "unwrap_perturbation", &UnwrapPerturbationPy, py::arg("path_or_name"), py::arg("seeds"),
-      py::arg("perturb"),
-      "The pole perturbation of `topoplan bench unwrap --perturb M --seeds N`: dict with\n"
-      "'object' (the moved object's name, '' when perturb is 0) and 'offsets' (N x 3 world-frame\n"
-      "offsets [m], row s for seed s; at most perturb from the pole's line). Pass\n"
+      py::arg("pole_offset") = 0.0, py::kw_only(), py::arg("perturb") = py::none(),
+      "The pole perturbation of `topoplan bench unwrap --pole-offset M --seeds N`: dict with\n"
+      "'object' (the moved object's name, '' when pole_offset is 0) and 'offsets' (N x 3\n"
+      "world-frame offsets [m], row s for seed s; at most pole_offset from the pole's line;\n"
+      "perturb= is its deprecated name). Pass\n"
       "move_objects={object: offsets[s]} to load_scenario for seed s's set-up.");
 }
 
@@ -434,13 +452,15 @@ void BindScenarioLoading(py::module_& m) {
 void BindGrasp(py::module_& m) {
   m.def(
       "grasp_transfer", &GraspTransferPy, py::arg("grasp"), py::arg("method") = "winding",
-      py::arg("mu") = 1.0, py::arg("perturb") = 0, py::arg("seed") = 0,
-      py::arg("close_by") = planning::physics::HandBuildOptions{}.close_by,
+      py::arg("mu") = 1.0, py::arg("repeats") = 0, py::arg("seed") = 0,
+      py::arg("close_by") = planning::physics::HandBuildOptions{}.close_by, py::kw_only(),
+      py::arg("perturb") = py::none(),
       "Transfers one human grasp (a name in assets/grasps or a file) to the SDH with method\n"
       "(winding, winding_only, contact_only, fingertip, joint, human), tests it in ODE with\n"
-      "friction mu and returns its entry of `topoplan grasp transfer`'s report.json. perturb = N\n"
+      "friction mu and returns its entry of `topoplan grasp transfer`'s report.json. repeats = N\n"
       "> 0 repeats the test N times with the object moved (<= 5 mm) and turned (<= 5 deg), seeded\n"
-      "by seed as `grasp transfer --perturb N --seed S` (methods[...]['perturbed']). close_by:\n"
+      "by seed as `grasp transfer --repeats N --seed S` (methods[...]['perturbed']; perturb= is\n"
+      "the deprecated name). close_by:\n"
       "the grip, flexion set-points this many rad past the grasp (`--close-by`, in [0, 0.5]).\n"
       "Releases the GIL; concurrent calls from several threads run one after another (ODE is\n"
       "initialised once per process).");

@@ -1,5 +1,6 @@
 // The render layer in Python: offscreen renders of scene files, robots and scenarios (through
 // visualize/), PNG I/O, writhe heatmaps and the unwrap benchmark's figure.
+#include "base/file_write.h"
 #include "python/bind/planning_types.h"
 
 #include "planning/motion/unwrap_benchmark.h"
@@ -170,11 +171,23 @@ void BindRender(py::module_& m) {
           ThrowValue("image: expected dtype uint8, got " +
                      py::str(any.dtype()).cast<std::string>());
         }
+        if (any.ndim() != 3 || any.shape(2) != 3) ThrowValue("image: expected shape (H, W, 3)");
+        // The size before any copy or allocation (a broadcast view can claim 2^32 rows).
+        if (any.shape(0) < 1 || any.shape(1) < 1 || any.shape(0) > 16384 ||
+            any.shape(1) > 16384 || any.shape(0) * any.shape(1) > render::kMaxImagePixels) {
+          ThrowValue("image: " + std::to_string(any.shape(0)) + " x " +
+                     std::to_string(any.shape(1)) + " pixels, sides must be in [1, 16384] and " +
+                     "the area at most " + std::to_string(render::kMaxImagePixels) + " pixels");
+        }
         const auto image = py::array_t<std::uint8_t>::ensure(any);
-        if (image.ndim() != 3 || image.shape(2) != 3) ThrowValue("image: expected shape (H, W, 3)");
         const fs::path parent = fs::path(path).parent_path();
         if (!parent.empty() && !fs::is_directory(parent)) {
           ThrowPy(PyExc_FileNotFoundError, "path: no folder " + parent.string());
+        }
+        try {
+          base::CheckOutputFile(path, "path");  // never a device, pipe or symlink elsewhere
+        } catch (const std::invalid_argument& e) {
+          ThrowValue(e.what());
         }
         render::Image out(static_cast<int>(image.shape(1)), static_cast<int>(image.shape(0)));
         const auto v = image.unchecked<3>();

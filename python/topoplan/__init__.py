@@ -30,6 +30,8 @@ if "TOPOPLAN_ASSETS" not in _os.environ:
         _os.environ["TOPOPLAN_ASSETS"] = str(_parents[4] / "share" / "topoplan")
 
 from ._core import (  # noqa: E402
+    __commit__,
+    __version__,
     GLError,
     PlanCancelled,
     Robot,
@@ -53,6 +55,7 @@ from ._core import (  # noqa: E402
 )
 
 __all__ = [
+    "__version__",
     "GLError",
     "PlanCancelled",
     "Robot",

@@ -20,6 +20,10 @@ class UsageError(Exception):
     """Bad command-line input (exit code 2)."""
 
 
+class TimeLimit(Exception):
+    """--timeout passed: the finished runs are kept (exit code 1)."""
+
+
 def fmt_number(x):
     """A number as C++ iostreams print it by default (6 significant digits), as in unwrap.csv."""
     return "%g" % x
@@ -99,7 +103,7 @@ def connect(scheduler, workers, timeout):
         try:
             return Client(scheduler, timeout=timeout), None
         except (OSError, TimeoutError) as e:
-            raise UsageError(f"--scheduler: cannot reach {scheduler} within {timeout} s ({e})")
+            raise UsageError(f"--scheduler: cannot reach {scheduler} within {timeout} s ({e}); see --connect-timeout")
     # Without Dask's statistical profiler in the workers: it samples the running task's stack
     # every 10 ms on the worker's event loop, and with two workers on two cores each run then took
     # 1.6x longer than in `topoplan bench unwrap` (README, "Running sweeps").
@@ -117,9 +121,11 @@ def check_common(args):
     if not 1 <= args.seeds <= 1000:
         raise UsageError("--seeds: must be in 1..1000")
     if args.workers is not None and args.workers < 1:
-        raise UsageError("--workers: must be >= 1")
-    if not (math.isfinite(args.timeout) and 0 < args.timeout <= 3600):
-        raise UsageError("--timeout: expected seconds in (0, 3600]")
+        raise UsageError("--threads: must be >= 1")
+    if not (math.isfinite(args.timeout) and 0 <= args.timeout <= 1e6):
+        raise UsageError("--timeout: expected seconds in [0, 1e6] (0: no limit)")
+    if not (math.isfinite(args.connect_timeout) and 0 < args.connect_timeout <= 3600):
+        raise UsageError("--connect-timeout: expected seconds in (0, 3600]")
     if args.scheduler is not None:
         url = args.scheduler
         scheme, sep, rest = url.partition("://")
@@ -178,7 +184,9 @@ def run_tasks(args, csv_path, header, runs, done, key, line, submit, label, para
     todo = [r for r in runs if r not in done]
     if not todo:
         return 0
-    client, cluster = connect(args.scheduler, args.workers or os.cpu_count() or 1, args.timeout)
+    client, cluster = connect(
+        args.scheduler, args.workers or os.cpu_count() or 1, args.connect_timeout
+    )
     os.makedirs(args.output, exist_ok=True)
     failed = 0
     try:
@@ -197,7 +205,16 @@ def run_tasks(args, csv_path, header, runs, done, key, line, submit, label, para
             futures = [submit(client, r) for r in todo]
             count = len(runs) - len(todo)
             start = time.monotonic()
+            # Progress: one line rewritten in place on a terminal, a line per run in a log file.
+            tty = sys.stderr.isatty() and not getattr(args, "verbose", False)
+            limit = getattr(args, "timeout", 0.0)
             for future in as_completed(futures):
+                if limit > 0 and time.monotonic() - start > limit:
+                    for other in futures:
+                        other.cancel()
+                    if not args.quiet and tty:
+                        print(file=sys.stderr)
+                    raise TimeLimit()
                 count += 1
                 try:
                     row = future.result()
@@ -210,13 +227,12 @@ def run_tasks(args, csv_path, header, runs, done, key, line, submit, label, para
                 os.fsync(f.fileno())
                 done[key(row)] = row
                 if not args.quiet:
-                    print(
-                        f"\r[{count}/{len(runs)}] {label(row)} ({time.monotonic() - start:.1f} s)   ",
-                        end="",
-                        file=sys.stderr,
-                        flush=True,
-                    )
-            if not args.quiet:
+                    text = f"[{count}/{len(runs)}] {label(row)} ({time.monotonic() - start:.1f} s)"
+                    if tty:
+                        print(f"\r{text}   ", end="", file=sys.stderr, flush=True)
+                    else:
+                        print(text, file=sys.stderr, flush=True)
+            if not args.quiet and tty:
                 print(file=sys.stderr)
     finally:
         client.close()

@@ -42,7 +42,7 @@ def run_grasp(grasp, method, seed, mu, perturb, close_by=0.15):
     import topoplan
 
     entry = topoplan.grasp_transfer(
-        grasp, method, mu=mu, perturb=perturb, seed=seed, close_by=close_by
+        grasp, method, mu=mu, repeats=perturb, seed=seed, close_by=close_by
     )
     m = entry["methods"][method]
     perturbed = m.get("perturbed", {"trials": 0, "stable": 0})
@@ -128,18 +128,18 @@ def grasp_summary(rows, perturb):
 def sweep_grasp(args):
     import topoplan
 
-    grasps = parse_names(args.grasps, topoplan.available_grasps(), "--grasps")
-    methods = parse_names(args.methods, topoplan.transfer_methods(), "--methods")
+    grasps = parse_names(args.grasps, topoplan.available_grasps(), "--grasp")
+    methods = parse_names(args.methods, topoplan.transfer_methods(), "--method")
     if not (args.mu >= 0.0) or args.mu != args.mu or args.mu == float("inf"):
         raise UsageError("--mu: must be finite and >= 0")
     if not (0 <= args.perturb <= 1000):
-        raise UsageError("--perturb: must be in 0..1000")
+        raise UsageError("--repeats: must be in 0..1000")
     if not (0.0 <= args.close_by <= 0.5):
         raise UsageError("--close-by: must be a number of radians in [0, 0.5]")
     if args.perturb == 0 and args.seeds > 1:
         # Without perturbations every seed is the same deterministic trial: counting them as
         # independent trials would narrow the intervals on no new evidence.
-        raise UsageError("--seeds: without --perturb every seed is the same run; use --seeds 1")
+        raise UsageError("--seeds: without --repeats every seed is the same run; use --seeds 1")
     check_common(args)
     csv_path = os.path.join(args.output, "grasp.csv")
     done = read_rows(csv_path, GRASP_HEADER, parse_grasp_row, grasp_key)
@@ -163,7 +163,7 @@ def sweep_grasp(args):
     def label(row):
         return f"{row['grasp']} / {row['method']} seed {row['seed']}"
 
-    params = {"--perturb": args.perturb}
+    params = {"--repeats": args.perturb}
     check_params(csv_path, done, params)
     if run_tasks(args, csv_path, GRASP_HEADER, runs, done, grasp_key, grasp_line, submit, label,
                  params):

@@ -142,7 +142,7 @@ def sweep_unwrap(args):
     planners = parse_planners(args.planners, topoplan.available_planners())
     check_common(args)
     if not (0 <= args.perturb <= 1):  # also refuses NaN
-        raise UsageError("--perturb: expected a distance in metres in 0..1")
+        raise UsageError("--pole-offset: expected a distance in metres in 0..1")
     if args.budget != -1 and not 1 <= args.budget <= 1000000000:
         raise UsageError("--budget: expected a collision-check count in 1..1e9 (as bench unwrap)")
     keys = [fmt_number(a) for a in angles]
@@ -164,7 +164,7 @@ def sweep_unwrap(args):
     for row in done.values():
         if row["seed"] in want and fmt_number(row["pole_offset_m"]) != want[row["seed"]]:
             raise UsageError(
-                f"--perturb: {csv_path} holds runs with another pole perturbation "
+                f"--pole-offset: {csv_path} holds runs with another pole perturbation "
                 f"(seed {row['seed']}: offset {fmt_number(row['pole_offset_m'])} m); use another -o"
             )
 
@@ -190,7 +190,7 @@ def sweep_unwrap(args):
     def label(row):
         return f"{row['planner']} @ {fmt_number(row['angle_deg'])} deg seed {row['seed']}"
 
-    params = {"--budget": args.budget, "--perturb": args.perturb}
+    params = {"--budget": args.budget, "--pole-offset": args.perturb}
     check_params(csv_path, done, params)
     if run_tasks(args, csv_path, CSV_HEADER, runs, done, unwrap_key, row_line, submit, label,
                  params):

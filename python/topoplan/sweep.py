@@ -24,6 +24,7 @@ import sys
 # here (topoplan.sweep.run_unwrap, .connect, ...).
 from ._sweep_common import (  # noqa: F401
     CSV_HEADER,
+    TimeLimit,
     UsageError,
     check_common,
     check_output_folder,
@@ -62,11 +63,37 @@ from ._sweep_unwrap import (  # noqa: F401
 )
 
 
+class _Deprecated(argparse.Action):
+    """An old spelling of a flag: stores into the new flag's destination with a warning (kept for
+    one release)."""
+
+    def __init__(self, option_strings, dest, new=None, **kwargs):
+        self.new = new
+        super().__init__(option_strings, dest, **kwargs)
+
+    def __call__(self, parser, namespace, values, option_string=None):
+        print(f"warning: {option_string} is deprecated; use {self.new}", file=sys.stderr)
+        setattr(namespace, self.dest, values)
+
+
+def deprecated(p, old, new, dest, type_):
+    p.add_argument(old, dest=dest, type=type_, action=_Deprecated, new=new, help=argparse.SUPPRESS)
+
+
 def add_cluster_flags(p):
     p.add_argument("--scheduler", help="tcp://HOST:PORT of a dask scheduler (default: local)")
-    p.add_argument("--workers", type=int, help="local worker processes (default: one per core)")
-    p.add_argument("--timeout", type=float, default=10.0, help="scheduler connect timeout [s] (default 10)")
-    p.add_argument("--quiet", action="store_true", help="no progress line")
+    p.add_argument("--threads", dest="workers", type=int,
+                   help="runs at a time on the local cluster: worker processes of one thread each "
+                   "(default: one per core; as `topoplan grasp transfer --threads`)")
+    deprecated(p, "--workers", "--threads", "workers", int)
+    p.add_argument("--timeout", type=float, default=0.0,
+                   help="run limit [s] as for every topoplan command: then the sweep stops, keeps "
+                   "the finished runs and exits 1 (a rerun goes on; default 0 = none)")
+    p.add_argument("--connect-timeout", type=float, default=10.0,
+                   help="how long to wait for --scheduler [s] (default 10)")
+    p.add_argument("-q", "--quiet", action="store_true", help="no progress")
+    p.add_argument("-v", "--verbose", action="store_true",
+                   help="a line per finished run, also on a terminal")
     p.add_argument("-o", "--output", required=True, help="output folder")
 
 
@@ -93,21 +120,29 @@ def build_parser():
     )
     u.add_argument("--budget", type=int, default=-1, help="RRT collision-check budget (default: the scenario's, 100000)")
     u.add_argument(
-        "--perturb",
+        "--pole-offset",
+        dest="perturb",
         type=float,
         default=0.0,
         help="move the pole of each seed by at most M metres perpendicular to its axis "
-        "(as `bench unwrap --perturb`; default 0)",
+        "(as `bench unwrap --pole-offset`; default 0)",
     )
+    deprecated(u, "--perturb", "--pole-offset", "perturb", float)
     add_cluster_flags(u)
     g = sub.add_parser(
         "grasp",
-        help="grasp transfer: one run per (grasp, method, seed) of `grasp transfer --perturb N`",
+        help="grasp transfer: one run per (grasp, method, seed) of `grasp transfer --repeats N`",
     )
-    g.add_argument("--grasps", default="all", help="'all' or comma-separated grasp names")
-    g.add_argument("--methods", default="all", help="'all' or comma-separated transfer methods")
+    g.add_argument("--grasp", dest="grasps", default="all",
+                   help="'all' or comma-separated grasp names (as `grasp transfer --grasp`)")
+    deprecated(g, "--grasps", "--grasp", "grasps", str)
+    g.add_argument("--method", dest="methods", default="all",
+                   help="'all' or comma-separated transfer methods (as `grasp transfer --method`)")
+    deprecated(g, "--methods", "--method", "methods", str)
     g.add_argument("--seeds", type=int, default=1, help="perturbation seeds 0..N-1 per run (default 1)")
-    g.add_argument("--perturb", type=int, default=0, help="perturbed repetitions per seed (default 0)")
+    g.add_argument("--repeats", dest="perturb", type=int, default=0,
+                   help="perturbed repetitions per seed (as `grasp transfer --repeats`; default 0)")
+    deprecated(g, "--perturb", "--repeats", "perturb", int)
     g.add_argument("--mu", type=float, default=1.0, help="Coulomb friction of the protocol (default 1)")
     g.add_argument(
         "--close-by",
@@ -127,6 +162,10 @@ def main(argv=None):
         return e.code
     try:
         return sweep_unwrap(args) if args.command == "unwrap" else sweep_grasp(args)
+    except TimeLimit:
+        print(f"time limit reached: the finished runs are in {args.output}; rerun to go on",
+              file=sys.stderr)
+        return 1
     except UsageError as e:
         print(f"error: {e}", file=sys.stderr)
         return 2

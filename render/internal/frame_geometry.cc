@@ -2,6 +2,8 @@
 // frame_geometry.h).
 #include "render/internal/frame_geometry.h"
 
+#include "base/numbers.h"
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -21,7 +23,7 @@ void CheckCamera(const Camera& camera) {
   }
   if (!(camera.fovy_deg > 0.0f && camera.fovy_deg < 180.0f)) {
     throw std::invalid_argument("camera: fovy_deg must be in (0, 180), got " +
-                                std::to_string(camera.fovy_deg));
+                                base::FormatShortest(camera.fovy_deg));
   }
 }
 

@@ -5,6 +5,7 @@
 #include <cairo.h>
 
 #include <cstdio>
+#include <locale>
 #include <sstream>
 #include <stdexcept>
 
@@ -12,6 +13,14 @@
 
 namespace render::internal {
 namespace {
+
+// An output stream that writes "0.5" whatever the global C++ locale.
+std::ostringstream ClassicStream() {
+  std::ostringstream out;
+  out.imbue(std::locale::classic());
+  return out;
+}
+
 
 class RasterPainter : public Painter {
  public:
@@ -92,7 +101,7 @@ class SvgPainter : public VectorPainter {
   std::string Finish() override { return out_.str() + "</g>\n</svg>\n"; }
 
  private:
-  std::ostringstream out_;
+  std::ostringstream out_ = ClassicStream();
 };
 
 cairo_status_t AppendToString(void* closure, const unsigned char* data, unsigned int length) {

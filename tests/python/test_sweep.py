@@ -34,7 +34,7 @@ def run_sweep(*args, timeout=600):
 
 def test_sweep_equals_bench_unwrap(cli, tmp_path):
     out = tmp_path / "sweep"
-    r = run_sweep(*ARGS, "--workers", "2", "-o", out)
+    r = run_sweep(*ARGS, "--threads", "2", "-o", out)
     assert r.returncode == 0, r.stderr
     cli("bench", "unwrap", *ARGS, "-o", tmp_path / "bench")
     got = {key(x): without_time(x) for x in rows(out / "unwrap.csv")}
@@ -69,7 +69,7 @@ def test_sweep_equals_bench_unwrap(cli, tmp_path):
     # A torn last line (a crash mid-write) is dropped and that run redone, once.
     lines = before.splitlines(keepends=True)
     (out / "unwrap.csv").write_text("".join(lines[:-1]) + lines[-1][:5])
-    r = run_sweep(*ARGS, "--workers", "1", "-o", out)
+    r = run_sweep(*ARGS, "--threads", "1", "-o", out)
     assert r.returncode == 0, r.stderr
     again = rows(out / "unwrap.csv")
     assert len(again) == 12 and {key(x): without_time(x) for x in again} == want
@@ -87,9 +87,9 @@ def test_sweep_equals_bench_unwrap(cli, tmp_path):
         (["--seeds", "0"], "--seeds"),
         (["--seeds", "1001"], "--seeds"),
         (["--angles", "0:1000:1", "--planners", "aico,rrt,birrt", "--seeds", "1000"], "more than 1000000"),
-        (["--perturb", "nan"], "--perturb"),
-        (["--perturb", "-0.01"], "--perturb"),
-        (["--scheduler", "tcp://127.0.0.1:9", "--timeout", "2"], "--scheduler: cannot reach"),
+        (["--pole-offset", "nan"], "--pole-offset"),
+        (["--pole-offset", "-0.01"], "--pole-offset"),
+        (["--scheduler", "tcp://127.0.0.1:9", "--connect-timeout", "2"], "--scheduler: cannot reach"),
         (["--scheduler", "notaurl"], "--scheduler: expected tcp://HOST:PORT"),
         (["--timeout", "nan"], "--timeout"),
         (["--timeout", "-1"], "--timeout"),
@@ -108,11 +108,11 @@ def test_bad_input_exits_2_and_writes_nothing(tmp_path, args, message):
 
 
 def test_perturbed_sweep_equals_bench_unwrap(cli, tmp_path):
-    """--perturb moves the pole of each seed exactly as `bench unwrap --perturb` does."""
+    """--pole-offset moves the pole of each seed exactly as `bench unwrap --pole-offset` does."""
     args = ["--angles", "90:90:90", "--seeds", "2", "--planners", "aico,birrt", "--budget", "3000",
-            "--perturb", "0.03"]
+            "--pole-offset", "0.03"]
     out = tmp_path / "sweep"
-    r = run_sweep(*args, "--workers", "2", "-o", out)
+    r = run_sweep(*args, "--threads", "2", "-o", out)
     assert r.returncode == 0, r.stderr
     cli("bench", "unwrap", *args, "-o", tmp_path / "bench")
     got = {key(x): without_time(x) for x in rows(out / "unwrap.csv")}
@@ -124,7 +124,7 @@ def test_perturbed_sweep_equals_bench_unwrap(cli, tmp_path):
     # A rerun into the same folder with another perturbation is refused; nothing changes.
     before = (out / "unwrap.csv").read_text()
     r = run_sweep(*args[:-1], "0.01", "-o", out)
-    assert r.returncode == 2 and "--perturb" in r.stderr
+    assert r.returncode == 2 and "--pole-offset" in r.stderr
     assert (out / "unwrap.csv").read_text() == before
 
 

@@ -54,7 +54,7 @@ def test_sweep_survives_a_killed_worker(tmp_path):
         sweep = subprocess.Popen(
             [sys.executable, "-m", "topoplan.sweep", "unwrap", "--angles", ANGLES, "--seeds",
              str(SEEDS), "--planners", PLANNERS, "--budget", "3000", "--scheduler", address,
-             "--timeout", "30", "-o", str(out)],
+             "--connect-timeout", "30", "-o", str(out)],
             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, start_new_session=True)
         procs.append(sweep)
         # Kill worker 1 once a few runs are in the CSV.

@@ -1,5 +1,5 @@
 """`python3 -m topoplan.sweep grasp`: one task per (grasp, method, seed), the same results as
-`topoplan grasp transfer --perturb N --seed S`, Wilson intervals in the summary, reruns skip
+`topoplan grasp transfer --repeats N --seed S`, Wilson intervals in the summary, reruns skip
 finished runs, bad input exits 2 and writes nothing."""
 
 import csv
@@ -12,7 +12,7 @@ import pytest
 import topoplan
 
 SWEEP = [sys.executable, "-m", "topoplan.sweep", "grasp"]
-ARGS = ["--grasps", "power_bottle", "--methods", "joint,human", "--seeds", "2", "--perturb", "1"]
+ARGS = ["--grasp", "power_bottle", "--method", "joint,human", "--seeds", "2", "--repeats", "1"]
 
 
 def rows(path):
@@ -26,7 +26,7 @@ def run_sweep(*args, timeout=900):
 
 def test_sweep_equals_grasp_transfer(cli, tmp_path):
     out = tmp_path / "sweep"
-    r = run_sweep(*ARGS, "--workers", "2", "-o", out)
+    r = run_sweep(*ARGS, "--threads", "2", "-o", out)
     assert r.returncode == 0, r.stderr
     got = {(x["method"], int(x["seed"])): x for x in rows(out / "grasp.csv")}
     assert len(got) == 4
@@ -35,7 +35,7 @@ def test_sweep_equals_grasp_transfer(cli, tmp_path):
         for seed in (0, 1):
             d = tmp_path / f"cli_{method}_{seed}"
             cli("grasp", "transfer", "--grasp", "power_bottle", "--method", method,
-                "--perturb", 1, "--seed", seed, "-o", d)
+                "--repeats", 1, "--seed", seed, "-o", d)
             report = json.loads((d / "report.json").read_text())
             m = report["grasps"][0]["methods"][method]
             row = got[(method, seed)]
@@ -73,14 +73,14 @@ def test_wilson_interval_known_values():
 @pytest.mark.parametrize(
     "args, message",
     [
-        (["--grasps", "power_bottle,nothing"], "--grasps: unknown name 'nothing'"),
-        (["--methods", "winding,magic"], "--methods: unknown name 'magic'"),
-        (["--perturb", "1001"], "--perturb"),
+        (["--grasp", "power_bottle,nothing"], "--grasp: unknown name 'nothing'"),
+        (["--method", "winding,magic"], "--method: unknown name 'magic'"),
+        (["--repeats", "1001"], "--repeats"),
         (["--mu", "nan"], "--mu"),
         (["--close-by", "0.6"], "--close-by"),
         (["--close-by", "nan"], "--close-by"),
         (["--seeds", "0"], "--seeds"),
-        (["--seeds", "3"], "--seeds: without --perturb every seed is the same run"),
+        (["--seeds", "3"], "--seeds: without --repeats every seed is the same run"),
     ],
 )
 def test_bad_input_exits_2_and_writes_nothing(tmp_path, args, message):
@@ -93,7 +93,7 @@ def test_bad_input_exits_2_and_writes_nothing(tmp_path, args, message):
 
 def test_a_rerun_with_another_perturbation_exits_2(tmp_path):
     out = tmp_path / "out"
-    base = ["--grasps", "power_bottle", "--methods", "joint", "--seeds", "1", "-o", out]
+    base = ["--grasp", "power_bottle", "--method", "joint", "--seeds", "1", "-o", out]
     assert run_sweep(*base).returncode in (0, 1)  # 1: an unstable grasp is a result
-    r = run_sweep(*base, "--perturb", "1")
-    assert r.returncode == 2 and "--perturb: " in r.stderr, r.stderr
+    r = run_sweep(*base, "--repeats", "1")
+    assert r.returncode == 2 and "--repeats: " in r.stderr, r.stderr

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <locale>
 #include <sstream>
 #include <stdexcept>
 #include <utility>
@@ -95,6 +96,7 @@ void CheckXmlDepth(const std::string& xml, const std::string& source, int max_de
 bool ParseNumbers(const std::string& text, int count, std::vector<double>* out) {
   out->clear();
   std::istringstream ss(text);
+  ss.imbue(std::locale::classic());  // "0.5" whatever the global locale
   std::string token;
   while (ss >> token) {
     const std::optional<double> v = base::ParseFiniteDouble(token);  // locale-independent

@@ -6,7 +6,7 @@ set -u
 bin=$1 out=$2
 rm -rf "$out"
 for n in 1 2; do
-  "$bin" grasp transfer --grasp lateral_pinch_box --method all --perturb 1 --seed 5 --threads "$n" \
+  "$bin" grasp transfer --grasp lateral_pinch_box --method all --repeats 1 --seed 5 --threads "$n" \
     -o "$out/t$n" 2>"$out.t$n.log" >/dev/null
   rc=$?
   [[ $rc -le 1 ]] || { echo "grasp_threads.sh: --threads $n exited $rc"; cat "$out.t$n.log"; exit 1; }
