@@ -157,7 +157,8 @@ std::string SafeFileName(const std::string& name, const std::string& what) {
     for (char c : name.substr(0, 64)) {
       shown += (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) ? '?' : c;
     }
-    throw std::invalid_argument(what + ": '" + shown + "' cannot be a file name (" + why + ")");
+    throw std::invalid_argument((what.empty() ? "" : what + ": ") + "'" + shown +
+                                "' cannot be a file name (" + why + ")");
   };
   if (name.empty()) refuse("empty");
   if (name == "." || name == "..") refuse("a path step, not a name");

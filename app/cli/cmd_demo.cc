@@ -1,7 +1,10 @@
 // `topoplan demo`: the main job. Runs every result the project produces — the same library calls
 // and output formatters as the commands — and writes them with an index.html into one folder.
+#include <sys/utsname.h>
+
 #include <algorithm>
 #include <chrono>
+#include <ctime>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -12,6 +15,8 @@
 #include <thread>
 
 #include "base/assets.h"
+#include "base/numbers.h"
+#include "base/version.h"
 #include "app/cli/cli.h"
 #include "app/cli/command.h"
 #include "visualize/figures.h"
@@ -88,11 +93,13 @@ class Demo {
   explicit Demo(const DemoArgs& args) : args_(args), out_(args.out_dir) {}
 
   int Run() {
-    base::CheckOutputDir(out_.string(), "-o");
+    // The whole page at once: staged inside the folder, committed at the end (a re-run replaces
+    // the previous demo's files, none of them stale).
+    OutputDir output(args_.out_dir, "-o", "demo");
+    out_ = output.staging();
     const StopCheck stop(args_.timeout);  // the commands of each stage see the same deadline
     stop_ = &stop;
-    fs::create_directories(out_);
-    std::printf("topoplan demo -> %s\n", fs::absolute(out_).c_str());
+    std::printf("topoplan demo -> %s\n", fs::absolute(args_.out_dir).c_str());
     Stage("writhe matrices of the example chains", [&] { return Writhe(); });
     Stage("unwrap: AICO with a writhe target (arm coiled 720 deg around a pole)",
           [&] { return Unwrap(); });
@@ -104,7 +111,8 @@ class Demo {
     }
     Stage("interactive viewer, headless screenshot", [&] { return Viewer(); });
     WriteIndex();
-    Note("wrote %s", (out_ / "index.html").c_str());
+    output.Commit();
+    Note("wrote %s", (fs::path(args_.out_dir) / "index.html").c_str());
     if (stopped_) {
       std::printf("status: %s\n", stopped_timeout_ ? "timeout" : "interrupted");
       return stopped_timeout_ ? kExitFailed : kExitInterrupted;
@@ -136,12 +144,20 @@ class Demo {
     stage_status_.push_back({title, rc});
   }
 
+  // Runs `topoplan ARGS` in-process (quietly: the demo says what it writes) and shows the
+  // command as a user would type it, with the output folder's name (never its staging area).
   int Sub(const std::vector<std::string>& args) {
+    const std::string staging = out_.string();
     std::string line = "  $ topoplan";
-    for (const std::string& a : args) line += " " + a;
+    for (std::string a : args) {
+      if (a.rfind(staging, 0) == 0) a = args_.out_dir + a.substr(staging.size());
+      line += " " + a;
+    }
     std::printf("%s\n", line.c_str());
     std::fflush(stdout);
-    return RunCommandLine(args);
+    std::vector<std::string> quiet{"-q"};
+    quiet.insert(quiet.end(), args.begin(), args.end());
+    return RunCommandLine(quiet);
   }
 
   int Writhe() {
@@ -177,7 +193,7 @@ class Demo {
       char line[1024];
       std::snprintf(line, sizeof line,
                     "<tr><td>%s</td><td>%s &times; %s</td><td>%ldx%ld</td><td>%s</td>"
-                    "<td>%s</td><td><a href=\"%s\"><img src=\"%s\" width=\"240\"></a>"
+                    "<td>%s</td><td><a href=\"%s\"><img src=\"%s\" width=\"480\"></a>"
                     "<br><a href=\"writhe/%s.json\">json</a></td></tr>\n",
                     p.name, p.a, p.b, static_cast<long>(w.rows()), static_cast<long>(w.cols()),
                     render::FormatNumber(w.sum(), 6, /*plus=*/true).c_str(),
@@ -243,9 +259,9 @@ class Demo {
             << fs::path(seq.video).filename().string() << "\"></video></p>\n";
     }
     if (!seq.contact_sheet.empty()) {
-      html_ << "<p><img src=\"unwrap/movie/contact_sheet.png\" width=\"960\"></p>\n";
+      html_ << "<p><a href=\"unwrap/movie/contact_sheet.png\"><img src=\"unwrap/movie/contact_sheet.png\" width=\"960\"></a></p>\n";
     }
-    html_ << "<p><img src=\"unwrap/writhe_cost.png\" width=\"640\"></p>\n";
+    html_ << "<p><a href=\"unwrap/writhe_cost.png\"><img src=\"unwrap/writhe_cost.png\" width=\"640\"></a></p>\n";
     return rc;
   }
 
@@ -267,10 +283,11 @@ class Demo {
           "ring/frames/" + fs::path(frames.frames.frames.back()).filename().string();
       const std::string h =
           "ring/heatmaps/" + fs::path(frames.heatmaps.frames.back()).filename().string();
-      html_ << "<p><img src=\"" << f << "\" width=\"560\"> <img src=\"" << h
-            << "\" width=\"420\"></p>\n";
+      html_ << "<p><a href=\"" << f << "\"><img src=\"" << f << "\" width=\"560\"></a> "
+            << "<a href=\"" << h << "\"><img src=\"" << h
+            << "\" width=\"420\"></a></p>\n";
     }
-    html_ << "<p><img src=\"ring/writhe_cost.png\" width=\"640\"></p>\n";
+    html_ << "<p><a href=\"ring/writhe_cost.png\"><img src=\"ring/writhe_cost.png\" width=\"640\"></a></p>\n";
     return rc;
   }
 
@@ -307,7 +324,7 @@ class Demo {
           << (args_.full ? "Full sweep."
                          : "Reduced sweep; <code>topoplan demo --full</code> runs "
                            "0&ndash;1080&deg; every 15&deg; with 3 seeds.")
-          << "</p>\n<p><img src=\"bench/unwrap.png\" width=\"960\"></p>\n"
+          << "</p>\n<p><a href=\"bench/unwrap.png\"><img src=\"bench/unwrap.png\" width=\"960\"></a></p>\n"
           << UnwrapHtmlTable(result) << "<p><a href=\"bench/unwrap.csv\">unwrap.csv</a></p>\n";
     return kExitOk;
   }
@@ -335,7 +352,7 @@ class Demo {
              "same non-penetration projection); human is the demonstration itself under the same "
              "protocol. Stability: gravity along &plusmn;x, &plusmn;y, &plusmn;z for 2 s each at "
              "1 kHz; cells are gravity directions held out of 6.</p>\n"
-             "<p><img src=\"grasp/summary.png\" width=\"640\"></p>\n"
+             "<p><a href=\"grasp/summary.png\"><img src=\"grasp/summary.png\" width=\"640\"></a></p>\n"
           << GraspHtmlTable(result)
           << "<p><a href=\"grasp/report.json\">report.json</a></p>\n"
              "<h3>Human grasps and the transferred SDH grasps (winding method), with their "
@@ -374,8 +391,49 @@ class Demo {
     html_ << "<h2>6. Interactive viewer</h2>\n"
              "<p><code>topoplan view unwrap</code> opens this window (GLFW + Dear ImGui); the "
              "image is its headless twin after clicking Plan, rendered by the same code.</p>\n"
-             "<p><img src=\"viewer.png\" width=\"960\"></p>\n";
+             "<p><a href=\"viewer.png\"><img src=\"viewer.png\" width=\"960\"></a></p>\n";
     return rc;
+  }
+
+  // Where the page came from: the build, the command, the date, the machine.
+  std::string ProvenanceHtml() const {
+    std::string cpu = "unknown CPU", memory;
+    {
+      std::ifstream info("/proc/cpuinfo");
+      for (std::string line; std::getline(info, line);) {
+        if (line.rfind("model name", 0) == 0 && line.find(':') != std::string::npos) {
+          cpu = line.substr(line.find(':') + 2);
+          break;
+        }
+      }
+      std::ifstream mem("/proc/meminfo");
+      for (std::string line; std::getline(mem, line);) {
+        if (line.rfind("MemTotal:", 0) != 0) continue;
+        const size_t first = line.find_first_of("0123456789");
+        const size_t last = line.find_first_not_of("0123456789", first);
+        const std::optional<long long> kb =
+            first == std::string::npos ? std::nullopt
+                                       : base::ParseInteger(line.substr(first, last - first));
+        if (kb) {
+          memory = ", " + base::FormatFixed(static_cast<double>(*kb) / 1048576.0, 1) + " GiB";
+        }
+        break;
+      }
+    }
+    struct utsname u {};
+    const std::string system = ::uname(&u) == 0 ? std::string(u.sysname) + " " + u.release + " " +
+                                                     u.machine
+                                                : "unknown system";
+    const std::time_t now = std::time(nullptr);
+    char date[32] = "";
+    std::strftime(date, sizeof date, "%Y-%m-%d %H:%M UTC", std::gmtime(&now));
+    return "<table class=\"provenance\"><tr><th>made by</th><td>topoplan " +
+           std::string(base::Version()) + " (commit " + base::Commit() +
+           ")</td></tr><tr><th>command</th><td><code>" + HtmlEscape(CommandLine()) +
+           "</code></td></tr><tr><th>date</th><td>" + date +
+           "</td></tr><tr><th>machine</th><td>" + HtmlEscape(system) + ", " + HtmlEscape(cpu) +
+           ", " + std::to_string(std::thread::hardware_concurrency()) + " cores" + memory +
+           "</td></tr></table>\n";
   }
 
   void WriteIndex() {
@@ -386,7 +444,8 @@ class Demo {
             "padding:.3em .6em;text-align:left}img,video{border:1px solid #eee}</style>"
             "</head><body><h1>topoplan demo</h1>\n<p>Topology-based motion planning and grasp "
             "transfer after Zarubin's thesis. Every figure below was produced by "
-            "<code>topoplan demo</code>.</p>\n<ul>";
+            "<code>topoplan demo</code>; click a figure for the full image.</p>\n"
+         << ProvenanceHtml() << "<ul>";
     for (const auto& [title, rc] : stage_status_) {
       page << "<li>" << HtmlEscape(title) << ": "
            << (rc == 0   ? "ok"

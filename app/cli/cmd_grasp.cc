@@ -32,7 +32,7 @@ struct SynthesizeArgs {
 };
 
 int RunSynthesize(const SynthesizeArgs& a) {
-  if (a.out_given) base::CheckOutputFile(a.out_path, "-o");  // before any work; "" is refused
+  if (a.out_given) base::CheckOutputFile(a.out_path, "-o", {a.spec_path});  // before any work; "" is refused
   const std::vector<planning::GraspObject> objects =
       planning::LoadGraspObjects(base::AssetPath("grasps/objects.json"));
   planning::Robot human = planning::LoadRobot(base::AssetPath("robots/human_hand.urdf"));

@@ -375,6 +375,10 @@ void AddPlanCommands(CLI::App* root, CommandList* commands) {
          const StopCheck stop(pa->timeout);
          const auto scenario = planning::LoadScenarioArg(pa->scenario, overrides);
          ReportWarnings(scenario->warnings);
+         Detail("scenario %s from %s; robot %s (%d joints); planner %s, seed %u; output %s",
+                scenario->name.c_str(), scenario->source.c_str(), scenario->robot.name.c_str(),
+                planning::num_dofs(scenario->robot), planning::PlannerName(planner), pa->seed,
+                pa->output.c_str());
          planning::PlanResult result;
          try {
            result = planning::RunPlanner(
@@ -514,7 +518,7 @@ void AddPlanCommands(CLI::App* root, CommandList* commands) {
            // unwrap.csv and unwrap.png of an earlier complete run in DIR stay as they were.
            base::WriteFileAtomic((fs::path(out.staging()) / "unwrap.partial.csv").string(),
                            planning::UnwrapCsv(finished));
-           out.Commit();
+           out.Commit(/*replace_previous=*/false);
            std::fprintf(stderr, "\n%s: wrote %s/unwrap.partial.csv (%zu of %d runs)\n", e.what(),
                         ba->output.c_str(), finished.runs.size(), total);
            return e.timeout ? kExitFailed : kExitInterrupted;

@@ -94,7 +94,7 @@ void AddRenderCommands(CLI::App* root, CommandList* commands) {
       "Exit codes: 0 ok, 2 bad scene/flags (the message names the JSON path), 3 no GL.");
   commands->push_back(
       {render_cmd, [ra]() {
-         base::CheckOutputFile(ra->output, "-o");
+         base::CheckOutputFile(ra->output, "-o", {ra->input});
          visualize::SceneDocument doc = LoadRenderInput(ra->input, ra->q, *ra);
          ReportWarnings(doc.warnings);
          int width = doc.width > 0 ? doc.width : 640, height = doc.height > 0 ? doc.height : 480;
@@ -154,7 +154,7 @@ void AddRenderCommands(CLI::App* root, CommandList* commands) {
       {heatmap, [ha]() {
          int width = 0, height = 0;
          visualize::ParseImageSize(ha->size, "--size", &width, &height);
-         base::CheckOutputFile(ha->output, "-o");
+         base::CheckOutputFile(ha->output, "-o", {ha->a_path, ha->b_path});
          render::FigureFormatForPath(ha->output, "-o");  // the format, checked before the work
          const topology::Chain a = topology::ReadChainCsv(ha->a_path);
          const topology::Chain b = topology::ReadChainCsv(ha->b_path);
@@ -195,7 +195,9 @@ void AddRenderCommands(CLI::App* root, CommandList* commands) {
       "a PNG, sizes differ).");
   commands->push_back(
       {diff, [da, diff]() {
-         if (diff->count("-o") > 0) base::CheckOutputFile(da->output, "-o");  // "" is refused
+         if (diff->count("-o") > 0) {
+           base::CheckOutputFile(da->output, "-o", {da->expected, da->actual});
+         }  // "" is refused
          const render::Image a = render::ReadPng(da->expected);
          const render::Image b = render::ReadPng(da->actual);
          render::DiffOptions options;

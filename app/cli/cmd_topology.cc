@@ -85,7 +85,7 @@ void AddTopologyCommands(CLI::App* root, CommandList* commands) {
          int width = 0, height = 0;
          if (writhe->count("--heatmap") > 0) {  // "" is refused
            visualize::ParseImageSize(wa->heatmap_size, "--heatmap-size", &width, &height);
-           base::CheckOutputFile(wa->heatmap_path, "--heatmap");
+           base::CheckOutputFile(wa->heatmap_path, "--heatmap", {wa->a_path, wa->b_path});
            render::FigureFormatForPath(wa->heatmap_path, "--heatmap");
          }
          topology::WritheOptions options;

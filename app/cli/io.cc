@@ -275,7 +275,7 @@ OutputDir::~OutputDir() {
   if (created_ && fs::is_empty(dir_, ignored)) fs::remove(dir_, ignored);
 }
 
-void OutputDir::Commit() {
+void OutputDir::Commit(bool replace_previous) {
   std::error_code ec;
   nlohmann::json manifest = ReadManifest(dir_);
   if (manifest.is_null()) manifest = {{"tool", "topoplan"}, {"outputs", nlohmann::json::object()}};
@@ -286,7 +286,15 @@ void OutputDir::Commit() {
   std::sort(written.begin(), written.end());
   // What the previous run of this command wrote and this one did not: gone (no stale frames).
   nlohmann::json& outputs = manifest["outputs"];
-  if (outputs.contains(command_) && outputs[command_].is_array()) {
+  std::vector<std::string> owned = written;  // what this command owns in `dir` afterwards
+  if (!replace_previous && outputs.contains(command_) && outputs[command_].is_array()) {
+    for (const nlohmann::json& old : outputs[command_]) {
+      if (old.is_string()) owned.push_back(old.get<std::string>());
+    }
+    std::sort(owned.begin(), owned.end());
+    owned.erase(std::unique(owned.begin(), owned.end()), owned.end());
+  }
+  if (replace_previous && outputs.contains(command_) && outputs[command_].is_array()) {
     for (const nlohmann::json& old : outputs[command_]) {
       if (!old.is_string()) continue;
       const std::string name = old.get<std::string>();
@@ -312,7 +320,7 @@ void OutputDir::Commit() {
     }
     list = kept;
   }
-  outputs[command_] = written;
+  outputs[command_] = owned;
   base::WriteFileAtomic((fs::path(dir_) / kManifest).string(), manifest.dump(1) + "\n");
   fs::remove_all(staging_, ec);
   committed_ = true;

@@ -74,7 +74,8 @@ void CheckWrithePairs(long long rows_points, long long cols_points);
 // are removed. The run writes into staging(). Commit() replaces what the previous run of the same
 // `command` wrote there ("plan", "bench unwrap": its entries not written again are removed, so no
 // stale frames stay behind), moves every staged entry into `dir` and records them in the
-// manifest. Without Commit (an exception, an interrupt) staging is removed and `dir` is as it
+// manifest. Commit(false) (an interrupted run keeping its partial rows) adds the staged entries
+// and leaves the earlier complete outputs of the same command in place. Without Commit (an exception, an interrupt) staging is removed and `dir` is as it
 // was (a folder this run created is removed again).
 class OutputDir {
  public:
@@ -86,7 +87,7 @@ class OutputDir {
 
   const std::string& dir() const { return dir_; }
   const std::string& staging() const { return staging_; }
-  void Commit();
+  void Commit(bool replace_previous = true);
 
  private:
   std::string dir_, staging_, command_;

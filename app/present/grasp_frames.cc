@@ -217,7 +217,8 @@ planning::physics::GraspTrialHooks GraspTransferHooks(const std::string& out_dir
                                        const phys::SimObject& object,
                                        const phys::StabilityOptions& options) {
       const std::string dir = (std::filesystem::path(out_dir) / "frames" /
-                               (setup.grasp.name + "_" + planning::ToString(t.method)))
+                               base::SafeFileName(setup.grasp.name + "_" + planning::ToString(t.method),
+                                                  "grasp name"))
                                   .string();
       frames->Transfer(dir + "/transfer", setup, t);
       return frames->Stability(dir + "/stability", hand, object, options);

@@ -1,5 +1,7 @@
 #include "app/present/reports.h"
 
+#include "base/numbers.h"
+
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -167,14 +169,44 @@ PlanFrames WritePlanFrames(
 
 std::string PlanReportHtml(const nlohmann::json& r) {
   if (!r.is_object()) return "<p><em>no report</em></p>";
+  // Each field as a person reads it: a name, the value rounded to what it means, its unit.
+  struct Row {
+    const char* key;
+    const char* label;
+    int digits;  // < 0: not a number
+    const char* unit;
+    double scale;
+  };
+  static const Row kRows[] = {
+      {"planner", "planner", -1, "", 1.0},
+      {"success", "success", -1, "", 1.0},
+      {"status", "solver status", -1, "", 1.0},
+      {"collision_checks", "collision checks", 0, "", 1.0},
+      {"iterations", "iterations (sweeps)", 0, "", 1.0},
+      {"cost", "final cost", 1, "", 1.0},
+      {"time_s", "planning time", 2, "s", 1.0},
+      {"path_length", "path length", 3, "rad", 1.0},
+      {"start_wrap_deg", "start wrap", 1, "&deg;", 1.0},
+      {"start_writhe_total", "total writhe at the start", 3, "turns", 1.0},
+      {"final_writhe_total", "total writhe at the end", 3, "turns", 1.0},
+      {"min_clearance_m", "minimum clearance", 1, "mm", 1000.0},
+      {"reach_error_m", "reach error", 1, "mm", 1000.0},
+  };
   std::ostringstream t;
   t << "<table>";
-  for (const char* key :
-       {"planner", "success", "status", "collision_checks", "iterations", "cost", "start_wrap_deg",
-        "start_writhe_total", "final_writhe_total", "min_clearance_m"}) {
-    if (r.contains(key)) {
-      t << "<tr><th>" << key << "</th><td>" << HtmlEscape(r[key].dump()) << "</td></tr>";
+  for (const Row& row : kRows) {
+    if (!r.contains(row.key)) continue;
+    const nlohmann::json& v = r[row.key];
+    std::string text;
+    if (row.digits >= 0 && v.is_number()) {
+      const double x = v.get<double>();
+      if (std::string(row.key) == "reach_error_m" && x < 0) continue;  // no reach criterion
+      text = base::FormatFixed(x * row.scale, row.digits);
+      if (*row.unit) text += std::string(" ") + row.unit;
+    } else {
+      text = HtmlEscape(v.is_string() ? v.get<std::string>() : v.dump());
     }
+    t << "<tr><th>" << row.label << "</th><td>" << text << "</td></tr>";
   }
   t << "</table>\n";
   return t.str();
@@ -186,16 +218,18 @@ std::string UnwrapHtmlTable(const planning::UnwrapBenchmarkResult& result) {
   std::ostringstream t;
   t << "<table><tr><th>angle to unwrap</th>";
   for (planning::Planner p : result.planners) {
-    t << "<th>" << planning::PlannerName(p) << ": solved, mean checks of solved runs</th>";
+    t << "<th>" << planning::PlannerName(p)
+      << ": solved, median collision checks of solved runs (as in the figure)</th>";
   }
   t << "</tr>\n";
   for (size_t a = 0; a < result.angles_deg.size(); ++a) {
-    t << "<tr><td>" << result.angles_deg[a] << "&deg;</td>";
+    t << "<tr><td>" << base::FormatShortest(result.angles_deg[a]) << "&deg;</td>";
     for (size_t p = 0; p < result.planners.size(); ++p) {
       const planning::UnwrapCell& c = planning::UnwrapSummaryCell(result, a, p);
       char buf[96];
-      if (std::isfinite(c.mean_checks)) {
-        std::snprintf(buf, sizeof buf, "<td>%d/%d, %.0f</td>", c.successes, c.runs, c.mean_checks);
+      if (std::isfinite(c.median_checks)) {
+        std::snprintf(buf, sizeof buf, "<td>%d/%d, %s</td>", c.successes, c.runs,
+                      base::FormatFixed(c.median_checks, 0).c_str());
       } else {
         std::snprintf(buf, sizeof buf, "<td>%d/%d, &ndash;</td>", c.successes, c.runs);
       }

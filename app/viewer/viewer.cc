@@ -1,5 +1,9 @@
 #include "app/viewer/viewer.h"
 
+#include "app/cli/io.h"
+
+#include <cstdlib>
+
 #include <GLFW/glfw3.h>
 #include <imgui.h>
 #include <imgui_impl_glfw.h>
@@ -223,7 +227,7 @@ class ScriptRunner {
     } else if (l.verb == "status") {
       session->Poll(settings);
       WriteStatusJson(arg(0), settings->planner.planner, session->worker_status(*settings), stats);
-      std::printf("wrote %s\n", arg(0).c_str());
+      Note("wrote %s", arg(0).c_str());
     } else if (l.verb == "wait") {
       wait_worker_ = true;
       return false;
@@ -471,7 +475,7 @@ int RunHeadless(const ViewerOptions& o, Viewer* v, ScriptRunner* script) {
     last = renderer.ReadCachedScene(overlay);
     for (const std::string& path : screenshots) {
       render::WritePng(path, last);
-      std::printf("wrote %s\n", path.c_str());
+      Note("wrote %s", path.c_str());
     }
     if (frame == 1 && o.print_widgets) PrintWidgets(v->rects);
     if (frame > 100000) throw std::runtime_error("script did not finish");
@@ -480,14 +484,22 @@ int RunHeadless(const ViewerOptions& o, Viewer* v, ScriptRunner* script) {
     v->CacheSceneIfDue(scene, camera, o.width, o.height, /*force=*/true, &renderer);
     last = renderer.ReadCachedScene(overlay);
     render::WritePng(o.screenshot, last);
-    std::printf("wrote %s (%dx%d, %d frames)\n", o.screenshot.c_str(), o.width, o.height, frame);
+    Note("wrote %s (%dx%d, %d frames)", o.screenshot.c_str(), o.width, o.height, frame);
   }
   ImGui::DestroyContext();
   return 0;
 }
 
 int RunWindow(const ViewerOptions& o, Viewer* v, ScriptRunner* script) {
-  if (!glfwInit()) throw render::ContextError("GLFW: cannot initialise (no display?)");
+  if (!glfwInit()) {
+    const char* display = std::getenv("DISPLAY");
+    throw render::ContextError(
+        std::string("no window can be opened (GLFW could not start; DISPLAY is ") +
+        (display && *display ? std::string("'") + display + "'" : std::string("not set")) +
+        "). Without a display: `topoplan view ... --screenshot out.png` draws one frame "
+        "headless, `--script FILE` runs a script headless; or run the window under "
+        "`xvfb-run -a topoplan view ...`");
+  }
   glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
   glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
   glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
@@ -535,7 +547,7 @@ int RunWindow(const ViewerOptions& o, Viewer* v, ScriptRunner* script) {
       // Screenshots render the same frame into an offscreen buffer of the window's size.
       for (const std::string& path : screenshots) {
         render::WritePng(path, renderer.Render(scene, camera, fb_w, fb_h, {}, &v->overlay));
-        std::printf("wrote %s\n", path.c_str());
+        Note("wrote %s", path.c_str());
         std::fflush(stdout);
       }
       glfwSwapBuffers(window);

@@ -10,6 +10,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "base/file_write.h"
 #include "base/json_reader.h"
 #include "topology/winding.h"
 #include "topology/writhe.h"
@@ -76,7 +77,11 @@ HumanGrasp LoadHumanGrasp(const std::string& path) {
                   "sdh_spread", "close"});
   HumanGrasp g;
   g.source = path;
-  g.name = root.At("name").String();
+  // A grasp's name names its output folders (frames/<name>_<method>): one plain file name, so
+  // that nothing an input file says can write outside the output folder.
+  g.name = base::Located(root.At("name"), [&] {
+    return base::SafeFileName(root.At("name").String(), "");
+  });
   g.object = root.At("object").String();
   g.type = root.String("type", "");
   g.description = root.String("description", "");

@@ -21,3 +21,61 @@ topoplan_cli_test(limit_replan_period_huge 0 "re-planning: 0 re-plans every 4\\.
                   plan reach_through_ring --moving-object ring
                   --object-path ${PROJECT_SOURCE_DIR}/assets/scenarios/ring_path.csv
                   --replan-period 1e300 -o ${CLI_TMP}/replan_huge)
+
+# Issue 40's classes, one test each (docs/robustness.md lists them with what happened before).
+set(CLASS_TMP ${CMAKE_CURRENT_BINARY_DIR}/classes)
+file(MAKE_DIRECTORY ${CLASS_TMP})
+# Outputs that must never be replaced: a device node, a named pipe, an input of the same run, a
+# folder of files topoplan did not write.
+topoplan_cli_test(class_output_device 2 "-o: '/dev/null' is a device node"
+                  render ${SCENES}/example.json -o /dev/null)
+topoplan_cli_test(class_output_is_input 2 "-o: '.*example\\.json' is an input of this run"
+                  render ${SCENES}/example.json -o ${SCENES}/example.json)
+file(MAKE_DIRECTORY ${CLASS_TMP}/foreign)
+file(WRITE ${CLASS_TMP}/foreign/thesis.tex "not ours\n")
+topoplan_cli_test(class_output_foreign_folder 2 "holds files topoplan did not write \\('thesis\\.tex'"
+                  plan reach_through_ring -o ${CLASS_TMP}/foreign)
+add_test(NAME cli.class_output_fifo
+         COMMAND sh -c "rm -f \"$1\" && mkfifo \"$1\" && \"$0\" render \"$2\" -o \"$1\" 2>&1 | grep -q 'is a named pipe' && test -p \"$1\""
+                 $<TARGET_FILE:topoplan> ${CLASS_TMP}/pipe.png ${SCENES}/example.json)
+set_tests_properties(cli.class_output_fifo PROPERTIES LABELS unit)
+# Names taken from input files never leave -o.
+file(READ ${PROJECT_SOURCE_DIR}/assets/grasps/power_bottle.json POWER_BOTTLE)
+string(REGEX REPLACE "\"name\": *\"[^\"]*\"" "\"name\": \"../../escape\"" EVIL_GRASP "${POWER_BOTTLE}")
+file(WRITE ${CLASS_TMP}/evil_grasp.json "${EVIL_GRASP}")
+topoplan_cli_test(class_grasp_name_path 2 "evil_grasp\\.json: name: '\\.\\./\\.\\./escape' cannot be a file name"
+                  grasp transfer --grasp ${CLASS_TMP}/evil_grasp.json -o ${CLASS_TMP}/evil_out)
+# Strict readers: duplicate JSON keys, integers that look octal, empty integers, XML after its end.
+file(WRITE ${CLASS_TMP}/dup.json "{\"shapes\": [], \"shapes\": [{\"type\": \"sphere\"}]}\n")
+topoplan_cli_test(class_json_duplicate_key 2 "dup\\.json: \\(root\\): duplicate key 'shapes'"
+                  render ${CLASS_TMP}/dup.json -o ${CLASS_TMP}/dup.png)
+topoplan_cli_test(class_octal_seed 0 "\"seed\": 10,"
+                  plan reach_through_ring --planner rrt --seed 010 --json -o ${CLASS_TMP}/octal)
+add_test(NAME cli.class_empty_integer
+         COMMAND sh -c "\"$0\" plan reach_through_ring --seed '' -o \"$1\" 2>&1 | grep -q \"seed: '' is not a whole decimal number\""
+                 $<TARGET_FILE:topoplan> ${CLASS_TMP}/empty_int)
+set_tests_properties(cli.class_empty_integer PROPERTIES LABELS unit)
+file(WRITE ${CLASS_TMP}/tail.urdf "<robot name=\"t\"><link name=\"a\"/></robot>\ngarbage\n")
+topoplan_cli_test(class_xml_trailing_text 2 "tail\\.urdf:2: text after the document's element"
+                  fk ${CLASS_TMP}/tail.urdf)
+file(WRITE ${CLASS_TMP}/posed.json "{\"robot\": \"${PROJECT_SOURCE_DIR}/assets/robots/lwr4_sdh.urdf\", \"objects\": [{\"urdf\": \"${PROJECT_SOURCE_DIR}/assets/objects/box.urdf\", \"postion\": [0.7, 0, 0.3]}]}\n")
+topoplan_cli_test(class_json_unknown_key 2 "posed\\.json: objects\\[0\\]\\.postion: unknown key 'postion' \\(did you mean 'position'\\?\\)"
+                  check ${CLASS_TMP}/posed.json)
+# A COLLADA file whose nodes instance each other in a cycle (crashed assimp).
+file(WRITE ${CLASS_TMP}/cycle.dae "<?xml version=\"1.0\"?>\n<COLLADA xmlns=\"http://www.collada.org/2005/11/COLLADASchema\" version=\"1.4.1\">\n<library_nodes><node id=\"a\"><instance_node url=\"#b\"/></node><node id=\"b\"><instance_node url=\"#a\"/></node></library_nodes>\n<library_visual_scenes><visual_scene id=\"s\"><node id=\"r\"><instance_node url=\"#a\"/></node></visual_scene></library_visual_scenes>\n<scene><instance_visual_scene url=\"#s\"/></scene>\n</COLLADA>\n")
+file(WRITE ${CLASS_TMP}/cycle.urdf "<robot name=\"c\"><link name=\"a\"><visual><geometry><mesh filename=\"cycle.dae\"/></geometry></visual></link></robot>\n")
+topoplan_cli_test(class_collada_cycle 2 "COLLADA node 'a' instances itself \\('a' -> 'b' -> 'a'\\)"
+                  fk ${CLASS_TMP}/cycle.urdf)
+# Every write is checked, standard output too.
+add_test(NAME cli.class_full_stdout
+         COMMAND sh -c "\"$0\" writhe \"$1\" \"$2\" --json --total >/dev/full 2>\"$3\"; rc=$?; test $rc -eq 3 && grep -q 'No space left on device (ENOSPC)' \"$3\""
+                 $<TARGET_FILE:topoplan> ${CHAINS}/hopf_a.csv ${CHAINS}/hopf_b.csv ${CLASS_TMP}/full.log)
+set_tests_properties(cli.class_full_stdout PROPERTIES LABELS unit)
+# A bogus GL driver setting is an environment error naming the variable (crashed OSMesa).
+topoplan_cli_test(class_gallium_driver 3 "GALLIUM_DRIVER='nonsense'"
+                  render ${SCENES}/example.json -o ${CLASS_TMP}/driver.png)
+set_tests_properties(cli.class_gallium_driver PROPERTIES ENVIRONMENT "GALLIUM_DRIVER=nonsense")
+# Messages: a NUL byte does not cut a message; view without a display says what to do.
+topoplan_cli_test(class_view_no_display 3 "--screenshot out\\.png.*xvfb-run"
+                  view unwrap)
+set_tests_properties(cli.class_view_no_display PROPERTIES ENVIRONMENT "DISPLAY=")
