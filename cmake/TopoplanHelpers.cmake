@@ -1,8 +1,8 @@
 # topoplan_add_test(NAME name SOURCES a.cc [b.cc] LIBS lib... LABEL unit|property|snapshot [ENV K=V]
-#                   [FIXTURES fixture])
+#                   [FIXTURES fixture] [TIMEOUT seconds])
 # Builds one GoogleTest executable and registers its cases with CTest under the given labels.
 function(topoplan_add_test)
-  cmake_parse_arguments(T "" "NAME;FIXTURES" "SOURCES;LIBS;LABELS;ENV" ${ARGN})
+  cmake_parse_arguments(T "" "NAME;FIXTURES;TIMEOUT" "SOURCES;LIBS;LABELS;ENV" ${ARGN})
   add_executable(${T_NAME} ${T_SOURCES})
   target_link_libraries(${T_NAME} PRIVATE ${T_LIBS} GTest::gtest GTest::gtest_main)
   target_include_directories(${T_NAME} PRIVATE ${PROJECT_SOURCE_DIR})
@@ -14,8 +14,14 @@ function(topoplan_add_test)
   if(T_FIXTURES)
     set(fixtures FIXTURES_REQUIRED ${T_FIXTURES})
   endif()
+  if(T_TIMEOUT)
+    list(APPEND fixtures TIMEOUT ${T_TIMEOUT})
+  endif()
+  if(T_ENV)
+    list(APPEND fixtures ENVIRONMENT "${T_ENV}")
+  endif()
   gtest_discover_tests(${T_NAME}
-    PROPERTIES LABELS "${T_LABELS}" ENVIRONMENT "${T_ENV}" ${fixtures}
+    PROPERTIES LABELS "${T_LABELS}" ${fixtures}
     DISCOVERY_TIMEOUT 60)
 endfunction()
 

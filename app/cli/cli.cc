@@ -34,6 +34,7 @@ int RunCommandLine(int argc, char** argv) {
   AddRenderCommands(&root, &commands);
   AddGraspCommands(&root, &commands);
   AddRobotCommands(&root, &commands);
+  AddRobotsCommand(&root, &commands);
   AddPlanCommands(&root, &commands);
   AddViewCommand(&root, &commands);
   StrictIntegerOptions(&root);

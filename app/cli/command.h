@@ -43,6 +43,7 @@ void AddDemoCommand(CLI::App* root, CommandList* commands);       // demo
 void AddRenderCommands(CLI::App* root, CommandList* commands);    // render, heatmap, diff
 void AddGraspCommands(CLI::App* root, CommandList* commands);     // grasp synthesize|transfer
 void AddRobotCommands(CLI::App* root, CommandList* commands);     // fk, check
+void AddRobotsCommand(CLI::App* root, CommandList* commands);     // robots check
 void AddPlanCommands(CLI::App* root, CommandList* commands);      // plan, bench unwrap
 void AddViewCommand(CLI::App* root, CommandList* commands);       // view (app/viewer/cmd_view.cc)
 

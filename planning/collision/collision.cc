@@ -23,7 +23,6 @@
 namespace planning {
 namespace {
 
-using internal::FclPair;
 using internal::FclScene;
 using internal::FclShape;
 
@@ -84,6 +83,13 @@ std::shared_ptr<fcl::CollisionGeometryd> MakeGeometry(const Robot& model, const 
 
 // Marks a capsule shape for the closed-form distance (if enabled).
 void SetCapsule(const Geometry& g, const CollisionOptions& options, FclShape* shape) {
+  // A sphere is a capsule of length 0: sphere–sphere distances are always closed form (libccd's
+  // EPA converges slowly on round shapes and stops short of the exact depth).
+  if (g.kind == Geometry::Kind::kSphere) {
+    shape->capsule_radius = g.size[0];
+    shape->capsule_half_length = 0.0;
+    return;
+  }
   if (!options.analytic_capsules || g.kind != Geometry::Kind::kCapsule) return;
   shape->capsule_radius = g.size[0];
   shape->capsule_half_length = 0.5 * g.size[1];
@@ -107,19 +113,63 @@ void SetBound(const Geometry& g, FclShape* shape) {
   }
 }
 
-// Rows of the links that have collision shapes (FclScene::geo_row, −1 for the others) and their
-// number (num_links); returns those links in link order.
-std::vector<int> IndexShapeLinks(const Robot& robot, FclScene* scene) {
-  FclScene& s = *scene;
-  s.geo_row.assign(robot.links.size(), -1);
-  std::vector<int> geo_links;  // links with collision shapes, in link order
-  for (size_t l = 0; l < robot.links.size(); ++l) {
-    if (robot.links[l].collisions.empty()) continue;
-    s.geo_row[l] = static_cast<int>(geo_links.size());
-    geo_links.push_back(static_cast<int>(l));
+// FclScene::body and parent_body in O(n): each link's rigid body (following fixed joints up) and
+// each body's nearest ancestor body with collision geometry, memoised in one pass over the links
+// (a link's parent is resolved before the link through an explicit stack, whatever their order).
+void BuildAdjacency(const Robot& robot, FclScene* scene) {
+  const int n = static_cast<int>(robot.links.size());
+  std::vector<int>& body = scene->body;
+  body.assign(n, -1);
+  std::vector<int> stack;
+  for (int l = 0; l < n; ++l) {
+    for (int k = l; body[k] < 0;) {  // walk up until a resolved link or a body root
+      const int j = robot.links[k].parent_joint;
+      if (j < 0 || robot.joints[j].type != JointType::kFixed) {
+        body[k] = k;
+        break;
+      }
+      stack.push_back(k);
+      k = robot.joints[j].parent_link;
+    }
+    while (!stack.empty()) {  // everything on the way hangs from the same body
+      const int k = stack.back();
+      stack.pop_back();
+      body[k] = body[robot.joints[robot.links[k].parent_joint].parent_link];
+    }
   }
-  s.num_links = static_cast<int>(geo_links.size());
-  return geo_links;
+  std::vector<char> has_collision(n, 0);
+  for (int l = 0; l < n; ++l) {
+    if (!robot.links[l].collisions.empty()) has_collision[body[l]] = 1;
+  }
+  // parent_body[b]: the body above b's parent joint if it has collision geometry, else its own
+  // parent_body (geometry-free frames such as the middle link of a 2-DOF joint are skipped).
+  std::vector<int>& parent = scene->parent_body;
+  parent.assign(n, -2);  // −2: not computed yet
+  for (int l = 0; l < n; ++l) {
+    for (int b = body[l]; parent[b] == -2;) {
+      const int j = robot.links[b].parent_joint;
+      if (j < 0) {
+        parent[b] = -1;
+        break;
+      }
+      const int up = body[robot.joints[j].parent_link];
+      if (has_collision[up]) {
+        parent[b] = up;
+        break;
+      }
+      if (parent[up] == -2) {
+        stack.push_back(b);
+        b = up;
+        continue;
+      }
+      parent[b] = parent[up];
+    }
+    while (!stack.empty()) {
+      const int b = stack.back();
+      stack.pop_back();
+      parent[b] = parent[body[robot.joints[robot.links[b].parent_joint].parent_link]];
+    }
+  }
 }
 
 // One FCL object per collision geometry of the robot, in link order (meshes as convex hulls
@@ -140,6 +190,11 @@ void AddRobotShapes(const Robot& robot, const CollisionOptions& options, FclScen
       shape.obj = std::make_unique<fcl::CollisionObjectd>(
           MakeGeometry(robot, g, options.exact_meshes ? nullptr : &hulls));
       shape.obj->setUserData(&shape);
+      // A mesh collided as its hull keeps its exact triangles for confirming hull hits.
+      if (g.kind == Geometry::Kind::kMesh && !options.exact_meshes && options.confirm_meshes &&
+          shape.obj->collisionGeometry()->getNodeType() == fcl::GEOM_CONVEX) {
+        shape.exact = std::make_unique<fcl::CollisionObjectd>(MakeGeometry(robot, g));
+      }
       SetCapsule(g, options, &shape);
       SetBound(g, &shape);
     }
@@ -177,51 +232,6 @@ void AddEnvironmentShapes(const Environment& env, const CollisionOptions& option
         SetBound(g, &shape);
       }
     }
-  }
-}
-
-// Self pairs that are never checked (FclScene::skip over the rows of `geo_links`): adjacent links
-// and options.disabled_pairs.
-void BuildSkipTable(const Robot& robot, const std::vector<int>& geo_links,
-                    const CollisionOptions& options, FclScene* scene) {
-  FclScene& s = *scene;
-  s.skip.assign(static_cast<size_t>(s.num_links) * s.num_links, 0);
-  for (int a = 0; a < s.num_links; ++a) {
-    for (int b = 0; b < s.num_links; ++b) {
-      if (AreAdjacent(robot, geo_links[a], geo_links[b])) s.skip[a * s.num_links + b] = 1;
-    }
-  }
-  for (const auto& [na, nb] : options.disabled_pairs) {
-    const int a = s.geo_row[FindLink(robot, na)], b = s.geo_row[FindLink(robot, nb)];
-    if (a < 0 || b < 0) continue;  // a link without shapes is never checked anyway
-    s.skip[a * s.num_links + b] = s.skip[b * s.num_links + a] = 1;
-  }
-}
-
-// Candidate shape pairs for distance queries: self pairs (a < b), then per object.
-void BuildCandidatePairs(FclScene* scene) {
-  FclScene& s = *scene;
-  if (s.self_collision) {
-    for (size_t a = 0; a < s.robot.size(); ++a) {
-      for (size_t b = a + 1; b < s.robot.size(); ++b) {
-        if (s.skip[s.geo_row[s.robot[a].link] * s.num_links + s.geo_row[s.robot[b].link]]) {
-          continue;
-        }
-        s.pairs.push_back({static_cast<int>(a), static_cast<int>(b), false});
-      }
-    }
-  }
-  if (s.environment) {
-    for (size_t e = 0; e < s.env.size(); ++e) {
-      for (size_t a = 0; a < s.robot.size(); ++a) {
-        s.pairs.push_back({static_cast<int>(a), static_cast<int>(e), true});
-      }
-    }
-    std::stable_sort(s.pairs.begin(), s.pairs.end(), [&](const FclPair& x, const FclPair& y) {
-      const int ox = x.env_pair ? s.env[x.b].object : -1;
-      const int oy = y.env_pair ? s.env[y.b].object : -1;
-      return ox < oy;
-    });
   }
 }
 
@@ -288,14 +298,34 @@ CollisionData::CollisionData(const Robot& robot, const Environment& env,
   FclScene& s = *scene;
   s.self_collision = options.self_collision;
   s.environment = options.environment;
-  const std::vector<int> geo_links = IndexShapeLinks(robot, &s);
+  s.confirm_meshes = options.confirm_meshes;
+  BuildAdjacency(robot, &s);
+  for (const auto& [na, nb] : options.disabled_pairs) {
+    s.disabled.insert(internal::PairKey(FindLink(robot, na), FindLink(robot, nb)));
+  }
   AddRobotShapes(robot, options, &s);
   AddEnvironmentShapes(env, options, &s);
-  BuildSkipTable(robot, geo_links, options, &s);
-  BuildCandidatePairs(&s);
-  // Broadphase managers.
-  for (FclShape& shape : s.robot) s.robot_manager.registerObject(shape.obj.get());
-  for (FclShape& shape : s.env) s.env_manager.registerObject(shape.obj.get());
+  // Broadphase managers, built in one pass (a top-down median split, O(n log n)) on the robot
+  // posed at its reference configuration (zero, moved into the limits): boxes inserted one by
+  // one, all at the origin, would make a degenerate tree (O(n²) set-up, slow traversals).
+  {
+    KinematicsData kin(robot);
+    const Eigen::VectorXd q = Eigen::VectorXd::Zero(num_dofs(robot))
+                                  .cwiseMax(LowerLimits(robot))
+                                  .cwiseMin(UpperLimits(robot));
+    ForwardKinematics(robot, q, &kin);
+    for (FclShape& shape : s.robot) {
+      shape.obj->setTransform(kin.world_from_link[shape.link] * shape.link_from_shape);
+      shape.obj->computeAABB();
+    }
+  }
+  std::vector<fcl::CollisionObjectd*> objects;
+  objects.reserve(std::max(s.robot.size(), s.env.size()));
+  for (FclShape& shape : s.robot) objects.push_back(shape.obj.get());
+  s.robot_manager.registerObjects(objects);
+  objects.clear();
+  for (FclShape& shape : s.env) objects.push_back(shape.obj.get());
+  s.env_manager.registerObjects(objects);
   s.robot_manager.setup();
   s.env_manager.setup();
 }

@@ -76,6 +76,11 @@ struct CollisionOptions {
   // Robot link meshes: false (default) collide as their convex hulls (fast, conservative: a hull
   // contains the mesh); true as exact triangle BVHs (slow on real robot meshes).
   bool exact_meshes = false;
+  // With hulls (exact_meshes false): a hull hit of a link mesh is confirmed on the mesh's exact
+  // triangles (an OBBRSS BVH) before it counts as a collision, so the concave parts of a mesh
+  // (the inside of a gripper) do not collide; the hull stays the fast first test. Distances stay
+  // those of the hulls (smooth gradients). CheckCollisions reports hull-only hits separately.
+  bool confirm_meshes = true;
   // Capsule–capsule distance queries: true in closed form (segment–segment distance minus the
   // radii, exact also when penetrating, where FCL's EPA depth can be several cm too deep; one
   // narrow-phase call, ≈ 20× cheaper), false (default, so results of existing set-ups do not
@@ -128,6 +133,21 @@ struct ProximityPair {
 // call. FCL solver exceptions on degenerate contacts count as a collision.
 bool InCollision(const Robot& robot, const KinematicsData& kin, CollisionData* coll,
                  ProximityPair* hit = nullptr);
+
+// The collision state of a configuration as a check reports it: every colliding pair (confirmed on
+// the exact meshes where a link mesh is collided as its hull), and the pairs whose hulls overlap
+// although their meshes do not ("hull-only": not a collision). Each pair once per shape pair,
+// ordered by (object, link_a, link_b); distance and points unset (a yes/no answer).
+struct CollisionReport {
+  bool in_collision = false;
+  std::vector<ProximityPair> pairs;      // colliding pairs, at most max_pairs
+  std::vector<ProximityPair> hull_only;  // hull hits the exact meshes refute
+};
+
+// All colliding pairs of the configuration in `kin` (up to max_pairs), with yes/no narrow phases
+// only (no penetration depth, no distance). Counts one query and every narrow-phase call.
+CollisionReport CheckCollisions(const Robot& robot, const KinematicsData& kin, CollisionData* coll,
+                                int max_pairs = 100);
 
 // Every checked link pair (per link pair, the closest of their shapes) whose distance is below
 // `margin` [m], with signed distance, witness points and normal. `out` is cleared and refilled

@@ -19,7 +19,6 @@
 namespace planning {
 namespace {
 
-using internal::FclPair;
 using internal::FclScene;
 using internal::FclShape;
 
@@ -33,13 +32,22 @@ struct BroadphaseQuery {
   CollisionData* coll;
   bool hit = false;
   ProximityPair pair;
+  std::vector<ProximityPair>* all = nullptr;        // CheckCollisions: every colliding pair
+  std::vector<ProximityPair>* hull_only = nullptr;  // hull hits the exact meshes refute
+  int max_pairs = 1;
 };
+
+// Self pairs of the same rigid body or of a body and its collision parent (adjacent), and
+// disabled pairs, are never checked. O(1).
+bool SkipSelf(const FclScene& s, int link_a, int link_b) {
+  const int a = s.body[link_a], b = s.body[link_b];
+  if (a == b || s.parent_body[a] == b || s.parent_body[b] == a) return true;
+  return !s.disabled.empty() && s.disabled.count(internal::PairKey(link_a, link_b)) > 0;
+}
 
 bool Skip(const FclScene& s, const FclShape& a, const FclShape& b) {
   if (a.object >= 0 && b.object >= 0) return true;  // environment vs environment
-  if (a.object < 0 && b.object < 0) {
-    return !s.self_collision || s.skip[s.geo_row[a.link] * s.num_links + s.geo_row[b.link]] != 0;
-  }
+  if (a.object < 0 && b.object < 0) return !s.self_collision || SkipSelf(s, a.link, b.link);
   return !s.environment;
 }
 
@@ -87,7 +95,15 @@ void ClosestSegmentPoints(const Eigen::Vector3d& a0, const Eigen::Vector3d& u,
 
 // Both shapes are capsules answered in closed form (CollisionOptions::analytic_capsules).
 bool ClosedFormPair(const FclShape& a, const FclShape& b) {
-  return a.capsule_radius > 0.0 && b.capsule_radius > 0.0;
+  // Two capsules (analytic_capsules) or two spheres (capsules of length 0); a sphere against a
+  // capsule goes through FCL, as before spheres were closed form.
+  return a.capsule_radius > 0.0 && b.capsule_radius > 0.0 &&
+         (a.capsule_half_length > 0.0) == (b.capsule_half_length > 0.0);
+}
+
+// Capsule pairs in closed form are as cheap as their bounding-capsule test: not pre-checked.
+bool ClosedFormCapsules(const FclShape& a, const FclShape& b) {
+  return ClosedFormPair(a, b) && a.capsule_half_length > 0.0;
 }
 
 // Distance between the bounding capsules of a and b (≤ their true distance); 0 when either has
@@ -102,30 +118,67 @@ double BoundGap(const FclShape& a, const FclShape& b) {
   return (p - q).norm() - a.bound_radius - b.bound_radius;
 }
 
-// Broadphase callback: filter, count, narrow phase; returns true (stop) at the first hit.
+enum class PairVerdict { kFree, kCollision, kHullOnly };
+
+// A yes/no narrow phase (FCL collide with its default request: one contact, no penetration depth,
+// so libccd answers by MPR intersection and no EPA runs). A hit of a mesh's convex hull is then
+// confirmed on the exact triangles (OBBRSS BVH against the other shape, or its exact mesh).
+PairVerdict CollidePair(const FclScene& s, const FclShape& a, const FclShape& b,
+                        CollisionData* coll) {
+  const auto collide = [coll](const fcl::CollisionObjectd* x, const fcl::CollisionObjectd* y) {
+    ++coll->narrow_phase_calls;
+    try {
+      fcl::CollisionRequestd request;
+      fcl::CollisionResultd result;
+      return fcl::collide(x, y, request, result) > 0;
+    } catch (const std::exception&) {
+      return true;  // libccd failures on touching shapes: be conservative
+    }
+  };
+  if (!collide(a.obj.get(), b.obj.get())) return PairVerdict::kFree;
+  if (!s.confirm_meshes || (!a.exact && !b.exact)) return PairVerdict::kCollision;
+  const fcl::CollisionObjectd* ea = a.obj.get();
+  const fcl::CollisionObjectd* eb = b.obj.get();
+  if (a.exact) {
+    a.exact->setTransform(a.obj->getTransform());
+    a.exact->computeAABB();
+    ea = a.exact.get();
+  }
+  if (b.exact) {
+    b.exact->setTransform(b.obj->getTransform());
+    b.exact->computeAABB();
+    eb = b.exact.get();
+  }
+  return collide(ea, eb) ? PairVerdict::kCollision : PairVerdict::kHullOnly;
+}
+
+// Broadphase callback: filter, count, narrow phase; returns true (stop) at the first hit (or, for
+// CheckCollisions, when max_pairs are found).
 bool CollideCallback(fcl::CollisionObjectd* o1, fcl::CollisionObjectd* o2, void* data) {
   auto* q = static_cast<BroadphaseQuery*>(data);
   const FclShape* a = ShapeOf(o1);
   const FclShape* b = ShapeOf(o2);
   if (Skip(*q->scene, *a, *b)) return false;
-  if (a->object >= 0) std::swap(a, b);       // robot shape first
-  if (BoundGap(*a, *b) > 0.0) return false;  // bounding capsules apart: no contact
-  ++q->coll->narrow_phase_calls;
-  bool hit = false;
-  try {
-    fcl::CollisionRequestd request;
-    fcl::CollisionResultd result;
-    hit = fcl::collide(a->obj.get(), b->obj.get(), request, result) > 0;
-  } catch (const std::exception&) {
-    hit = true;  // libccd failures on touching shapes: be conservative
+  if (a->object >= 0) std::swap(a, b);                      // robot shape first
+  if (b->object < 0 && b->link < a->link) std::swap(a, b);  // self pairs: lower link first
+  if (BoundGap(*a, *b) > 0.0) return false;                 // bounding capsules apart: no contact
+  const PairVerdict verdict = CollidePair(*q->scene, *a, *b, q->coll);
+  if (verdict == PairVerdict::kFree) return false;
+  ProximityPair pair;
+  pair.link_a = a->link;
+  pair.link_b = b->object >= 0 ? -1 : b->link;
+  pair.object = b->object;
+  if (verdict == PairVerdict::kHullOnly) {
+    if (q->hull_only) q->hull_only->push_back(pair);
+    return false;  // not a collision: go on
   }
-  if (hit) {
-    q->hit = true;
-    q->pair.link_a = a->link;
-    q->pair.link_b = b->object >= 0 ? -1 : b->link;
-    q->pair.object = b->object;
+  q->hit = true;
+  q->pair = pair;
+  if (q->all) {  // CheckCollisions: every colliding pair (up to its limit)
+    q->all->push_back(pair);
+    return static_cast<int>(q->all->size()) >= q->max_pairs;
   }
-  return hit;
+  return true;
 }
 
 // Moves the robot's shapes to `kin` (transforms and world AABBs); the broadphase tree is refreshed
@@ -175,7 +228,11 @@ void ShapeDistance(const FclShape& a, const FclShape& b, CollisionData* coll, Pr
     CapsuleDistance(a, b, out);
     return;
   }
-  fcl::DistanceRequestd request(true, true);
+  // Signed distance (penetration by EPA) only between convex shapes; for a triangle BVH it would
+  // run EPA on every overlapping triangle. A BVH pair in contact takes the contact branch below.
+  const bool bvh = a.obj->collisionGeometry()->getObjectType() == fcl::OT_BVH ||
+                   b.obj->collisionGeometry()->getObjectType() == fcl::OT_BVH;
+  fcl::DistanceRequestd request(true, !bvh);
   fcl::DistanceResultd result;
   double d = 0.0;
   bool ok = true;
@@ -245,6 +302,69 @@ bool AabbGapBelow(const fcl::CollisionObjectd& a, const fcl::CollisionObjectd& b
   return AabbGapVector(a, b).squaredNorm() < margin * margin;
 }
 
+// A candidate shape pair of the distance queries, with the order key of the checked-pair order
+// (self pairs (a, b) with a < b first, then per object its shapes e, each against the robot's
+// shapes a): the order in which pairs are visited and ties are broken.
+struct Candidate {
+  int a = 0;  // robot shape
+  int b = 0;  // robot shape (self) or env shape
+  bool env = false;
+  int object = -1;
+  double gap = 0.0;  // AABB gap [m]
+  bool operator<(const Candidate& o) const {
+    return std::make_tuple(env, object, env ? b : a, env ? a : b) <
+           std::make_tuple(o.env, o.object, o.env ? o.b : o.a, o.env ? o.a : o.b);
+  }
+};
+
+// Every checked shape pair whose world AABBs are at most `margin` apart (gap <= margin), by a
+// sweep over the boxes sorted along x: O(n log n + pairs found), never the n² pair list. Pairs
+// never checked (environment against environment, adjacent or disabled self pairs) are left out.
+void CollectCandidates(const FclScene& s, double margin, std::vector<Candidate>* out) {
+  out->clear();
+  struct Box {
+    double min_x, max_x;
+    int shape;  // >= 0 robot shape, < 0: env shape −1 − index
+  };
+  std::vector<Box> boxes;
+  boxes.reserve(s.robot.size() + (s.environment ? s.env.size() : 0));
+  for (const FclShape& r : s.robot) {
+    boxes.push_back({r.obj->getAABB().min_[0], r.obj->getAABB().max_[0], r.index});
+  }
+  if (s.environment) {
+    for (const FclShape& e : s.env) {
+      boxes.push_back({e.obj->getAABB().min_[0], e.obj->getAABB().max_[0], -1 - e.index});
+    }
+  }
+  std::sort(boxes.begin(), boxes.end(), [](const Box& x, const Box& y) {
+    return std::tie(x.min_x, x.shape) < std::tie(y.min_x, y.shape);
+  });
+  std::vector<int> active;  // indices into boxes whose max_x + margin reaches the sweep
+  for (size_t i = 0; i < boxes.size(); ++i) {
+    const Box& bi = boxes[i];
+    size_t keep = 0;
+    for (int k : active) {
+      if (boxes[k].max_x + margin >= bi.min_x) active[keep++] = k;
+    }
+    active.resize(keep);
+    for (int k : active) {
+      const Box& bk = boxes[k];
+      if (bi.shape < 0 && bk.shape < 0) continue;  // environment vs environment
+      const bool env = bi.shape < 0 || bk.shape < 0;
+      if (!env && !s.self_collision) continue;
+      const FclShape& a =
+          env ? s.robot[std::max(bi.shape, bk.shape)] : s.robot[std::min(bi.shape, bk.shape)];
+      const FclShape& b =
+          env ? s.env[-1 - std::min(bi.shape, bk.shape)] : s.robot[std::max(bi.shape, bk.shape)];
+      if (Skip(s, a, b)) continue;
+      const double gap = AabbGap(*a.obj, *b.obj);
+      if (gap > margin) continue;
+      out->push_back({a.index, b.index, env, env ? b.object : -1, gap});
+    }
+    active.push_back(static_cast<int>(i));
+  }
+}
+
 template <typename Visit>
 void ForEachClosePair(const Robot& robot, const KinematicsData& kin, double margin,
                       CollisionData* coll, Visit&& visit) {
@@ -253,21 +373,39 @@ void ForEachClosePair(const Robot& robot, const KinematicsData& kin, double marg
   (void)robot;
   UpdateRobot(kin, &s, false);
   ++coll->queries;
-  for (const FclPair& p : s.pairs) {
-    const FclShape& a = s.robot[p.a];
-    const FclShape& b = p.env_pair ? s.env[p.b] : s.robot[p.b];
+  std::vector<Candidate> candidates;
+  CollectCandidates(s, margin, &candidates);
+  std::sort(candidates.begin(), candidates.end());  // the checked-pair order
+  for (const Candidate& c : candidates) {
+    const FclShape& a = s.robot[c.a];
+    const FclShape& b = c.env ? s.env[c.b] : s.robot[c.b];
     if (!AabbGapBelow(*a.obj, *b.obj, margin)) continue;
     // Closed-form capsule pairs are as cheap as their bound; others skip the narrow phase when
     // their bounding capsules are margin apart.
-    if (!ClosedFormPair(a, b) && BoundGap(a, b) >= margin) continue;
+    if (!ClosedFormCapsules(a, b) && BoundGap(a, b) >= margin) continue;
     ProximityPair pair;
     pair.link_a = a.link;
-    pair.link_b = p.env_pair ? -1 : b.link;
-    pair.object = p.env_pair ? b.object : -1;
+    pair.link_b = c.env ? -1 : b.link;
+    pair.object = c.env ? b.object : -1;
     ShapeDistance(a, b, coll, &pair);
     visit(pair);
   }
 }
+
+// The diagonal of the box around every shape (robot and environment): no pair's AABB gap exceeds
+// it.
+double SceneDiagonal(const FclScene& s) {
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
+  Eigen::Vector3d hi = -lo;
+  for (const auto* shapes : {&s.robot, &s.env}) {
+    for (const FclShape& x : *shapes) {
+      lo = lo.cwiseMin(x.obj->getAABB().min_);
+      hi = hi.cwiseMax(x.obj->getAABB().max_);
+    }
+  }
+  return (hi - lo).allFinite() ? (hi - lo).norm() : 0.0;
+}
+
 }  // namespace
 
 bool InCollision(const Robot& robot, const KinematicsData& kin, CollisionData* coll,
@@ -282,6 +420,31 @@ bool InCollision(const Robot& robot, const KinematicsData& kin, CollisionData* c
   if (!q.hit && s.self_collision) s.robot_manager.collide(&q, CollideCallback);
   if (q.hit && hit) *hit = q.pair;
   return q.hit;
+}
+
+CollisionReport CheckCollisions(const Robot& robot, const KinematicsData& kin, CollisionData* coll,
+                                int max_pairs) {
+  FclScene& s = *coll->scene;
+  assert(kin.world_from_link.size() == robot.links.size());
+  (void)robot;
+  UpdateRobot(kin, &s, true);
+  ++coll->queries;
+  CollisionReport report;
+  BroadphaseQuery q{&s, coll, false, {}};
+  q.all = &report.pairs;
+  q.hull_only = &report.hull_only;
+  q.max_pairs = std::max(1, max_pairs);
+  if (s.environment && !s.env.empty()) s.robot_manager.collide(&s.env_manager, &q, CollideCallback);
+  if (static_cast<int>(report.pairs.size()) < q.max_pairs && s.self_collision) {
+    s.robot_manager.collide(&q, CollideCallback);
+  }
+  const auto order = [](const ProximityPair& x, const ProximityPair& y) {
+    return std::tie(x.object, x.link_a, x.link_b) < std::tie(y.object, y.link_a, y.link_b);
+  };
+  std::sort(report.pairs.begin(), report.pairs.end(), order);
+  std::sort(report.hull_only.begin(), report.hull_only.end(), order);
+  report.in_collision = !report.pairs.empty();
+  return report;
 }
 
 void ComputeProximity(const Robot& robot, const KinematicsData& kin, double margin,
@@ -314,34 +477,46 @@ double MinDistance(const Robot& robot, const KinematicsData& kin, CollisionData*
   ++coll->queries;
   // Branch and bound: a pair's distance is at least the gap between its bounding boxes, so pairs
   // are visited by increasing gap until the gap reaches the best distance found. Ties keep the
-  // pair that comes first in the checked-pair order.
-  std::vector<std::pair<double, int>>& order = s.order;
-  order.clear();
-  for (size_t i = 0; i < s.pairs.size(); ++i) {
-    const FclPair& p = s.pairs[i];
-    const FclShape& b = p.env_pair ? s.env[p.b] : s.robot[p.b];
-    order.emplace_back(AabbGap(*s.robot[p.a].obj, *b.obj), static_cast<int>(i));
-  }
-  std::sort(order.begin(), order.end());
+  // pair that comes first in the checked-pair order. The pairs are collected in growing gap
+  // windows (0.05 m, then ×4) by the sweep, never all n² of them: a window's pairs follow those
+  // of the windows before it in the same global (gap, order) sequence.
   double best = std::numeric_limits<double>::infinity();
-  int best_index = -1;
-  for (const auto& [gap, i] : order) {
-    // A pair's distance is at least its gap, and penetration (< 0) only happens at gap 0: while
-    // the best is negative every overlapping pair is still a candidate for the deepest.
-    if (gap > std::max(best, 0.0)) break;
-    const FclPair& p = s.pairs[i];
-    const FclShape& a = s.robot[p.a];
-    const FclShape& b = p.env_pair ? s.env[p.b] : s.robot[p.b];
-    ProximityPair pair;
-    pair.link_a = a.link;
-    pair.link_b = p.env_pair ? -1 : b.link;
-    pair.object = p.env_pair ? b.object : -1;
-    ShapeDistance(a, b, coll, &pair);
-    if (pair.distance < best || (pair.distance == best && i < best_index)) {
-      best = pair.distance;
-      best_index = i;
-      if (closest) *closest = pair;
+  Candidate best_pair;
+  bool have_best = false;
+  const double diagonal = SceneDiagonal(s);
+  std::vector<Candidate> candidates;
+  double done_up_to = -1.0;  // every pair with gap <= this has been considered
+  for (double window = 0.05;; window *= 4.0) {
+    CollectCandidates(s, window, &candidates);
+    std::erase_if(candidates, [&](const Candidate& c) { return c.gap <= done_up_to; });
+    std::sort(candidates.begin(), candidates.end(), [](const Candidate& x, const Candidate& y) {
+      if (x.gap != y.gap) return x.gap < y.gap;
+      return x < y;
+    });
+    bool stopped = false;
+    for (const Candidate& c : candidates) {
+      // A pair's distance is at least its gap, and penetration (< 0) only happens at gap 0: while
+      // the best is negative every overlapping pair is still a candidate for the deepest.
+      if (c.gap > std::max(best, 0.0)) {
+        stopped = true;
+        break;
+      }
+      const FclShape& a = s.robot[c.a];
+      const FclShape& b = c.env ? s.env[c.b] : s.robot[c.b];
+      ProximityPair pair;
+      pair.link_a = a.link;
+      pair.link_b = c.env ? -1 : b.link;
+      pair.object = c.env ? b.object : -1;
+      ShapeDistance(a, b, coll, &pair);
+      if (pair.distance < best || (pair.distance == best && have_best && c < best_pair)) {
+        best = pair.distance;
+        best_pair = c;
+        have_best = true;
+        if (closest) *closest = pair;
+      }
     }
+    done_up_to = window;
+    if (stopped || std::max(best, 0.0) <= window || window > diagonal) break;
   }
   return best;
 }

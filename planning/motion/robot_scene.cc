@@ -5,17 +5,17 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
-#include <memory>
 #include <locale>
+#include <memory>
 #include <sstream>
 #include <stdexcept>
 
 #include "base/assets.h"
-#include "base/numbers.h"
-#include "base/json_reader.h"
-#include "planning/robot/robot_io.h"
-#include "planning/motion/scenario.h"
 #include "base/file_read.h"
+#include "base/json_reader.h"
+#include "base/numbers.h"
+#include "planning/motion/scenario.h"
+#include "planning/robot/robot_io.h"
 
 namespace planning {
 namespace {
@@ -73,6 +73,14 @@ std::vector<std::string> PackagePaths(const std::vector<std::string>& extra) {
     std::string item;
     while (std::getline(ss, item, ':')) {
       if (!item.empty()) out.push_back(item);
+    }
+  }
+  // ROS 2 installs packages as PREFIX/share/NAME (ament).
+  if (const char* env = std::getenv("AMENT_PREFIX_PATH")) {
+    std::stringstream ss(env);
+    std::string item;
+    while (std::getline(ss, item, ':')) {
+      if (!item.empty()) out.push_back((fs::path(item) / "share").string());
     }
   }
   return out;
@@ -180,6 +188,8 @@ namespace {
 void AttachSrdf(const std::string& srdf_path, RobotScene* s) {
   if (srdf_path.empty()) return;
   s->srdf = LoadSrdf(srdf_path);
+  const std::vector<std::string> base_warnings = ApplySrdfBase(*s->srdf, &s->robot);
+  s->warnings.insert(s->warnings.end(), base_warnings.begin(), base_warnings.end());
   const std::vector<std::string> warnings = CheckSrdf(*s->srdf, s->robot);
   s->warnings.insert(s->warnings.end(), warnings.begin(), warnings.end());
   for (const auto& pair : DisabledPairs(*s->srdf, &s->robot)) {
@@ -214,6 +224,7 @@ RobotScene LoadRobotSceneImpl(const std::string& path, const std::vector<std::st
   const std::string ext = Ext(path);
   if (ext == ".urdf") {
     s.robot = LoadRobot(path, options);
+    s.warnings = s.robot.warnings;
     s.q = Eigen::VectorXd::Zero(num_dofs(s.robot));
     AttachSrdf(srdf_flag.empty() ? FindSrdf(path) : srdf_flag, &s);
     return s;
@@ -232,6 +243,7 @@ RobotScene LoadRobotSceneImpl(const std::string& path, const std::vector<std::st
     overrides.srdf = srdf_flag;
     const std::unique_ptr<const Scenario> sc = LoadScenarioArg(path, overrides);
     s.robot = sc->robot;
+    s.warnings = sc->warnings;
     s.q = sc->initial.problem.q0;
     s.env = sc->initial.objects;
     s.collides.assign(s.env.objects.size(), true);
@@ -250,7 +262,7 @@ RobotScene LoadRobotSceneImpl(const std::string& path, const std::vector<std::st
   // Every key is known: a misspelt one ("postion") would otherwise be ignored silently and change
   // the scene (the object at the origin).
   const base::JsonNode root(doc, path);
-  root.CheckKeys({"robot", "q", "srdf", "package_paths", "objects", "camera", "size"});
+  root.CheckKeys({"robot", "q", "base", "srdf", "package_paths", "objects", "camera", "size"});
   if (doc.contains("objects") && doc["objects"].is_array()) {
     for (size_t i = 0; i < doc["objects"].size(); ++i) {
       const base::JsonNode o = root.At("objects").At(i);
@@ -262,12 +274,30 @@ RobotScene LoadRobotSceneImpl(const std::string& path, const std::vector<std::st
                                scene_paths.begin(), scene_paths.end());
   const std::string urdf = ResolveRelative(doc["robot"].get<std::string>(), base);
   s.robot = LoadRobot(urdf, options);
+  s.warnings = s.robot.warnings;
   std::string srdf = srdf_flag;
   if (srdf.empty() && doc.contains("srdf")) {
     if (!doc["srdf"].is_string()) throw std::invalid_argument(path + ": srdf: expected a path");
     srdf = ResolveRelative(doc["srdf"].get<std::string>(), base);
   }
   AttachSrdf(srdf.empty() ? FindSrdf(urdf) : srdf, &s);
+  if (doc.contains("base")) {
+    const nlohmann::json& b = doc["base"];
+    std::vector<double> values;
+    if (b.is_array()) {
+      for (const nlohmann::json& v : b) {
+        if (!v.is_number()) {
+          values.clear();
+          break;
+        }
+        values.push_back(v.get<double>());
+      }
+    }
+    if (values.empty()) {
+      throw std::invalid_argument(path + ": base: expected [x, y, z] or [x, y, z, qx, qy, qz, qw]");
+    }
+    s.robot.world_from_root = BasePoseFromValues(BaseType::kFloating, values, path + ": base");
+  }
   const int n = num_dofs(s.robot);
   s.q = Eigen::VectorXd::Zero(n);
   if (doc.contains("q")) {
@@ -293,8 +323,7 @@ RobotScene LoadRobotSceneImpl(const std::string& path, const std::vector<std::st
       if (!o.is_object() || !o.contains("urdf") || !o["urdf"].is_string()) {
         throw std::invalid_argument(path + ": " + jp + ".urdf: expected a URDF path");
       }
-      const Robot object =
-          LoadRobot(ResolveRelative(o["urdf"].get<std::string>(), base), options);
+      const Robot object = LoadRobot(ResolveRelative(o["urdf"].get<std::string>(), base), options);
       const std::string name =
           o.contains("name") && o["name"].is_string() ? o["name"].get<std::string>() : object.name;
       // "xyz" is the scenario files' spelling (planning/motion/scenario.h), "position" ours.
@@ -327,8 +356,8 @@ RobotScene LoadRobotScene(const std::string& path, const RobotInputOptions& opti
   return LoadRobotSceneImpl(path, options.package_paths, options.srdf, true);
 }
 
-Eigen::VectorXd ChooseQ(const RobotScene& scene, const std::string& q_text,
-                        const std::string& pose, std::vector<std::string>* warnings) {
+Eigen::VectorXd ChooseQ(const RobotScene& scene, const std::string& q_text, const std::string& pose,
+                        std::vector<std::string>* warnings) {
   if (!q_text.empty() && !pose.empty()) {
     throw std::invalid_argument("--q and --pose: give at most one of them");
   }
@@ -339,6 +368,29 @@ Eigen::VectorXd ChooseQ(const RobotScene& scene, const std::string& q_text,
                                 "' has no SRDF (give --srdf FILE)");
   }
   return NamedPose(scene.robot, *scene.srdf, pose, warnings);
+}
+
+Eigen::Isometry3d ChooseBase(const RobotScene& scene, const std::string& base_text,
+                             const std::string& pose) {
+  if (!base_text.empty()) {
+    std::vector<double> values;
+    std::stringstream ss(base_text);
+    std::string item;
+    while (std::getline(ss, item, ',')) {
+      const std::optional<double> v = base::ParseFiniteDouble(item);
+      if (!v) {
+        throw std::invalid_argument("--base: '" + item +
+                                    "' is not a finite number (expected x,y,z or "
+                                    "x,y,z,qx,qy,qz,qw)");
+      }
+      values.push_back(*v);
+    }
+    return BasePoseFromValues(BaseType::kFloating, values, "--base");
+  }
+  if (!pose.empty() && scene.srdf) {
+    if (const auto base = NamedBasePose(scene.robot, *scene.srdf, pose)) return *base;
+  }
+  return scene.robot.world_from_root;
 }
 
 }  // namespace planning

@@ -7,7 +7,9 @@
 // Scene JSON (other keys are ignored):
 //   {"robot": "robots/lwr4_sdh.urdf",          // relative to the JSON file, else to assets/
 //    "q": [0, 0.5, ...],                        // optional, fk joint order; default zeros
-//    "srdf": "robots/lwr4_sdh.srdf",           // optional (planning/robot/srdf.h), relative to the JSON;
+//    "base": [x, y, z, qx, qy, qz, qw],         // optional pose of the root link (or [x, y, z])
+//    "srdf": "robots/lwr4_sdh.srdf",           // optional (planning/robot/srdf.h), relative to the
+//    JSON;
 //                                               // default: FindSrdf next to the robot's URDF
 //    "package_paths": ["../ros_ws/src"],        // optional extra package:// roots, relative to
 //                                               // the JSON file's folder
@@ -19,6 +21,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
@@ -34,7 +37,7 @@ struct RobotScene {
   std::string source;  // file it was loaded from
   Robot robot;
   Eigen::VectorXd q;           // size num_dofs(robot)
-  Environment env;   // every object (drawn)
+  Environment env;             // every object (drawn)
   std::vector<bool> collides;  // per object of env: part of the collision environment
   // Set for planning scenarios: what the planners collide with (may replace objects by capsules)
   // and their options (disabled pairs).
@@ -70,8 +73,15 @@ RobotScene LoadRobotScene(const std::string& path, const RobotInputOptions& opti
 // scene.q. Throws std::invalid_argument when both are given or a pose has no SRDF.
 // A pose value outside its joint's limits is kept and described in `warnings` when given (the
 // user asked about that pose), an error otherwise.
-Eigen::VectorXd ChooseQ(const RobotScene& scene, const std::string& q_text,
-                        const std::string& pose, std::vector<std::string>* warnings = nullptr);
+Eigen::VectorXd ChooseQ(const RobotScene& scene, const std::string& q_text, const std::string& pose,
+                        std::vector<std::string>* warnings = nullptr);
+
+// The pose of the robot's root link in the world: `--base` text "x,y,z[,qx,qy,qz,qw]" when given,
+// else the free base's value in group_state `pose` (NamedBasePose), else scene.robot's
+// world_from_root (a scene's "base", identity by default). Throws std::invalid_argument naming
+// --base for text that is not 3 or 7 finite numbers or a zero quaternion.
+Eigen::Isometry3d ChooseBase(const RobotScene& scene, const std::string& base_text,
+                             const std::string& pose);
 
 // True if `path` names something LoadRobotScene accepts: a .urdf file, or a .json whose top-level
 // object has a "robot" key.

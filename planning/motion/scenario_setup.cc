@@ -1,6 +1,3 @@
-#include "planning/motion/scenario.h"
-#include "planning/motion/internal/scenario_build.h"
-
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
@@ -11,6 +8,9 @@
 #include <vector>
 
 #include "base/assets.h"
+#include "base/numbers.h"
+#include "planning/motion/internal/scenario_build.h"
+#include "planning/motion/scenario.h"
 #include "planning/motion/success.h"
 #include "planning/robot/kinematics.h"
 #include "planning/robot/pose.h"
@@ -39,8 +39,8 @@ Eigen::VectorXd WritheContinuation(const Scenario& s, const Eigen::VectorXd& fro
   p.w_rate = 100.0;
   Task w;
   w.name = "writhe";
-  w.feature =
-      MakeWritheFeature(s.robot, s.report_chain, s.initial.report_object_chain, WritheOutput::kTotal);
+  w.feature = MakeWritheFeature(s.robot, s.report_chain, s.initial.report_object_chain,
+                                WritheOutput::kTotal);
   SetConstantTarget(&w, Eigen::VectorXd::Zero(1), 1000.0, 1);
   p.tasks.push_back(std::move(w));
   Task c;
@@ -137,6 +137,21 @@ StartPose ResolveStart(const Scenario& s, const std::optional<double>& wrap_over
       if (UsesUnwinding(s.spec))
         WritheContinuation(s, out.q0, 0.0, start.step, start.margin, &out.unwinding);
       break;
+    }
+  }
+  // Planners start where the robot can be: a start outside the limits is refused (a coil start is
+  // made inside them).
+  if (start.kind != StartKind::kCoil) {
+    const Eigen::VectorXd lo = LowerLimits(s.robot), hi = UpperLimits(s.robot);
+    const std::vector<std::string> names = DofNames(s.robot);
+    for (int k = 0; k < n; ++k) {
+      if (out.q0[k] >= lo[k] - 1e-6 && out.q0[k] <= hi[k] + 1e-6) continue;
+      std::string what = start.kind == StartKind::kZero ? "start (none given: zeros)" : start.where;
+      what.append("[").append(std::to_string(k)).append("] (").append(names[k]).append("): ");
+      what.append(base::FormatShortest(out.q0[k])).append(" is outside the joint limits [");
+      what.append(base::FormatShortest(lo[k])).append(", ").append(base::FormatShortest(hi[k]));
+      what.append("]; a plan must start inside them");
+      throw std::invalid_argument(what);
     }
   }
   return out;
@@ -313,8 +328,8 @@ std::unique_ptr<Scenario> SetUpScenario(ScenarioSpec spec,
   }
   if (sp.start.kind == StartKind::kPose) {
     if (!srdf) throw std::invalid_argument(sp.start.where + ": a pose start needs an SRDF");
-    s->spec.start.q =
-        base::PrefixErrors(sp.start.where, [&] { return NamedPose(s->robot, *srdf, sp.start.pose); });
+    s->spec.start.q = base::PrefixErrors(sp.start.where,
+                                         [&] { return NamedPose(s->robot, *srdf, sp.start.pose); });
     s->spec.start.kind = StartKind::kQ;
   }
   LoadObjects(s.get());

@@ -78,7 +78,7 @@ void ForwardKinematics(const Robot& robot, const Eigen::VectorXd& q, KinematicsD
   }
   assert(kin->world_from_link.size() == robot.links.size());
   kin->q = q;
-  kin->world_from_link[0].setIdentity();
+  kin->world_from_link[0] = robot.world_from_root;
   // Links are topologically sorted, so each parent pose is final before its children are visited.
   for (size_t l = 1; l < robot.links.size(); ++l) {
     const int j = robot.links[l].parent_joint;

@@ -1,7 +1,7 @@
 // The immutable robot model: links, joints, geometry, meshes and named chains.
 //
-// A Robot is built once (by planning/robot/robot_io.h from a URDF file) and never changes afterwards;
-// everything that depends on a configuration q lives in a workspace (KinematicsData in
+// A Robot is built once (by planning/robot/robot_io.h from a URDF file) and never changes
+// afterwards; everything that depends on a configuration q lives in a workspace (KinematicsData in
 // planning/robot/kinematics.h, CollisionData in planning/collision/collision.h).
 //
 // Conventions:
@@ -26,6 +26,11 @@
 namespace planning {
 
 enum class JointType { kFixed, kRevolute, kContinuous, kPrismatic };
+
+// How the robot stands in the world. kFixed: bolted down. kFloating / kPlanar: a free base (a URDF
+// floating/planar joint below the root link, or an SRDF virtual_joint of that type): its pose is
+// not part of q (planners keep it where it is); Robot::world_from_root places the robot.
+enum class BaseType { kFixed, kFloating, kPlanar };
 
 // Joint limits. Continuous and fixed joints have lower = −∞, upper = +∞.
 struct JointLimits {
@@ -101,6 +106,15 @@ struct Robot {
   std::vector<int> dof_joints;  // size num_dofs: joint index driven by q[k], in q order
   std::vector<Mesh> meshes;
   std::vector<ChainSpec> chains;
+  // Pose of links[0] in the world (ForwardKinematics starts from it): identity unless a base pose
+  // is given (`--base`, a scene's "base", an SRDF group_state value of the free base). Any robot
+  // can be placed; only a free base makes the pose part of what a file describes.
+  Eigen::Isometry3d world_from_root = Eigen::Isometry3d::Identity();
+  BaseType base_type = BaseType::kFixed;
+  std::string base_joint;  // name of the free base's joint (URDF or SRDF virtual joint), or ""
+  // What the loader accepted but is worth saying ("FILE:LINE: ..."; e.g. a mimic joint of an
+  // unknown master, which then moves on its own): printed as warnings, errors with --strict.
+  std::vector<std::string> warnings;
 };
 
 // Number of independent movable joints = size of q.

@@ -19,6 +19,7 @@
 #include "base/file_read.h"
 #include "base/json_reader.h"
 #include "planning/robot/chain_json.h"
+#include "planning/robot/internal/package_resolver.h"
 #include "planning/robot/internal/xml_text.h"
 #include "planning/robot/mesh_io.h"
 
@@ -47,6 +48,7 @@ struct XmlSummary {
   std::vector<XmlJoint> joints;                                 // file order
   std::map<std::string, int> joint_line;
   std::map<std::string, std::string> parent_of;  // child link → joint name
+  std::vector<std::string> warnings;             // accepted, worth saying ("FILE:LINE: ...")
 };
 
 std::string Attr(const TiXmlElement* e, const char* name) { return internal::XmlAttr(e, name); }
@@ -143,17 +145,11 @@ XmlJoint ValidateJoint(const TiXmlElement* e, const std::string& source, XmlSumm
   }
   s->joint_line[j.name] = j.line;
   const std::string where = "joint '" + j.name + "': ";
-  if (j.type == "floating" || j.type == "planar") {
-    Fail(source, j.line,
-         where + "joint type '" + j.type +
-             "' is not supported (use revolute/continuous/prismatic/fixed; "
-             "model a free base with 6 single-axis joints)");
-  }
   if (j.type != "revolute" && j.type != "continuous" && j.type != "prismatic" &&
-      j.type != "fixed") {
+      j.type != "fixed" && j.type != "floating" && j.type != "planar") {
     Fail(source, j.line,
          where + "unknown joint type '" + j.type +
-             "' (expected revolute, continuous, prismatic or fixed)");
+             "' (expected revolute, continuous, prismatic, fixed, floating or planar)");
   }
   const TiXmlElement* parent = e->FirstChildElement("parent");
   const TiXmlElement* child = e->FirstChildElement("child");
@@ -245,6 +241,27 @@ void CheckMimicChains(const XmlSummary& s, const std::string& source) {
   }
 }
 
+// A floating or planar joint is a free base: it must hang from the root link, and there is at most
+// one (the rest of the robot is a tree below it).
+void CheckFreeBase(const XmlSummary& s, const std::string& source) {
+  const XmlJoint* base = nullptr;
+  for (const XmlJoint& j : s.joints) {
+    if (j.type != "floating" && j.type != "planar") continue;
+    if (s.parent_of.count(j.parent)) {
+      Fail(source, j.line,
+           "joint '" + j.name + "': a " + j.type +
+               " joint is supported only as the free base (its parent must be the root link, "
+               "the one without a parent joint), not inside the tree");
+    }
+    if (base != nullptr) {
+      Fail(source, j.line,
+           "joint '" + j.name + "': a second free base (first: joint '" + base->name + "', line " +
+               std::to_string(base->line) + ")");
+    }
+    base = &j;
+  }
+}
+
 XmlSummary ValidateXml(const std::string& xml, const std::string& source) {
   internal::CheckXmlUtf8(xml, source);
   internal::CheckXmlDepth(xml, source);
@@ -266,12 +283,19 @@ XmlSummary ValidateXml(const std::string& xml, const std::string& source) {
        e = e->NextSiblingElement("joint")) {
     s.joints.push_back(ValidateJoint(e, source, &s));
   }
-  for (const XmlJoint& j : s.joints) {
+  for (XmlJoint& j : s.joints) {
     if (!j.mimic.empty() && !s.joint_line.count(j.mimic)) {
-      Fail(source, j.line, "joint '" + j.name + "': mimics unknown joint '" + j.mimic + "'");
+      // As MoveIt does: the joint moves on its own (a published URDF may name a mimic master
+      // that another variant of the robot has).
+      std::string w = source;
+      w.append(":").append(std::to_string(j.line)).append(": joint '").append(j.name);
+      w.append("' mimics unknown joint '").append(j.mimic).append("' (it moves on its own)");
+      s.warnings.push_back(std::move(w));
+      j.mimic.clear();
     }
   }
   CheckSingleTree(s, robot->Row(), source);
+  CheckFreeBase(s, source);
   CheckMimicChains(s, source);
   return s;
 }
@@ -291,67 +315,7 @@ bool StartsWith(const std::string& s, const std::string& prefix) {
   return s.compare(0, prefix.size(), prefix) == 0;
 }
 
-struct MeshResolver {
-  std::string source;
-  fs::path base_dir;
-  std::vector<std::string> package_paths;
-
-  std::string Resolve(const std::string& uri) const {
-    if (StartsWith(uri, "package://")) {
-      const std::string rest = uri.substr(10);
-      const size_t slash = rest.find('/');
-      if (slash == std::string::npos) Fail(source, 0, "malformed mesh URI '" + uri + "'");
-      const std::string pkg = rest.substr(0, slash);
-      const std::string rel = rest.substr(slash + 1);
-      const fs::path rel_path = fs::path(rel).lexically_normal();
-      if (rel_path.empty() || rel_path.is_absolute() || *rel_path.begin() == "..") {
-        Fail(source, 0, "mesh '" + uri + "' leaves its package '" + pkg + "'");
-      }
-      std::vector<fs::path> roots(package_paths.begin(), package_paths.end());
-      for (fs::path d = fs::absolute(base_dir); !d.empty(); d = d.parent_path()) {
-        roots.push_back(d);
-        if (d == d.parent_path()) break;
-      }
-      std::string tried, missing;
-      for (const fs::path& root : roots) {
-        for (const fs::path& pkg_root : {root / pkg, root.filename() == pkg ? root : fs::path()}) {
-          if (pkg_root.empty() || !fs::is_directory(pkg_root)) continue;
-          const fs::path file = pkg_root / rel_path;
-          // Symbolic links must not lead out of the package either.
-          std::error_code ec;
-          const fs::path real_root = fs::weakly_canonical(pkg_root, ec);
-          const fs::path real_file = fs::weakly_canonical(file, ec);
-          const auto [end, unused] =
-              std::mismatch(real_root.begin(), real_root.end(), real_file.begin(), real_file.end());
-          (void)unused;
-          if (ec || end != real_root.end()) {
-            Fail(source, 0,
-                 "mesh '" + uri + "' resolves to " + real_file.string() + ", outside package '" +
-                     pkg + "' (" + real_root.string() + ")");
-          }
-          if (fs::is_regular_file(file)) return file.lexically_normal().string();
-          if (missing.size() < 400) {
-            missing += (missing.empty() ? "" : ", ") + file.lexically_normal().string();
-          }
-        }
-        if (tried.size() < 400) tried += (tried.empty() ? "" : ", ") + root.string();
-      }
-      if (!missing.empty()) {
-        Fail(source, 0, "mesh '" + uri + "' not found: no file " + missing);
-      }
-      Fail(source, 0,
-           "mesh '" + uri + "' not found: package '" + pkg + "' is not under any search root (" +
-               tried + "); add its parent folder to the package search path");
-    }
-    std::string path = uri;
-    if (StartsWith(path, "file://")) path = path.substr(7);
-    fs::path p(path);
-    if (p.is_relative()) p = base_dir / p;
-    if (!fs::is_regular_file(p))
-      Fail(source, 0, "mesh file '" + uri + "' not found (looked at " + p.string() + ")");
-    return p.lexically_normal().string();
-  }
-};
+using internal::MeshResolver;
 
 struct GeometryBuilder {
   const urdf::ModelInterface* model;
@@ -453,6 +417,14 @@ void ConvertJoints(const urdf::ModelInterface& model, const XmlSummary& summary,
       case urdf::Joint::FIXED:
         j.type = JointType::kFixed;
         break;
+      case urdf::Joint::FLOATING:
+      case urdf::Joint::PLANAR:
+        // The free base (CheckFreeBase): rigid in the model, placed by Robot::world_from_root.
+        j.type = JointType::kFixed;
+        robot->base_type =
+            uj->type == urdf::Joint::FLOATING ? BaseType::kFloating : BaseType::kPlanar;
+        robot->base_joint = xj.name;
+        break;
       default:
         Fail(robot->source, xj.line, "joint '" + xj.name + "': unsupported joint type");
     }
@@ -472,7 +444,7 @@ void ConvertJoints(const urdf::ModelInterface& model, const XmlSummary& summary,
       if (uj->limits->velocity > 0) j.limits.velocity = uj->limits->velocity;
       if (uj->limits->effort > 0) j.limits.effort = uj->limits->effort;
     }
-    if (uj->mimic && j.type != JointType::kFixed) {
+    if (uj->mimic && !xj.mimic.empty() && j.type != JointType::kFixed) {
       j.is_mimic = true;
       j.mimic_multiplier = uj->mimic->multiplier;
       j.mimic_offset = uj->mimic->offset;
@@ -534,13 +506,14 @@ Robot ParseRobot(const std::string& urdf_xml, const std::string& source_name,
   Robot robot;
   robot.name = summary.robot_name;
   robot.source = source_name;
+  robot.warnings = summary.warnings;
   const std::vector<std::string> order = LinkOrder(summary);
   std::map<std::string, int> link_index;
   for (size_t i = 0; i < order.size(); ++i) link_index[order[i]] = static_cast<int>(i);
   robot.joints.resize(summary.joints.size());
   robot.links.resize(order.size());
 
-  const MeshResolver resolver{source_name, fs::path(base_dir), options.package_paths};
+  const MeshResolver resolver{source_name, fs::path(base_dir), options.package_paths, {}};
   GeometryBuilder geo{model.get(), resolver, options.load_meshes, &robot.meshes, {}};
   for (size_t i = 0; i < order.size(); ++i) {
     Link& link = robot.links[i];

@@ -1,17 +1,17 @@
 // SRDF reading (planning/robot/srdf.h): TinyXML after the depth pre-scan.
 #include "planning/robot/srdf.h"
 
-#include "base/numbers.h"
-
 #include <tinyxml.h>
 
-#include <filesystem>
 #include <algorithm>
+#include <cmath>
+#include <filesystem>
 #include <set>
 #include <stdexcept>
 
-#include "planning/robot/internal/xml_text.h"
 #include "base/file_read.h"
+#include "base/numbers.h"
+#include "planning/robot/internal/xml_text.h"
 
 namespace planning {
 namespace {
@@ -74,7 +74,15 @@ Srdf ParseSrdf(const std::string& xml, const std::string& source) {
     } else if (tag == "passive_joint") {
       s.passive_joints.push_back(XmlAttr(e, "name"));
     } else if (tag == "virtual_joint") {
-      s.virtual_joints.push_back(XmlAttr(e, "name"));
+      SrdfVirtualJoint v{XmlAttr(e, "name"), XmlAttr(e, "type"), XmlAttr(e, "parent_frame"),
+                         XmlAttr(e, "child_link"), e->Row()};
+      if (v.name.empty()) Fail(source, e->Row(), "<virtual_joint> without a name");
+      if (v.type != "fixed" && v.type != "floating" && v.type != "planar") {
+        Fail(source, e->Row(),
+             "virtual_joint '" + v.name + "': type '" + v.type +
+                 "' (expected fixed, floating or planar)");
+      }
+      s.virtual_joints.push_back(v);
     }
   }
   return s;
@@ -98,7 +106,19 @@ std::vector<std::string> CheckSrdf(const Srdf& srdf, const Robot& robot) {
   std::set<std::string> links, joints;
   for (const Link& l : robot.links) links.insert(l.name);
   for (const Joint& j : robot.joints) joints.insert(j.name);
-  const std::set<std::string> virtuals(srdf.virtual_joints.begin(), srdf.virtual_joints.end());
+  std::set<std::string> virtuals;
+  for (const SrdfVirtualJoint& v : srdf.virtual_joints) {
+    virtuals.insert(v.name);
+    if (!v.child_link.empty() && !links.count(v.child_link)) {
+      warnings.push_back(where(v.line) + "virtual_joint '" + v.name + "': child_link '" +
+                         v.child_link + "' is not part of robot '" + robot.name + "' (skipped)");
+    } else if (v.type != "fixed" && !robot.links.empty() && v.child_link != robot.links[0].name) {
+      warnings.push_back(where(v.line) + "virtual_joint '" + v.name + "' (" + v.type +
+                         ") attaches link '" + v.child_link + "', not the root link '" +
+                         robot.links[0].name + "' (skipped: only the root can be a free base)");
+    }
+  }
+  if (!robot.base_joint.empty()) virtuals.insert(robot.base_joint);
   constexpr size_t kMaxListed = 20;  // a long list is cut, with the count of the rest
   size_t unknown = 0;
   auto note = [&](const std::string& what, int line) {
@@ -141,8 +161,10 @@ std::vector<std::pair<std::string, std::string>> DisabledPairs(const Srdf& srdf,
   return out;
 }
 
-Eigen::VectorXd NamedPose(const Robot& robot, const Srdf& srdf, const std::string& name,
-                          std::vector<std::string>* warnings) {
+namespace {
+
+// The group_state `name`; throws listing the available names when there is none.
+const SrdfPose& FindPose(const Srdf& srdf, const std::string& name) {
   const SrdfPose* pose = nullptr;
   std::vector<std::string> names;
   for (const SrdfPose& p : srdf.poses) {
@@ -156,14 +178,32 @@ Eigen::VectorXd NamedPose(const Robot& robot, const Srdf& srdf, const std::strin
     throw std::invalid_argument(srdf.source + ": no group_state named '" + name + "' (" +
                                 (names.empty() ? "the SRDF has none" : "have: " + have) + ")");
   }
+  return *pose;
+}
+
+}  // namespace
+
+Eigen::VectorXd NamedPose(const Robot& robot, const Srdf& srdf, const std::string& name,
+                          std::vector<std::string>* warnings) {
+  const SrdfPose* pose = &FindPose(srdf, name);
   Eigen::VectorXd q = Eigen::VectorXd::Zero(num_dofs(robot));
-  const std::set<std::string> virtuals(srdf.virtual_joints.begin(), srdf.virtual_joints.end());
+  std::set<std::string> virtuals;
+  for (const SrdfVirtualJoint& v : srdf.virtual_joints) virtuals.insert(v.name);
+  if (!robot.base_joint.empty()) virtuals.insert(robot.base_joint);
   std::set<std::string> joints;
   for (const Joint& j : robot.joints) joints.insert(j.name);
   for (const SrdfJointValue& v : pose->joints) {
     if (virtuals.count(v.joint) || !joints.count(v.joint)) continue;  // CheckSrdf warns
     const Joint& j = robot.joints[FindJoint(robot, v.joint)];
     const size_t arity = j.dof >= 0 || j.is_mimic ? 1 : 0;
+    if (arity == 0 && warnings != nullptr) {  // a fixed joint has no value to set (MoveIt skips it)
+      std::string w = srdf.source;
+      w.append(":").append(std::to_string(v.line)).append(": group_state '").append(name);
+      w.append("' joint '").append(v.joint).append("' is fixed in the URDF: its ");
+      w.append(std::to_string(v.values.size())).append(" value(s) are skipped");
+      warnings->push_back(w);
+      continue;
+    }
     if (v.values.size() != std::max<size_t>(arity, 1)) {
       Fail(srdf.source, v.line,
            "group_state '" + name + "' joint '" + v.joint + "': value= has " +
@@ -194,6 +234,86 @@ std::string FindSrdf(const std::string& urdf_path) {
     if (fs::is_regular_file(p)) return p.lexically_normal().string();
   }
   return "";
+}
+
+}  // namespace planning
+
+namespace planning {
+
+std::vector<std::string> ApplySrdfBase(const Srdf& srdf, Robot* robot) {
+  std::vector<std::string> notes;
+  if (robot->links.empty()) return notes;
+  const std::string& root = robot->links[0].name;
+  for (const SrdfVirtualJoint& v : srdf.virtual_joints) {
+    if (v.type == "fixed" || v.child_link != root) continue;  // CheckSrdf warns of the others
+    if (robot->base_type != BaseType::kFixed && robot->base_joint != v.name) {
+      notes.push_back(srdf.source + ":" + std::to_string(v.line) + ": virtual_joint '" + v.name +
+                      "' and the URDF's free base '" + robot->base_joint +
+                      "' both move the root (the URDF's is used)");
+      continue;
+    }
+    robot->base_type = v.type == "floating" ? BaseType::kFloating : BaseType::kPlanar;
+    robot->base_joint = v.name;
+    return notes;
+  }
+  if (robot->base_type != BaseType::kFixed) return notes;
+  // Pinocchio's convention: a free-flyer it adds itself, named root_joint, with 7 values in the
+  // group_states and no virtual_joint.
+  bool urdf_has_root_joint = false;
+  for (const Joint& j : robot->joints) urdf_has_root_joint |= j.name == "root_joint";
+  if (urdf_has_root_joint) return notes;
+  for (const SrdfPose& pose : srdf.poses) {
+    for (const SrdfJointValue& v : pose.joints) {
+      if (v.joint == "root_joint" && v.values.size() == 7) {
+        robot->base_type = BaseType::kFloating;
+        robot->base_joint = "root_joint";
+        return notes;
+      }
+    }
+  }
+  return notes;
+}
+
+std::optional<Eigen::Isometry3d> NamedBasePose(const Robot& robot, const Srdf& srdf,
+                                               const std::string& name) {
+  const SrdfPose& pose = FindPose(srdf, name);
+  if (robot.base_joint.empty()) return std::nullopt;
+  for (const SrdfJointValue& v : pose.joints) {
+    if (v.joint != robot.base_joint) continue;
+    const std::string where = "group_state '" + name + "' joint '" + v.joint + "'";
+    return BasePoseFromValues(robot.base_type, v.values,
+                              srdf.source + ":" + std::to_string(v.line) + ": " + where);
+  }
+  return std::nullopt;
+}
+
+Eigen::Isometry3d BasePoseFromValues(BaseType type, const std::vector<double>& values,
+                                     const std::string& where) {
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  if (type == BaseType::kPlanar && values.size() == 3) {
+    pose.translation() = Eigen::Vector3d(values[0], values[1], 0.0);
+    pose.linear() = Eigen::AngleAxisd(values[2], Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    return pose;
+  }
+  if (values.size() != 7 && values.size() != 3) {
+    throw std::invalid_argument(where + ": expected " +
+                                (type == BaseType::kPlanar ? std::string("x,y,theta (3 numbers)")
+                                                           : std::string("x,y,z (3 numbers) or "
+                                                                         "x,y,z,qx,qy,qz,qw (7)")) +
+                                ", got " + std::to_string(values.size()) + " numbers");
+  }
+  for (double v : values) {
+    if (!std::isfinite(v)) throw std::invalid_argument(where + ": values must be finite");
+  }
+  pose.translation() = Eigen::Vector3d(values[0], values[1], values[2]);
+  if (values.size() == 7) {
+    const Eigen::Quaterniond q(values[6], values[3], values[4], values[5]);
+    if (!(q.norm() > 1e-6)) {
+      throw std::invalid_argument(where + ": the quaternion qx,qy,qz,qw has zero length");
+    }
+    pose.linear() = q.normalized().toRotationMatrix();
+  }
+  return pose;
 }
 
 }  // namespace planning

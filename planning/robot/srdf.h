@@ -9,10 +9,13 @@
 //   </group_state>                                         joints it does not name stay 0;
 //   <passive_joint name="j"/>                              listed (Srdf::passive_joints) only: the
 //                                                          joint stays in q like any other;
-//   <virtual_joint name= type= parent_frame= child_link=>  listed only: the robot's root link stays
-//                                                          the world frame (the URDF has no free
-//                                                          base), and a group_state value for it
-//                                                          is skipped.
+//   <virtual_joint name= type= parent_frame= child_link=>  type floating or planar on the root
+//                                                          link: the robot has a free base
+//                                                          (ApplySrdfBase); a group_state value
+//                                                          for it is the base pose
+//                                                          (NamedBasePose), not part of q.
+// Pinocchio's convention is understood too: group_states giving 7 values to a joint 'root_joint'
+// that neither the URDF nor a virtual_joint declares make the root a floating base.
 // Ignored: <group>, <end_effector>, <disable_default_collisions>, <enable_collisions>,
 // <link_sphere_approximations> and any other element.
 //
@@ -29,6 +32,8 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -54,13 +59,18 @@ struct SrdfPose {  // a <group_state>
   int line = 0;
 };
 
+struct SrdfVirtualJoint {
+  std::string name, type, parent_frame, child_link;  // type: fixed, floating or planar
+  int line = 0;
+};
+
 struct Srdf {
   std::string source;      // file name for messages
   std::string robot_name;  // <robot name=>
   std::vector<SrdfPair> disabled_pairs;
   std::vector<SrdfPose> poses;
   std::vector<std::string> passive_joints;  // read, not used (see the file comment)
-  std::vector<std::string> virtual_joints;  // read, not used (see the file comment)
+  std::vector<SrdfVirtualJoint> virtual_joints;
 };
 
 // Parses SRDF text; `source` names it in messages.
@@ -89,6 +99,25 @@ std::vector<std::pair<std::string, std::string>> DisabledPairs(const Srdf& srdf,
 // without, an error naming the joint and its limits (a start for planning).
 Eigen::VectorXd NamedPose(const Robot& robot, const Srdf& srdf, const std::string& name,
                           std::vector<std::string>* warnings = nullptr);
+
+// Makes `robot` a free-base robot when the SRDF says so: a floating or planar virtual_joint whose
+// child_link is the root link, else group_states giving 7 values to an undeclared 'root_joint'
+// (Pinocchio's free-flyer). Sets robot->base_type and base_joint; a URDF free base is kept.
+// Returns warnings (a virtual_joint that conflicts with the URDF's free base).
+std::vector<std::string> ApplySrdfBase(const Srdf& srdf, Robot* robot);
+
+// The base pose (world_from_root) the group_state `name` gives the free base: nullopt when the
+// robot has no free base or the pose does not name it. Throws std::invalid_argument as NamedPose
+// for an unknown pose, and for values that are not a pose (BasePoseFromValues).
+std::optional<Eigen::Isometry3d> NamedBasePose(const Robot& robot, const Srdf& srdf,
+                                               const std::string& name);
+
+// A base pose from numbers: x,y,z (3) or x,y,z,qx,qy,qz,qw (7, the quaternion normalised; the
+// order of Pinocchio and MoveIt), or for a planar base x,y,theta (3: a turn theta [rad] about
+// the world z axis). Throws std::invalid_argument starting with `where` for another count, a
+// value that is not finite or a zero quaternion.
+Eigen::Isometry3d BasePoseFromValues(BaseType type, const std::vector<double>& values,
+                                     const std::string& where);
 
 // NAME.srdf next to `urdf_path` (NAME.urdf), else ../srdf/NAME.srdf; "" when neither exists.
 std::string FindSrdf(const std::string& urdf_path);

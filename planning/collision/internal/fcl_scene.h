@@ -1,12 +1,14 @@
-// Private: the FCL side of CollisionData. Only planning/collision/collision.cc (building it) and
-// collision_queries.cc (querying it) include this file.
+// Private: the FCL side of CollisionData. Only planning/collision/ (collision.cc building it, the
+// query files querying it) includes this file.
 #pragma once
 
 #include <fcl/broadphase/broadphase_dynamic_AABB_tree.h>
 #include <fcl/narrowphase/collision_object.h>
 
 #include <Eigen/Geometry>
+#include <cstdint>
 #include <memory>
+#include <unordered_set>
 #include <utility>
 #include <vector>
 
@@ -28,31 +30,34 @@ struct FclShape {
   // bounding capsules are already `margin` apart.
   double bound_radius = 0.0;
   double bound_half_length = 0.0;
-};
-
-// A candidate pair for distance queries: shape indices (b into env if env_pair) and the AABB test
-// is done per query.
-struct FclPair {
-  int a = 0;
-  int b = 0;
-  bool env_pair = false;
+  // The exact triangle mesh (OBBRSS BVH) of a robot link mesh collided as its convex hull: a hull
+  // hit is confirmed on it before it counts (CollisionOptions::confirm_meshes); null otherwise.
+  std::unique_ptr<fcl::CollisionObjectd> exact;
 };
 
 struct FclScene {
   std::vector<FclShape> robot;  // pointers to elements are used as FCL user data: never resized
   std::vector<FclShape> env;
-  // Self pairs that are never checked, over the links that have collision shapes only (a robot
-  // with many geometry-free frames stays small): geo_row[link] is the link's row (−1 without
-  // shapes); skip is num_links × num_links over those rows.
-  std::vector<int> geo_row;
-  std::vector<char> skip;
-  int num_links = 0;
+  // Which self pairs are never checked, in O(1) per pair without an n × n table (set-up is
+  // O(n log n) in links): per link its rigid body (the link its fixed joints hang from), per body
+  // the nearest ancestor body with collision geometry (−1 if none); a pair of the same body or of a
+  // body and that parent is adjacent. `disabled` holds the disabled link pairs (SRDF, options) as
+  // PairKey(min, max).
+  std::vector<int> body;
+  std::vector<int> parent_body;
+  std::unordered_set<std::uint64_t> disabled;
   bool self_collision = true;
   bool environment = true;
-  std::vector<FclPair> pairs;  // every checked shape pair, ordered (self first, then by object)
-  std::vector<std::pair<double, int>> order;  // MinDistance scratch: (AABB gap, pair index)
+  bool confirm_meshes = true;  // CollisionOptions::confirm_meshes
   fcl::DynamicAABBTreeCollisionManagerd robot_manager;
   fcl::DynamicAABBTreeCollisionManagerd env_manager;
 };
+
+// The key of an unordered link pair.
+inline std::uint64_t PairKey(int a, int b) {
+  if (a > b) std::swap(a, b);
+  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) |
+         static_cast<std::uint32_t>(b);
+}
 
 }  // namespace planning::internal

@@ -160,11 +160,26 @@ TEST(RobotIoErrors, UnknownJointType) {
       "unknown joint type 'hinge'");
 }
 
-TEST(RobotIoErrors, FloatingJointRejected) {
-  ExpectError(
+TEST(RobotIoErrors, FloatingJointOnlyAsTheFreeBase) {
+  // Below the root (the ROS "world" link + floating joint convention): the free base.
+  const Robot robot = ParseRobot(
       Wrap(std::string(kTwoLinks) +
            "<joint name=\"j\" type=\"floating\"><parent link=\"a\"/><child link=\"b\"/></joint>\n"),
-      "'floating' is not supported");
+      "bad.urdf", TestDataFile(""));
+  EXPECT_EQ(robot.base_type, BaseType::kFloating);
+  EXPECT_EQ(robot.base_joint, "j");
+  EXPECT_EQ(num_dofs(robot), 0);  // the base pose is given apart from q (--base)
+  const Robot planar = ParseRobot(
+      Wrap(std::string(kTwoLinks) +
+           "<joint name=\"p\" type=\"planar\"><parent link=\"a\"/><child link=\"b\"/></joint>\n"),
+      "bad.urdf", TestDataFile(""));
+  EXPECT_EQ(planar.base_type, BaseType::kPlanar);
+  // Inside the tree it is not a base: refused, naming the joint.
+  ExpectError(
+      Wrap("<link name=\"r\"/>" + std::string(kTwoLinks) +
+           "<joint name=\"j0\" type=\"fixed\"><parent link=\"r\"/><child link=\"a\"/></joint>\n"
+           "<joint name=\"j\" type=\"floating\"><parent link=\"a\"/><child link=\"b\"/></joint>\n"),
+      "joint 'j': a floating joint is supported only as the free base");
 }
 
 TEST(RobotIoErrors, Cycle) {
@@ -190,11 +205,16 @@ TEST(RobotIoErrors, RevoluteWithoutLimit) {
       "needs a <limit");
 }
 
-TEST(RobotIoErrors, MimicOfUnknownJoint) {
-  ExpectError(Wrap(std::string(kTwoLinks) +
-                   "<joint name=\"j\" type=\"continuous\"><parent link=\"a\"/><child link=\"b\"/>"
-                   "<mimic joint=\"nope\"/></joint>\n"),
-              "mimics unknown joint 'nope'");
+TEST(RobotIoErrors, MimicOfUnknownJointWarnsAndMovesOnItsOwn) {
+  const Robot robot = ParseRobot(
+      Wrap(std::string(kTwoLinks) +
+           "<joint name=\"j\" type=\"continuous\"><parent link=\"a\"/><child link=\"b\"/>"
+           "<mimic joint=\"nope\"/></joint>\n"),
+      "bad.urdf", TestDataFile(""));
+  ASSERT_EQ(robot.warnings.size(), 1u);
+  EXPECT_THAT(robot.warnings[0], HasSubstr("mimics unknown joint 'nope'"));
+  EXPECT_THAT(robot.warnings[0], HasSubstr("bad.urdf"));
+  EXPECT_EQ(num_dofs(robot), 1);
 }
 
 TEST(RobotIoErrors, MissingMeshFile) {
