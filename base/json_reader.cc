@@ -162,6 +162,7 @@ void JsonNode::CheckKeys(const std::vector<std::string>& allowed) const {
   if (!j_->is_object()) Fail("expected an object");
   for (auto it = j_->begin(); it != j_->end(); ++it) {
     if (std::find(allowed.begin(), allowed.end(), it.key()) != allowed.end()) continue;
+    if (it.key().rfind("//", 0) == 0) continue;  // a comment key: "// note": "..."
     JsonNode(it.value(), file_, Join(path_, it.key()))
         .Fail("unknown key '" + it.key() + "'" + DidYouMean(it.key(), allowed));
   }

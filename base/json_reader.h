@@ -46,7 +46,8 @@ class JsonNode {
   // Objects. Has: the key is present (false for non-objects). At: required member.
   bool Has(const std::string& key) const;
   JsonNode At(const std::string& key) const;
-  // Throws for a non-object and for any key outside `allowed` (with a did-you-mean hint).
+  // Throws for a non-object and for any key outside `allowed` (with a did-you-mean hint). Keys
+  // starting with "//" are comments and always allowed ({"// where": "edit me"}).
   void CheckKeys(const std::vector<std::string>& allowed) const;
   // The members of an object, in file order.
   std::vector<std::pair<std::string, JsonNode>> Members() const;

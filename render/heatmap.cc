@@ -103,7 +103,7 @@ Margins MarginsFor(int rows, const HeatmapOptions& o, const TextSizes& sz) {
   m.top = o.title.empty() ? 12 : static_cast<int>(std::ceil(sz.title * 1.2f)) + 16;
   m.bottom = static_cast<int>(sz.tick + sz.label) + kTickLen + 18 +
              (o.mark_peak ? static_cast<int>(std::ceil(sz.tick * 1.5f)) : 0);
-  const float widest_row = font.Width(std::to_string(rows - 1), sz.tick);
+  const float widest_row = font.Width(std::to_string((rows - 1) * o.row_block), sz.tick);
   m.left = static_cast<int>(std::ceil(widest_row)) + kTickLen + 10 + static_cast<int>(sz.label) + 8;
   m.bar_block = 14 + 14 + kTickLen + 4 + static_cast<int>(font.Width("\u22120.0000", sz.tick)) + 8 +
                 static_cast<int>(sz.label) + 6;
@@ -210,27 +210,27 @@ void DrawHeatmap(const Eigen::MatrixXd& values, const HeatmapOptions& o, const H
     }
     return std::max(1, n);
   };
-  const int col_step =
-      index_step(cols, L.plot_w, font.Width(std::to_string(cols - 1), kTickPx) + 2.0f);
+  const int col_step = index_step(
+      cols, L.plot_w, font.Width(std::to_string((cols - 1) * o.col_block), kTickPx) + 2.0f);
   const int row_step = index_step(rows, L.plot_h, kTickPx);
   const int x_axis_y = L.plot_y + L.plot_h + 1;
   for (int j = 0; j < cols; j += col_step) {
     const int cx = (L.col_edges[j] + L.col_edges[j + 1]) / 2;
     p->Fill(cx, x_axis_y, cx + 1, x_axis_y + kTickLen, kFrame);
     p->Text(static_cast<float>(cx) + 0.5f, x_axis_y + kTickLen + 2 + font.Ascent(kTickPx),
-            std::to_string(j), kTickPx, kInk, Align::kCenter);
+            std::to_string(j * o.col_block), kTickPx, kInk, Align::kCenter);
   }
   const float mid_line = 0.5f * (font.Ascent(kTickPx) - font.Descent(kTickPx));
   for (int i = 0; i < rows; i += row_step) {
     const int cy = (L.row_edges[i] + L.row_edges[i + 1]) / 2;
     p->Fill(L.plot_x - 1 - kTickLen, cy, L.plot_x - 1, cy + 1, kFrame);
     p->Text(static_cast<float>(L.plot_x - kTickLen - 4), static_cast<float>(cy) + 0.5f + mid_line,
-            std::to_string(i), kTickPx, kInk, Align::kRight);
+            std::to_string(i * o.row_block), kTickPx, kInk, Align::kRight);
   }
   // Axis captions, title and the peak note.
   const float col_label_y = x_axis_y + kTickLen + 2 + kTickPx + 6 + font.Ascent(kLabelPx);
   p->Text(L.plot_x + 0.5f * L.plot_w, col_label_y, o.col_label, kLabelPx, kInk, Align::kCenter);
-  const float widest_row = font.Width(std::to_string(rows - 1), kTickPx);
+  const float widest_row = font.Width(std::to_string((rows - 1) * o.row_block), kTickPx);
   p->VerticalText(L.plot_x - kTickLen - 10 - widest_row - 0.5f * kLabelPx,
                   L.plot_y + 0.5f * L.plot_h, o.row_label, kLabelPx, kInk);
   if (!o.title.empty()) {
@@ -243,8 +243,9 @@ void DrawHeatmap(const Eigen::MatrixXd& values, const HeatmapOptions& o, const H
     const int y0 = L.row_edges[pi], y1 = L.row_edges[pi + 1];
     p->Stroke(x0 - 1, y0 - 1, x1 + 1, y1 + 1, {255, 255, 255}, 1);
     p->Stroke(x0 - 3, y0 - 3, x1 + 3, y1 + 3, kInk, 2);
-    const std::string note = "Peak (outlined): row " + std::to_string(pi) + ", column " +
-                             std::to_string(pj) + " (" + FormatNumber(values(pi, pj), 3) + ")";
+    const std::string note = "Peak (outlined): row " + std::to_string(pi * o.row_block) +
+                             ", column " + std::to_string(pj * o.col_block) + " (" +
+                             FormatNumber(values(pi, pj), 3) + ")";
     p->Text(L.plot_x + 0.5f * L.plot_w,
             col_label_y + font.Descent(kLabelPx) + 4 + font.Ascent(kTickPx), note, kTickPx, kInk,
             Align::kCenter);

@@ -51,6 +51,10 @@ struct HeatmapOptions {
   double limit = 0.0;
   // Outline the cell of the largest |entry| and name it ("peak: row i, column j (v)") below.
   bool mark_peak = false;
+  // Indices per cell: cell (i, j) covers rows [i·row_block, (i+1)·row_block) of the underlying
+  // index (e.g. segments of a block-summed writhe matrix); ticks and the peak note show the first
+  // index of a cell.
+  int row_block = 1, col_block = 1;
 };
 
 // The colour limit of a sequence of matrices: max |value| over the finite entries of all of

@@ -8,6 +8,9 @@
 #include <stdexcept>
 #include <string>
 
+#include "topology/internal/writhe_rows.h"
+#include "topology/writhe_stream.h"
+
 namespace topology {
 namespace {
 
@@ -82,21 +85,6 @@ void RowAngles(const double* y, const double* x, int n, double* out) {
   for (; k < n; ++k) out[k] = -std::atan2(y[k], x[k]) / kTwoPi;
 }
 
-void CheckChain(const Chain& c, const char* name) {
-  if (c.cols() < 2) {
-    throw std::invalid_argument(std::string("writhe: chain ") + name +
-                                " needs at least 2 points, got " + std::to_string(c.cols()));
-  }
-  if (!c.allFinite()) {
-    throw std::invalid_argument(std::string("writhe: chain ") + name +
-                                " has a non-finite coordinate");
-  }
-  if (c.cwiseAbs().maxCoeff() > kMaxCoordinate) {
-    throw std::invalid_argument(std::string("writhe: chain ") + name +
-                                " has a coordinate beyond ±1e100 (squared lengths would overflow)");
-  }
-}
-
 // Unit vectors and lengths from point a to every point of b.
 void FillDirections(const Vector3d& a, const Chain& b, std::vector<Vector3d>* dir,
                     std::vector<double>* len) {
@@ -111,33 +99,26 @@ void FillDirections(const Vector3d& a, const Chain& b, std::vector<Vector3d>* di
   }
 }
 
-// Shared driver: rows of A advance two direction rows at a time.
-template <bool kGrad>
-void Compute(const Chain& a, const Chain& b, const WritheOptions& opt, Eigen::MatrixXd* w,
-             WritheJacobian* jac, WritheWorkspace* ws) {
-  CheckChain(a, "A");
-  CheckChain(b, "B");
-  const int rows = static_cast<int>(a.cols()) - 1, cols = static_cast<int>(b.cols()) - 1;
-  w->resize(rows, cols);
-  if constexpr (kGrad) {
-    jac->rows = rows;
-    jac->cols = cols;
-    jac->pair.resize(12, static_cast<Eigen::Index>(rows) * cols);
-  }
-  WritheWorkspace local;
-  if (ws == nullptr) ws = &local;
+// Shared driver: rows [row_begin, row_end) of A, advancing two direction rows at a time. Each
+// finished row is in ws->w_row (values), ws->x_row / ws->y_row (atan2 arguments) when
+// `emit(i)` is called. With kGrad, jac->pair (already sized) receives the gradient columns.
+template <bool kGrad, typename Emit>
+void ComputeRows(const Chain& a, const Chain& b, const WritheOptions& opt, int row_begin,
+                 int row_end, WritheJacobian* jac, WritheWorkspace* ws, Emit&& emit) {
+  const int cols = static_cast<int>(b.cols()) - 1;
   const double tol = opt.degenerate_length;
   const bool unsigned_variant = opt.variant == WritheVariant::kUnsignedSolidAngle;
 
-  std::vector<bool> b_degenerate(cols);
-  for (int j = 0; j < cols; ++j) b_degenerate[j] = (b.col(j + 1) - b.col(j)).norm() < tol;
+  ws->b_degenerate.resize(cols);
+  for (int j = 0; j < cols; ++j) ws->b_degenerate[j] = (b.col(j + 1) - b.col(j)).norm() < tol;
+  const auto& b_degenerate = ws->b_degenerate;
 
   ws->x_row.resize(cols);
   ws->y_row.resize(cols);
   ws->w_row.resize(cols);
-  FillDirections(a.col(0), b, &ws->dir_row0, &ws->len_row0);
+  FillDirections(a.col(row_begin), b, &ws->dir_row0, &ws->len_row0);
   PairResult pr;
-  for (int i = 0; i < rows; ++i) {
+  for (int i = row_begin; i < row_end; ++i) {
     FillDirections(a.col(i + 1), b, &ws->dir_row1, &ws->len_row1);
     const auto& d0 = ws->dir_row0;
     const auto& d1 = ws->dir_row1;
@@ -168,21 +149,67 @@ void Compute(const Chain& a, const Chain& b, const WritheOptions& opt, Eigen::Ma
     }
     // Pass 2: the angles of the whole row, vectorised.
     RowAngles(ws->y_row.data(), ws->x_row.data(), cols, ws->w_row.data());
-    for (int j = 0; j < cols; ++j) {
-      double value = ws->w_row[j];
-      if (unsigned_variant) {
-        const double scale = value < 0.0 ? -2.0 * kTwoPi : 2.0 * kTwoPi;  // |Ω| = 4π|w|
-        value *= scale;
+    if (unsigned_variant) {
+      for (int j = 0; j < cols; ++j) {
+        const double scale = ws->w_row[j] < 0.0 ? -2.0 * kTwoPi : 2.0 * kTwoPi;  // |Ω| = 4π|w|
+        ws->w_row[j] *= scale;
         if constexpr (kGrad) jac->pair.col(static_cast<Eigen::Index>(i) * cols + j) *= scale;
       }
-      (*w)(i, j) = value;
     }
+    emit(i);
     std::swap(ws->dir_row0, ws->dir_row1);
     std::swap(ws->len_row0, ws->len_row1);
   }
 }
 
+// The dense matrix (and Jacobian) of all rows.
+template <bool kGrad>
+void Compute(const Chain& a, const Chain& b, const WritheOptions& opt, Eigen::MatrixXd* w,
+             WritheJacobian* jac, WritheWorkspace* ws) {
+  internal::CheckWritheChain(a, "A");
+  internal::CheckWritheChain(b, "B");
+  const int rows = static_cast<int>(a.cols()) - 1, cols = static_cast<int>(b.cols()) - 1;
+  w->resize(rows, cols);
+  if constexpr (kGrad) {
+    jac->rows = rows;
+    jac->cols = cols;
+    jac->pair.resize(12, static_cast<Eigen::Index>(rows) * cols);
+  }
+  WritheWorkspace local;
+  if (ws == nullptr) ws = &local;
+  ComputeRows<kGrad>(a, b, opt, 0, rows, jac, ws, [&](int i) {
+    for (int j = 0; j < cols; ++j) (*w)(i, j) = ws->w_row[j];
+  });
+}
+
 }  // namespace
+
+namespace internal {
+
+void CheckWritheChain(const Chain& c, const char* name) {
+  if (c.cols() < 2) {
+    throw std::invalid_argument(std::string("writhe: chain ") + name +
+                                " needs at least 2 points, got " + std::to_string(c.cols()));
+  }
+  if (!c.allFinite()) {
+    throw std::invalid_argument(std::string("writhe: chain ") + name +
+                                " has a non-finite coordinate");
+  }
+  if (c.cwiseAbs().maxCoeff() > kMaxCoordinate) {
+    throw std::invalid_argument(std::string("writhe: chain ") + name +
+                                " has a coordinate beyond ±1e100 (squared lengths would overflow)");
+  }
+}
+
+void WritheRows(const Chain& a, const Chain& b, const WritheOptions& options, int row_begin,
+                int row_end, WritheWorkspace* ws, WritheRowSink* sink) {
+  const int cols = static_cast<int>(b.cols()) - 1;
+  ComputeRows<false>(a, b, options, row_begin, row_end, nullptr, ws, [&](int i) {
+    sink->Row(i, ws->w_row.data(), ws->x_row.data(), ws->y_row.data(), cols);
+  });
+}
+
+}  // namespace internal
 
 double SegmentPairWrithe(const Vector3d& a0, const Vector3d& a1, const Vector3d& b0,
                          const Vector3d& b1, const WritheOptions& options,
@@ -221,7 +248,10 @@ void WritheMatrixWithJacobian(const Chain& a, const Chain& b, const WritheOption
 }
 
 double TotalWrithe(const Chain& a, const Chain& b, const WritheOptions& options) {
-  return WritheMatrix(a, b, options).sum();
+  WritheStreamOptions o;  // streamed: O(N_A + N_B) memory, one thread
+  o.writhe = options;
+  o.threads = 1;
+  return StreamWritheSums(a, b, o).total;
 }
 
 double SelfWrithe(const Chain& a, const WritheOptions& options) {

@@ -60,6 +60,7 @@ struct WritheWorkspace {
   std::vector<Eigen::Vector3d> dir_row0, dir_row1;  // unit vectors b_q − a_p for two rows of p
   std::vector<double> len_row0, len_row1;           // and their lengths
   std::vector<double> x_row, y_row, w_row;          // per-pair atan2 arguments and results
+  std::vector<char> b_degenerate;                   // per segment of B: shorter than the floor
 };
 
 // W = writhe matrix of A (3×N_A) against B (3×N_B); W is resized to (N_A−1)×(N_B−1).
@@ -74,7 +75,8 @@ Eigen::MatrixXd WritheMatrix(const Chain& a, const Chain& b, const WritheOptions
 void WritheMatrixWithJacobian(const Chain& a, const Chain& b, const WritheOptions& options,
                               Eigen::MatrixXd* w, WritheJacobian* jac, WritheWorkspace* ws);
 
-// Σ_ij W[i][j]. For closed A and B: the Gauss linking number.
+// Σ_ij W[i][j] (streamed on one thread, never forming W; see topology/writhe_stream.h for
+// threads, row sums and an error bound). For closed A and B: the Gauss linking number.
 double TotalWrithe(const Chain& a, const Chain& b, const WritheOptions& options = {});
 
 // Self-writhe of one chain: Σ_{i≠j} W[i][j] over its own segments = 2 Σ_{i<j−1} W[i][j]

@@ -40,12 +40,22 @@ render::Figure WritheFigure(const Eigen::MatrixXd& w, const std::string& a_name,
   o.scale = f.signed_values ? render::ColorScale::kDiverging : render::ColorScale::kSequential;
   o.width = f.width;
   o.height = f.height;
-  o.title = f.title.empty() ? "Writhe matrix " + a_name + " \u00d7 " + b_name + " (total " +
-                                  render::FormatNumber(w.sum(), 3) + ")"
-                            : f.title;
+  const bool blocked = f.row_block > 1 || f.col_block > 1;
+  std::string title = blocked ? "Block-summed writhe " : "Writhe matrix ";
+  title.append(a_name).append(" \u00d7 ").append(b_name).append(" (total ");
+  title.append(render::FormatNumber(w.sum(), 3)).append(")");
+  o.title = f.title.empty() ? title : f.title;
   o.row_label = f.row_label.empty() ? "Segment of " + a_name : f.row_label;
   o.col_label = f.col_label.empty() ? "Segment of " + b_name : f.col_label;
-  o.value_label = f.signed_values ? "Writhe" : "Solid angle (rad)";
+  if (!blocked) {
+    o.value_label = f.signed_values ? "Writhe" : "Solid angle (rad)";
+  } else {
+    o.value_label = f.signed_values ? "Summed writhe" : "Summed solid angle (rad)";
+    o.value_label.append(" per ").append(std::to_string(f.row_block)).append("\u00d7");
+    o.value_label.append(std::to_string(f.col_block)).append(" block");
+  }
+  o.row_block = f.row_block;
+  o.col_block = f.col_block;
   o.limit = f.limit;
   o.mark_peak = f.mark_peak;
   return render::HeatmapFigure(w, o);

@@ -36,6 +36,9 @@ struct WritheFigureOptions {
   // Colour limit (one for a whole sequence, or --clim); <= 0: this matrix's max |value|.
   double limit = 0.0;
   bool mark_peak = false;  // outline the largest |entry| and name it under the axis
+  // Segments per cell of a block-summed matrix (topology::BlockWritheSums): ticks count segments,
+  // the colour bar reads "Summed writhe" and the default title says "Block-summed writhe".
+  int row_block = 1, col_block = 1;
 };
 
 // The writhe-matrix heatmap figure (any format): rows = segments of chain A named `a_name`,

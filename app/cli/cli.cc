@@ -30,11 +30,14 @@ int RunCommandLine(int argc, char** argv) {
                 "outside the limits, ...");
   CommandList commands;
   AddTopologyCommands(&root, &commands);
+  AddLinkingCommand(&root, &commands);
   AddDemoCommand(&root, &commands);
   AddRenderCommands(&root, &commands);
   AddGraspCommands(&root, &commands);
   AddRobotCommands(&root, &commands);
   AddRobotsCommand(&root, &commands);
+  AddScenarioCommand(&root, &commands);
+  AddIkCommand(&root, &commands);
   AddPlanCommands(&root, &commands);
   AddViewCommand(&root, &commands);
   StrictIntegerOptions(&root);

@@ -8,11 +8,8 @@
 #include <nlohmann/json.hpp>
 
 #include "app/cli/command.h"
-#include "visualize/figures.h"
 #include "app/cli/io.h"
 #include "app/cli/robot_flags.h"
-#include "visualize/scene_builder.h"
-#include "visualize/scene_file.h"
 #include "render/diff.h"
 #include "render/figure.h"
 #include "render/image.h"
@@ -20,6 +17,10 @@
 #include "render/renderer.h"
 #include "topology/polyline.h"
 #include "topology/writhe.h"
+#include "topology/writhe_stream.h"
+#include "visualize/figures.h"
+#include "visualize/scene_builder.h"
+#include "visualize/scene_file.h"
 
 namespace app {
 namespace {
@@ -37,6 +38,7 @@ struct HeatmapArgs {
   std::string a_path, b_path, output, size = "640x480", title, row_label, col_label;
   double clim = 0.0;
   bool unsigned_variant = false, mark_peak = false;
+  int max_cells = 256, threads = 0;
 };
 
 struct DiffArgs {
@@ -48,10 +50,12 @@ struct DiffArgs {
 // What `render` can draw. Dispatch is by extension and content so that other inputs can be
 // added here: a scene file (JSON object with "shapes"/"camera"/...); issue 4 adds URDF robots
 // (".urdf") and scenario files (JSON with a "robot" key).
-visualize::SceneDocument LoadRenderInput(const std::string& path, const std::string& q, const RenderArgs& a) {
+visualize::SceneDocument LoadRenderInput(const std::string& path, const std::string& q,
+                                         const RenderArgs& a) {
   if (!fs::is_regular_file(path)) throw std::invalid_argument(path + ": file not found");
   const std::string ext = fs::path(path).extension().string();
-  if (planning::IsRobotSceneFile(path)) return visualize::RobotSceneDocument(path, q, a.pose, a.robot_input);
+  if (planning::IsRobotSceneFile(path))
+    return visualize::RobotSceneDocument(path, q, a.pose, a.robot_input);
   if (!a.pose.empty()) throw std::invalid_argument("--pose: only for a robot or scenario input");
   if (!q.empty()) throw std::invalid_argument("--q: only for a robot .urdf or scenario input");
   if (ext == ".json") return visualize::LoadSceneFile(path);
@@ -121,7 +125,7 @@ void AddRenderCommands(CLI::App* root, CommandList* commands) {
          const render::Image image = renderer.Render(doc.scene, doc.camera, width, height, options);
          render::WritePng(ra->output, image);
          Note("wrote %s (%dx%d, %s)", ra->output.c_str(), width, height,
-                     render::GlBackendName(context.backend()));
+              render::GlBackendName(context.backend()));
          return kExitOk;
        }});
 
@@ -147,9 +151,17 @@ void AddRenderCommands(CLI::App* root, CommandList* commands) {
                     "outline the entry of largest |value| and name it under the axis");
   heatmap->add_flag("--unsigned", ha->unsigned_variant,
                     "unsigned solid-angle variant (sequential viridis colours)");
+  IntIn(heatmap->add_option("--max-cells", ha->max_cells,
+                            "most cells per axis (default 256): a longer chain is block-summed, "
+                            "each cell the sum over its block of segment pairs"),
+        1, 4096);
+  AddStreamThreadsFlag(heatmap, &ha->threads);
   heatmap->footer(
       "Signed writhe uses a diverging blue-white-red map with limits symmetric about 0;\n"
-      "cells are whole pixels in PNG, one <rect> each in SVG; text is real text in SVG/PDF.");
+      "cells are whole pixels in PNG, one <rect> each in SVG; text is real text in SVG/PDF.\n"
+      "Chains of more than --max-cells segments (default 256) are block-summed without storing\n"
+      "the matrix (any length, bounded memory, progress, Ctrl-C): axis ticks count segments,\n"
+      "the colour bar is the summed writhe per block, and the cells still sum to the total.");
   commands->push_back(
       {heatmap, [ha]() {
          int width = 0, height = 0;
@@ -158,11 +170,25 @@ void AddRenderCommands(CLI::App* root, CommandList* commands) {
          render::FigureFormatForPath(ha->output, "-o");  // the format, checked before the work
          const topology::Chain a = topology::ReadChainCsv(ha->a_path);
          const topology::Chain b = topology::ReadChainCsv(ha->b_path);
-         CheckWrithePairs(a.cols(), b.cols());
-         topology::WritheOptions options;
-         if (ha->unsigned_variant) options.variant = topology::WritheVariant::kUnsignedSolidAngle;
-         const Eigen::MatrixXd w = topology::WritheMatrix(a, b, options);
+         topology::WritheStreamOptions options;
+         if (ha->unsigned_variant) {
+           options.writhe.variant = topology::WritheVariant::kUnsignedSolidAngle;
+         }
          visualize::WritheFigureOptions f;
+         Eigen::MatrixXd w;
+         if (a.cols() - 1 <= ha->max_cells && b.cols() - 1 <= ha->max_cells) {
+           w = topology::WritheMatrix(a, b, options.writhe);
+         } else {  // block sums, streamed: at most max_cells² cells in memory
+           const StopCheck stop(0.0);
+           options.threads = ha->threads;
+           options.progress = PairProgress("heatmap", stop);
+           topology::WritheBlockSums s =
+               topology::BlockWritheSums(a, b, ha->max_cells, ha->max_cells, options);
+           EndProgress();
+           w = std::move(s.sums);
+           f.row_block = s.row_block;
+           f.col_block = s.col_block;
+         }
          f.width = width;
          f.height = height;
          f.title = ha->title;
@@ -171,9 +197,16 @@ void AddRenderCommands(CLI::App* root, CommandList* commands) {
          f.col_label = ha->col_label;
          f.limit = ha->clim;
          f.mark_peak = ha->mark_peak;
-         render::WriteFigure(ha->output, visualize::WritheFigure(w, Stem(ha->a_path), Stem(ha->b_path), f));
-         Note("wrote %s (%ldx%ld writhe matrix, total %.6f)", ha->output.c_str(),
-                     static_cast<long>(w.rows()), static_cast<long>(w.cols()), w.sum());
+         render::WriteFigure(ha->output,
+                             visualize::WritheFigure(w, Stem(ha->a_path), Stem(ha->b_path), f));
+         if (f.row_block > 1 || f.col_block > 1) {
+           Note("wrote %s (%ldx%ld blocks of %dx%d segments, total %.6f)", ha->output.c_str(),
+                static_cast<long>(w.rows()), static_cast<long>(w.cols()), f.row_block, f.col_block,
+                w.sum());
+         } else {
+           Note("wrote %s (%ldx%ld writhe matrix, total %.6f)", ha->output.c_str(),
+                static_cast<long>(w.rows()), static_cast<long>(w.cols()), w.sum());
+         }
          return kExitOk;
        }});
 

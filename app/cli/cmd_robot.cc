@@ -73,9 +73,14 @@ std::string PoseText(const Eigen::Isometry3d& t) {
   return out;
 }
 
-// Places the robot: --base, the pose's free-base value, or the scene's. Says so for a free base.
-void PlaceBase(planning::RobotScene* scene, const std::string& base, const std::string& pose) {
-  scene->robot.world_from_root = planning::ChooseBase(*scene, base, pose);
+// Places the robot: --base, the free-base value of the pose (--pose, or the SRDF's first
+// group_state when neither --q nor --pose chose the configuration, as DefaultQ), or the scene's.
+void PlaceBase(planning::RobotScene* scene, const std::string& base, const std::string& pose,
+               const std::string& q) {
+  std::string named = pose;
+  if (named.empty() && q.empty() && !scene->q_given && scene->srdf && !scene->srdf->poses.empty())
+    named = scene->srdf->poses.front().name;
+  scene->robot.world_from_root = planning::ChooseBase(*scene, base, named);
 }
 
 std::string PairName(const planning::RobotScene& s, const planning::Environment& env,
@@ -128,11 +133,13 @@ void AddRobotCommands(CLI::App* root, CommandList* commands) {
   commands->push_back(
       {fk, [fa]() {
          planning::RobotScene scene = planning::LoadRobotScene(fa->urdf, fa->input);
-         PlaceBase(&scene, fa->base, fa->pose);
+         PlaceBase(&scene, fa->base, fa->pose, fa->q);
          const planning::Robot& robot = scene.robot;
          std::vector<std::string> warnings = scene.warnings;
-         const Eigen::VectorXd q = planning::ChooseQ(scene, fa->q, fa->pose, &warnings);
+         std::vector<std::string> notes = scene.notes;
+         const Eigen::VectorXd q = planning::ChooseQ(scene, fa->q, fa->pose, &warnings, &notes);
          ReportWarnings(warnings);
+         ReportNotes(notes);
          planning::KinematicsData kin(robot);
          planning::ForwardKinematics(robot, q, &kin);
          if (fa->json) {
@@ -206,9 +213,11 @@ void AddRobotCommands(CLI::App* root, CommandList* commands) {
          planning::RobotScene scene = planning::LoadRobotScene(ca->input, ca->robot_input);
          for (const std::string& spec : ca->objects) planning::AddObjectSpec(spec, &scene);
          std::vector<std::string> warnings = scene.warnings;
-         scene.q = planning::ChooseQ(scene, ca->q, ca->pose, &warnings);
-         PlaceBase(&scene, ca->base, ca->pose);
+         std::vector<std::string> notes = scene.notes;
+         scene.q = planning::ChooseQ(scene, ca->q, ca->pose, &warnings, &notes);
+         PlaceBase(&scene, ca->base, ca->pose, ca->q);
          ReportWarnings(warnings);  // the pose asked about is checked, even outside the limits
+         ReportNotes(notes);
          planning::CollisionOptions options = scene.collision_options;
          options.self_collision = options.self_collision && !ca->no_self;
          options.exact_meshes = options.exact_meshes || ca->exact_meshes;

@@ -6,12 +6,13 @@
 #include <nlohmann/json.hpp>
 
 #include "app/cli/command.h"
-#include "visualize/figures.h"
 #include "app/cli/io.h"
 #include "render/figure.h"
 #include "topology/polyline.h"
 #include "topology/winding.h"
 #include "topology/writhe.h"
+#include "topology/writhe_stream.h"
+#include "visualize/figures.h"
 
 namespace app {
 namespace {
@@ -47,13 +48,41 @@ void PrintTable(const Eigen::MatrixXd& w, double total, bool unsigned_variant) {
 
 struct WritheArgs {
   std::string a_path, b_path, heatmap_path, heatmap_size = "640x480";
-  bool json = false, total_only = false, unsigned_variant = false;
+  bool json = false, total_only = false, unsigned_variant = false, row_sums = false;
+  int threads = 0;
 };
 
 struct WindingArgs {
   std::string chain_path, axis_text;
   bool json = false, unsigned_variant = false, per_segment = false;
 };
+
+// --total (and --row-sums) without the matrix: O(N) memory, any N.
+int StreamTotal(const topology::Chain& a, const topology::Chain& b, const WritheArgs& wa) {
+  const StopCheck stop(0.0);
+  topology::WritheStreamOptions options;
+  if (wa.unsigned_variant) options.writhe.variant = topology::WritheVariant::kUnsignedSolidAngle;
+  options.threads = wa.threads;
+  options.row_sums = wa.row_sums;
+  options.progress = PairProgress("writhe --total", stop);
+  const topology::WritheSums s = topology::StreamWritheSums(a, b, options);
+  EndProgress();
+  const Eigen::VectorXd& r = s.row_sums;
+  if (wa.json) {
+    nlohmann::ordered_json j;
+    j["rows"] = s.rows;
+    j["cols"] = s.cols;
+    j["total"] = s.total;
+    if (wa.row_sums) j["row_sums"] = std::vector<double>(r.data(), r.data() + r.size());
+    std::cout << j.dump() << "\n";
+  } else {
+    std::printf("rows %d cols %d total %.17g\n", s.rows, s.cols, s.total);
+    for (Eigen::Index i = 0; i < r.size(); ++i) {
+      std::printf("row %ld %.17g\n", static_cast<long>(i), r(i));
+    }
+  }
+  return kExitOk;
+}
 
 }  // namespace
 
@@ -67,7 +96,12 @@ void AddTopologyCommands(CLI::App* root, CommandList* commands) {
   writhe->add_option("B", wa->b_path, "second chain CSV; columns of the matrix")->required();
   writhe->add_flag("--json", wa->json,
                    "print {\"rows\",\"cols\",\"total\",\"matrix\"} with full double precision");
-  writhe->add_flag("--total", wa->total_only, "print only rows, cols and the total");
+  writhe->add_flag("--total", wa->total_only,
+                   "print only rows, cols and the total; streamed (no matrix is stored, any "
+                   "length, both cores, progress and Ctrl-C)");
+  writhe->add_flag("--row-sums", wa->row_sums,
+                   "with --total: also each row's sum (one per segment of A), streamed");
+  AddStreamThreadsFlag(writhe, &wa->threads);
   writhe->add_flag("--unsigned", wa->unsigned_variant,
                    "unsigned solid angle Omega* in [0, 2pi) per entry (the thesis code's variant)");
   writhe->add_option("--heatmap", wa->heatmap_path,
@@ -76,11 +110,17 @@ void AddTopologyCommands(CLI::App* root, CommandList* commands) {
   writhe->add_option("--heatmap-size", wa->heatmap_size, "heatmap size WxH (default 640x480)");
   writhe->footer(
       "Entry (i,j) = 1/(4pi) * double integral over segment i of A and segment j of B of\n"
-      "(a-b).(da x db)/|a-b|^3. For two closed polygons the total is their linking number.");
+      "(a-b).(da x db)/|a-b|^3. For two closed polygons the total is their linking number\n"
+      "(`topoplan linking` rounds it when its error bound allows). Without --total the matrix\n"
+      "is stored (at most 25,000,000 pairs); --total has no limit.");
   commands->push_back(
-      {writhe, [wa, writhe]() {
+      {writhe, [wa, writhe]() -> int {
          const topology::Chain a = topology::ReadChainCsv(wa->a_path);
          const topology::Chain b = topology::ReadChainCsv(wa->b_path);
+         if (wa->row_sums && !wa->total_only) {
+           throw std::invalid_argument("--row-sums: needs --total");
+         }
+         if (wa->total_only && wa->heatmap_path.empty()) return StreamTotal(a, b, *wa);
          CheckWrithePairs(a.cols(), b.cols());
          int width = 0, height = 0;
          if (writhe->count("--heatmap") > 0) {  // "" is refused
@@ -114,7 +154,8 @@ void AddTopologyCommands(CLI::App* root, CommandList* commands) {
            f.height = height;
            f.signed_values = !wa->unsigned_variant;
            render::WriteFigure(wa->heatmap_path,
-                               visualize::WritheFigure(w, stem(wa->a_path), stem(wa->b_path), f), "--heatmap");
+                               visualize::WritheFigure(w, stem(wa->a_path), stem(wa->b_path), f),
+                               "--heatmap");
            std::fprintf(stderr, "wrote %s\n", wa->heatmap_path.c_str());
          }
          return kExitOk;

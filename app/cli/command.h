@@ -39,11 +39,14 @@ using CommandList = std::vector<Command>;
 
 // Registration functions, one per command family (app/cmd_*.cc).
 void AddTopologyCommands(CLI::App* root, CommandList* commands);  // writhe, winding
+void AddLinkingCommand(CLI::App* root, CommandList* commands);    // linking
 void AddDemoCommand(CLI::App* root, CommandList* commands);       // demo
 void AddRenderCommands(CLI::App* root, CommandList* commands);    // render, heatmap, diff
 void AddGraspCommands(CLI::App* root, CommandList* commands);     // grasp synthesize|transfer
 void AddRobotCommands(CLI::App* root, CommandList* commands);     // fk, check
 void AddRobotsCommand(CLI::App* root, CommandList* commands);     // robots check
+void AddScenarioCommand(CLI::App* root, CommandList* commands);   // scenario new
+void AddIkCommand(CLI::App* root, CommandList* commands);         // ik
 void AddPlanCommands(CLI::App* root, CommandList* commands);      // plan, bench unwrap
 void AddViewCommand(CLI::App* root, CommandList* commands);       // view (app/viewer/cmd_view.cc)
 

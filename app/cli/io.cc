@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <sstream>
 #include <stdexcept>
 
@@ -44,6 +45,11 @@ void ReportWarnings(const std::vector<std::string>& warnings) {
   if (warnings.empty()) return;
   if (g_strict) throw std::invalid_argument("--strict: " + warnings.front());
   for (const std::string& w : warnings) std::fprintf(stderr, "topoplan: warning: %s\n", w.c_str());
+}
+
+void ReportNotes(const std::vector<std::string>& notes) {
+  if (g_verbosity == Verbosity::kQuiet) return;
+  for (const std::string& n : notes) std::fprintf(stderr, "topoplan: note: %s\n", n.c_str());
 }
 
 namespace {
@@ -392,6 +398,32 @@ void AddFormatsFlag(CLI::App* command, std::vector<render::FigureFormat>* format
         }
         return std::string();
       });
+}
+
+}  // namespace app
+
+namespace app {
+
+std::function<void(long long, long long)> PairProgress(const std::string& label,
+                                                       const StopCheck& stop) {
+  using Clock = std::chrono::steady_clock;
+  const Clock::time_point start = Clock::now();
+  auto last = std::make_shared<Clock::time_point>(start);
+  return [label, &stop, start, last](long long done, long long total) {
+    stop.Poll();
+    const Clock::time_point now = Clock::now();
+    if (now - start < std::chrono::seconds(1) || now - *last < std::chrono::seconds(1)) return;
+    *last = now;
+    Progress("%s: %.0f%% of %.2g segment pairs, %.0f s", label.c_str(),
+             100.0 * static_cast<double>(done) / static_cast<double>(std::max(1LL, total)),
+             static_cast<double>(total), std::chrono::duration<double>(now - start).count());
+  };
+}
+
+void AddStreamThreadsFlag(CLI::App* command, int* threads) {
+  IntIn(command->add_option("--threads", *threads,
+                            "threads (default 0: all cores; the result does not depend on it)"),
+        0, 256);
 }
 
 }  // namespace app

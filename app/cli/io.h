@@ -11,6 +11,7 @@
 #include <Eigen/Core>
 #include <chrono>
 #include <cstdio>
+#include <functional>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -45,19 +46,18 @@ bool Strict();
 // Prints each warning on stderr ("topoplan: warning: ..."); with --strict throws
 // std::invalid_argument with the first one instead.
 void ReportWarnings(const std::vector<std::string>& warnings);
+// Prints each note on stderr ("topoplan: note: ...", so --json output stays clean); nothing with
+// -q. For what a command chose on the user's behalf (a default pose, no SRDF found).
+void ReportNotes(const std::vector<std::string>& notes);
 
 // A note for the user on stdout ("wrote out/report.json"), one line; silent with -q.
 void Note(const char* format, ...) __attribute__((format(printf, 1, 2)));
 // A detail on stderr, one line; only with -v.
 void Detail(const char* format, ...) __attribute__((format(printf, 1, 2)));
 
-
-
 // CLI11 check of a number flag: the text is a finite number (as ParseNumberList) in [lo, hi].
 // "--start-wrap nan" or "--threshold 2" fail at parsing with exit code 2.
 CLI::Validator FiniteIn(double lo, double hi);
-
-
 
 // Largest writhe matrix computed from chain files: (N_A − 1)(N_B − 1) segment pairs, 8 bytes each.
 inline constexpr long long kMaxWrithePairs = 25'000'000;  // 200 MB
@@ -123,6 +123,16 @@ class StopCheck {
  private:
   std::optional<std::chrono::steady_clock::time_point> previous_deadline_;
 };
+
+// Progress and Ctrl-C for a streamed computation over segment pairs (topology::
+// WritheStreamOptions::progress): the returned callback calls stop.Poll() (so an interrupt stops
+// the work within one unit, exit 130) and, once the run has lasted a second, prints at most one
+// Progress() line per second: "<label>: 42% of 1.0e+10 segment pairs, 12 s". Call EndProgress()
+// afterwards.
+std::function<void(long long, long long)> PairProgress(const std::string& label,
+                                                       const StopCheck& stop);
+// --threads N of a streamed writhe computation (0 = all cores, at most 256).
+void AddStreamThreadsFlag(CLI::App* command, int* threads);
 
 // An integer flag in [lo, hi]: decimal digits only ("010" is 10, never octal; "", "0x10", "1.5"
 // and "12abc" are refused at parsing, exit 2), its help type shown as "INT in [lo, hi]".

@@ -67,7 +67,8 @@ std::unique_ptr<Feature> MakeAxisAlignmentFeature(const Robot& robot, int link,
 //   y_k = max(0, (lower_k + margin) − q_k) − max(0, q_k − (upper_k − margin)),
 // so ||y||² is a squared hinge; J = −I on the violated rows (0 elsewhere). Infinite limits never
 // activate.
-std::unique_ptr<Feature> MakeJointLimitFeature(const Robot& robot, double margin);
+std::unique_ptr<Feature> MakeJointLimitFeature(const Robot& robot, double margin,
+                                               double prismatic_margin = 0.0);
 
 // The configuration itself ("qitself"): y = q, J = I (n × n). With a velocity-order task
 // (Task::order = 1) and target 0 it is the joint-velocity regulariser ν||q̇||².

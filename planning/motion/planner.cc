@@ -205,6 +205,10 @@ void ApplyVerdict(const PlanVerdict& v, PlanReport* rep) {
   rep->writhe_peak_row = v.writhe_peak_row;
   rep->writhe_peak_col = v.writhe_peak_col;
   rep->writhe_peak_value = v.writhe_peak_value;
+  rep->failure_detail = v.detail;
+  rep->loop_checked = v.loop_checked;
+  rep->passed_through = v.passed_through;
+  rep->through_segment = v.through_segment;
 }
 
 namespace {

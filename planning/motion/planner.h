@@ -59,6 +59,12 @@ struct PlanReport {
   // col (object chain segment), value; −1, −1, 0 without a report pair or path.
   int writhe_peak_row = -1, writhe_peak_col = -1;
   double writhe_peak_value = 0.0;
+  std::string failure_detail;  // PlanVerdict::detail: the joint or pair of the first violation
+  // The report chain against the report object's closed loop at the end (PlanVerdict): checked
+  // when the report object chain is closed; the chain segment that crosses the loop, or −1.
+  bool loop_checked = false;
+  bool passed_through = false;
+  int through_segment = -1;
 };
 
 struct PlanResult {

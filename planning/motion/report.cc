@@ -38,9 +38,20 @@ nlohmann::json PlanReportJson(const Scenario& s, const PlanReport& r,
   j["reach_error_m"] = r.reach_error_m;
   j["max_winding_jump_turns"] = r.max_winding_jump_turns;
   j["final_winding_turns"] = r.final_winding_turns;
+  j["failure_detail"] = r.failure_detail;
+  if (!s.frozen.empty()) {
+    nlohmann::json frozen = nlohmann::json::object();
+    for (const auto& [name, value] : s.frozen) frozen[name] = value;
+    j["frozen_joints"] = std::move(frozen);
+  }
   if (r.writhe_peak_row >= 0) {
     j["writhe_peak"] = {
         {"row", r.writhe_peak_row}, {"col", r.writhe_peak_col}, {"value", r.writhe_peak_value}};
+  }
+  if (r.loop_checked) {
+    j["through_loop"] = {{"passed", r.passed_through},
+                         {"segment", r.through_segment >= 0 ? nlohmann::json(r.through_segment)
+                                                           : nlohmann::json()}};
   }
   return j;
 }

@@ -226,7 +226,16 @@ RobotScene LoadRobotSceneImpl(const std::string& path, const std::vector<std::st
     s.robot = LoadRobot(path, options);
     s.warnings = s.robot.warnings;
     s.q = Eigen::VectorXd::Zero(num_dofs(s.robot));
-    AttachSrdf(srdf_flag.empty() ? FindSrdf(path) : srdf_flag, &s);
+    const std::string srdf = srdf_flag.empty() ? FindSrdf(path, s.robot.name) : srdf_flag;
+    if (srdf.empty()) {
+      std::string note = "no SRDF found for robot '";
+      note.append(s.robot.name).append("' (looked for ");
+      note.append(fs::path(path).stem().string()).append(".srdf, ").append(s.robot.name);
+      note.append(".srdf or an SRDF naming the robot next to the URDF and in ../srdf/); ");
+      note.append("--srdf FILE gives one (disabled pairs, named poses)");
+      s.notes.push_back(note);
+    }
+    AttachSrdf(srdf, &s);
     return s;
   }
   if (ext != ".json") {
@@ -245,6 +254,7 @@ RobotScene LoadRobotSceneImpl(const std::string& path, const std::vector<std::st
     s.robot = sc->robot;
     s.warnings = sc->warnings;
     s.q = sc->initial.problem.q0;
+    s.q_given = true;
     s.env = sc->initial.objects;
     s.collides.assign(s.env.objects.size(), true);
     s.has_collision_env = true;
@@ -280,7 +290,7 @@ RobotScene LoadRobotSceneImpl(const std::string& path, const std::vector<std::st
     if (!doc["srdf"].is_string()) throw std::invalid_argument(path + ": srdf: expected a path");
     srdf = ResolveRelative(doc["srdf"].get<std::string>(), base);
   }
-  AttachSrdf(srdf.empty() ? FindSrdf(urdf) : srdf, &s);
+  AttachSrdf(srdf.empty() ? FindSrdf(urdf, s.robot.name) : srdf, &s);
   if (doc.contains("base")) {
     const nlohmann::json& b = doc["base"];
     std::vector<double> values;
@@ -301,6 +311,7 @@ RobotScene LoadRobotSceneImpl(const std::string& path, const std::vector<std::st
   const int n = num_dofs(s.robot);
   s.q = Eigen::VectorXd::Zero(n);
   if (doc.contains("q")) {
+    s.q_given = true;
     const nlohmann::json& q = doc["q"];
     if (!q.is_array() || static_cast<int>(q.size()) != n) {
       throw std::invalid_argument(path + ": q: expected an array of " + std::to_string(n) +
@@ -356,13 +367,45 @@ RobotScene LoadRobotScene(const std::string& path, const RobotInputOptions& opti
   return LoadRobotSceneImpl(path, options.package_paths, options.srdf, true);
 }
 
+Eigen::VectorXd DefaultQ(const RobotScene& scene, std::vector<std::string>* notes) {
+  if (scene.srdf && !scene.srdf->poses.empty()) {
+    const std::string& name = scene.srdf->poses.front().name;
+    std::vector<std::string> warnings;  // a reference pose outside the limits: as --pose says
+    Eigen::VectorXd q = NamedPose(scene.robot, *scene.srdf, name, &warnings);
+    if (notes != nullptr) {
+      std::string n = "no --q or --pose: the SRDF's first group_state '";
+      notes->push_back(n.append(name).append("'"));
+      for (std::string& w : warnings) notes->push_back(std::move(w));
+    }
+    return q;
+  }
+  const Eigen::VectorXd lo = LowerLimits(scene.robot), hi = UpperLimits(scene.robot);
+  const std::vector<std::string> names = DofNames(scene.robot);
+  Eigen::VectorXd q = Eigen::VectorXd::Zero(num_dofs(scene.robot));
+  std::string moved;
+  for (Eigen::Index k = 0; k < q.size(); ++k) {
+    if (lo[k] <= 0.0 && 0.0 <= hi[k]) continue;
+    q[k] = 0.5 * (lo[k] + hi[k]);
+    if (!moved.empty()) moved.append(", ");
+    moved.append(names[k]).append(" = ").append(base::FormatShortest(q[k]));
+  }
+  if (notes != nullptr && !moved.empty()) {
+    std::string n = "no --q or --pose: zeros, and the middle of the limits where zero is outside (";
+    notes->push_back(n.append(moved).append(")"));
+  }
+  return q;
+}
+
 Eigen::VectorXd ChooseQ(const RobotScene& scene, const std::string& q_text, const std::string& pose,
-                        std::vector<std::string>* warnings) {
+                        std::vector<std::string>* warnings, std::vector<std::string>* notes) {
   if (!q_text.empty() && !pose.empty()) {
     throw std::invalid_argument("--q and --pose: give at most one of them");
   }
   if (!q_text.empty()) return ParseQ(scene.robot, q_text, warnings);
-  if (pose.empty()) return scene.q;
+  if (pose.empty()) {
+    if (scene.q_given) return scene.q;
+    return DefaultQ(scene, notes);
+  }
   if (!scene.srdf) {
     throw std::invalid_argument("--pose " + pose + ": robot '" + scene.robot.name +
                                 "' has no SRDF (give --srdf FILE)");

@@ -51,6 +51,10 @@ struct RobotScene {
   // What was accepted but is worth saying (names of the SRDF the robot lacks, ...): printed by
   // the commands as warnings, errors with --strict.
   std::vector<std::string> warnings;
+  // What is worth knowing but not a problem (no SRDF found, which default configuration): printed
+  // as notes (not with -q), never errors.
+  std::vector<std::string> notes;
+  bool q_given = false;  // q came from the file ("q" of a scene, a scenario's start)
 };
 
 // What the robot-loading flags add: --package-path (repeatable) and --srdf.
@@ -70,11 +74,19 @@ RobotScene LoadRobotScene(const std::string& path, const std::vector<std::string
 RobotScene LoadRobotScene(const std::string& path, const RobotInputOptions& options);
 
 // The configuration chosen by `--q` text or `--pose` name (a group_state of scene.srdf); neither:
-// scene.q. Throws std::invalid_argument when both are given or a pose has no SRDF.
+// scene.q when the file gave one (q_given), else DefaultQ (said in `notes`). Throws
+// std::invalid_argument when both are given or a pose has no SRDF.
 // A pose value outside its joint's limits is kept and described in `warnings` when given (the
 // user asked about that pose), an error otherwise.
 Eigen::VectorXd ChooseQ(const RobotScene& scene, const std::string& q_text, const std::string& pose,
-                        std::vector<std::string>* warnings = nullptr);
+                        std::vector<std::string>* warnings = nullptr,
+                        std::vector<std::string>* notes = nullptr);
+
+// The configuration a robot is shown and checked in when none is asked for: the SRDF's first
+// group_state if it has one, else zeros with every joint whose zero lies outside its limits at
+// the middle of its limits. What was chosen is appended to `notes` (when not null) unless it is
+// plain zeros.
+Eigen::VectorXd DefaultQ(const RobotScene& scene, std::vector<std::string>* notes = nullptr);
 
 // The pose of the robot's root link in the world: `--base` text "x,y,z[,qx,qy,qz,qw]" when given,
 // else the free base's value in group_state `pose` (NamedBasePose), else scene.robot's

@@ -115,6 +115,9 @@ struct Scenario {
   // Accepted but worth saying (an SRDF's names the robot lacks, ...); commands print them as
   // warnings, errors with --strict.
   std::vector<std::string> warnings;
+  // "frozen_joints": the joints held at their start values (name, value in rad or m). They are
+  // fixed joints of `robot` (FreezeDofs), so q, trajectories and reports leave them out.
+  std::vector<std::pair<std::string, double>> frozen;
   ScenarioState initial;  // the world as loaded: every object where the file puts it
 };
 

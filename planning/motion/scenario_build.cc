@@ -43,7 +43,7 @@ std::unique_ptr<Feature> BuildFeature(const Scenario& s, const ScenarioState& w,
       case FeatureType::kAxisAlignment:
         return MakeAxisAlignmentFeature(r, link(), f.axis, f.direction);
       case FeatureType::kJointLimits:
-        return MakeJointLimitFeature(r, f.margin);
+        return MakeJointLimitFeature(r, f.margin, f.prismatic_margin);
       case FeatureType::kJointPosition:
         return MakeJointPositionFeature(r);
       case FeatureType::kBox:

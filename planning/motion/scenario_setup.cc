@@ -3,6 +3,7 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <set>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -100,6 +101,58 @@ bool UsesUnwinding(const ScenarioSpec& spec) {
     if (t.target.kind == TargetKind::kUnwinding) return true;
   }
   return false;
+}
+
+// "frozen_joints": joint names or SRDF groups, held at their start values (a given start.q, else
+// 0) by turning them into fixed joints of the robot; the spec's start.q and final_pose.init are
+// reduced to the remaining joints (init may be given for all joints or for the remaining ones).
+void FreezeScenarioJoints(const Srdf* srdf, Scenario* s) {
+  ScenarioSpec& sp = s->spec;
+  const Robot& robot = s->robot;
+  const int n = num_dofs(robot);
+  std::set<int> dofs;
+  for (const std::string& name : sp.frozen_joints) {
+    int joint = -1;
+    for (size_t j = 0; j < robot.joints.size(); ++j) {
+      if (robot.joints[j].name == name) joint = static_cast<int>(j);
+    }
+    if (joint >= 0) {
+      if (robot.joints[joint].dof < 0) {
+        throw std::invalid_argument(sp.frozen_where + ": joint '" + name + "' is fixed already");
+      }
+      dofs.insert(robot.joints[joint].dof);
+      continue;
+    }
+    bool group = false;
+    if (srdf != nullptr) {
+      for (const SrdfGroup& g : srdf->groups) group = group || g.name == name;
+    }
+    if (!group) {
+      std::string known;
+      for (const std::string& d : DofNames(robot)) known.append(known.empty() ? "" : ", ").append(d);
+      throw std::invalid_argument(sp.frozen_where + ": '" + name + "' is neither a joint of robot '" +
+                                  robot.name + "' (" + known + ") nor a group of its SRDF");
+    }
+    for (int k : GroupDofs(robot, *srdf, name)) dofs.insert(k);
+  }
+  Eigen::VectorXd q = Eigen::VectorXd::Zero(n);
+  if (sp.start.kind == StartKind::kQ) {
+    if (sp.start.q.size() != n) {
+      throw std::invalid_argument(sp.start.where + ": expected " + std::to_string(n) +
+                                  " numbers, got " + std::to_string(sp.start.q.size()));
+    }
+    q = sp.start.q;
+  }
+  const std::vector<std::string> names = DofNames(robot);
+  for (int k : dofs) s->frozen.emplace_back(names[k], q[k]);
+  const std::vector<int> kept = FreezeDofs({dofs.begin(), dofs.end()}, q, &s->robot);
+  const auto reduce = [&kept](const Eigen::VectorXd& v) {
+    Eigen::VectorXd r(static_cast<Eigen::Index>(kept.size()));
+    for (size_t i = 0; i < kept.size(); ++i) r[static_cast<Eigen::Index>(i)] = v[kept[i]];
+    return r;
+  };
+  if (sp.start.kind == StartKind::kQ) sp.start.q = reduce(sp.start.q);
+  if (sp.final_pose.init_q.size() == n) sp.final_pose.init_q = reduce(sp.final_pose.init_q);
 }
 
 struct StartPose {
@@ -320,7 +373,7 @@ std::unique_ptr<Scenario> SetUpScenario(ScenarioSpec spec,
   RobotLoadOptions load;
   load.package_paths = sp.package_paths;
   s->robot = base::PrefixErrors(sp.source + ": robot", [&] { return LoadRobot(sp.robot, load); });
-  const std::string srdf_path = sp.srdf.empty() ? FindSrdf(sp.robot) : sp.srdf;
+  const std::string srdf_path = sp.srdf.empty() ? FindSrdf(sp.robot, s->robot.name) : sp.srdf;
   std::optional<Srdf> srdf;
   if (!srdf_path.empty()) {
     srdf = LoadSrdf(srdf_path);
@@ -332,6 +385,7 @@ std::unique_ptr<Scenario> SetUpScenario(ScenarioSpec spec,
                                          [&] { return NamedPose(s->robot, *srdf, sp.start.pose); });
     s->spec.start.kind = StartKind::kQ;
   }
+  if (!sp.frozen_joints.empty()) FreezeScenarioJoints(srdf ? &*srdf : nullptr, s.get());
   LoadObjects(s.get());
   for (const ChainDescription& c : sp.robot_chains) {
     s->robot.chains.push_back(ResolveChain(c, s->robot));
@@ -382,6 +436,11 @@ std::unique_ptr<Scenario> SetUpScenario(ScenarioSpec spec,
   if (!su.winding_where.empty() && s->report_chain < 0) {
     throw std::invalid_argument(su.winding_where + ": the winding criterion needs writhe_report");
   }
+  if (su.through_loop && s->report_chain < 0) {
+    throw std::invalid_argument(su.through_loop_where +
+                                ": the through_loop criterion needs writhe_report");
+  }
+  s->success.through_loop = su.through_loop;
   s->success.winding_max_jump = su.winding_max_jump;
   s->success.winding_final_below = su.winding_final_below;
 

@@ -158,8 +158,9 @@ FeatureSpec ReadFeature(const base::JsonNode& n) {
       f.direction = n.At("direction").Vec3();
       break;
     case FeatureType::kJointLimits:
-      n.CheckKeys({"type", "margin"});
+      n.CheckKeys({"type", "margin", "prismatic_margin"});
       f.margin = n.Number("margin", 0.0);
+      f.prismatic_margin = n.Number("prismatic_margin", 0.0);
       break;
     case FeatureType::kJointPosition:
       n.CheckKeys({"type"});
@@ -268,7 +269,7 @@ FinalPoseSpec ReadFinalPose(const base::JsonNode& n) {
 }
 
 SuccessSpec ReadSuccess(const base::JsonNode& n) {
-  n.CheckKeys({"writhe_total_below", "position", "inside_box", "winding"});
+  n.CheckKeys({"writhe_total_below", "position", "inside_box", "winding", "through_loop"});
   SuccessSpec s;
   s.writhe_total_below = n.Number("writhe_total_below", -1.0);
   if (n.Has("position")) {
@@ -278,6 +279,10 @@ SuccessSpec ReadSuccess(const base::JsonNode& n) {
     s.position_tolerance = pn.Number("tolerance", s.position_tolerance, 0.0, kMaxLength);
   }
   if (n.Has("inside_box")) s.box_task = Name(n, "inside_box");
+  if (n.Has("through_loop")) {
+    s.through_loop = n.Bool("through_loop", false);
+    s.through_loop_where = n.At("through_loop").Where();
+  }
   if (n.Has("winding")) {
     const base::JsonNode wn = n.At("winding");
     wn.CheckKeys({"max_jump", "final_below"});
@@ -382,7 +387,7 @@ ScenarioSpec ParseScenarioSpec(const std::string& path,
   const base::JsonNode root(doc, path);
   root.CheckKeys({"name", "description", "robot", "srdf", "package_paths", "objects",
                   "robot_chains", "collision", "writhe_report", "start", "problem", "tasks",
-                  "final_pose", "success", "aico", "rrt", "check_resolution"});
+                  "final_pose", "success", "aico", "rrt", "check_resolution", "frozen_joints"});
   const std::string dir = fs::path(path).parent_path().string();
   ScenarioSpec s;
   s.source = path;
@@ -406,6 +411,11 @@ ScenarioSpec ParseScenarioSpec(const std::string& path,
     for (size_t i = 0; i < objs.Size(); ++i) {
       s.objects.push_back(ReadObject(objs.At(i), dir, search_roots));
     }
+  }
+  if (root.Has("frozen_joints")) {
+    const base::JsonNode fj = root.At("frozen_joints");
+    s.frozen_where = fj.Where();
+    for (size_t i = 0; i < fj.Size(); ++i) s.frozen_joints.push_back(fj.At(i).String());
   }
   if (root.Has("robot_chains")) {
     const base::JsonNode rc = root.At("robot_chains");

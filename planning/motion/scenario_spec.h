@@ -16,7 +16,8 @@
 //   robot           string   URDF path (required; its "<stem>.chains.json" sidecar is loaded too)
 //   srdf            string   SRDF path (planning/robot/srdf.h): its disable_collisions pairs are added to
 //                            collision.disabled_pairs and its group_states are start poses.
-//                            Default: the robot's NAME.srdf or ../srdf/NAME.srdf if one exists
+//                            Default: FindSrdf (NAME.srdf, ROBOT_NAME.srdf or an SRDF naming the
+//                            robot, next to the URDF or in ../srdf/) if one exists
 //   package_paths   [string] extra roots for package:// mesh URIs of the robot (relative ones
 //                            are relative to the scenario's folder), tried before the defaults
 //   objects         array    of objects, default []:
@@ -28,6 +29,10 @@
 //     capsules      object   collide with capsules along a chain of the object instead of its
 //                            geometry: {chain: string (required), radius: number, m (required)}
 //   robot_chains    array    extra robot chains appended to the URDF's (format: chain_json.h)
+//   frozen_joints   [string] joint names or SRDF group names (e.g. "gripper") held at their start
+//                            values (start.q or pose; 0 for a zero or coil start) by every
+//                            planner: they become fixed joints (FreezeDofs), q and trajectories
+//                            leave them out, report.json lists them under "frozen_joints"
 //   collision       object   self: bool (default true); disabled_pairs: [[link_a, link_b], ...];
 //                            disabled_groups: [[prefix, ...], ...] (no self-collision checks
 //                            between any two links whose names start with prefixes of one group);
@@ -83,7 +88,11 @@
 //                            winding of the report chain about the line of the object chain (its
 //                            first to last point), along the resampled path, changes by less than
 //                            max_jump between neighbouring states (no tunnelling through the pole,
-//                            no coil slipping off its end) and ends below final_below in modulus
+//                            no coil slipping off its end) and ends below final_below in modulus;
+//                            through_loop: bool (needs writhe_report with a closed object chain):
+//                            at the end the report chain passes through the object's loop (a
+//                            segment of the chain crosses the disc the loop bounds, success.h
+//                            ChainSegmentThroughLoop)
 //   aico            object   max_iterations: integer >= 1, default 20; tolerance: default 0.01;
 //                            damping: default 1; sweep_mode: "forwardly" (default) | "symmetric"
 //                            | "local_gauss_newton"; max_step: rad, default 1;
@@ -113,7 +122,8 @@
 // Features (the keys besides "type"):
 //   position        link (required), offset [3] (default 0)
 //   axis_alignment  link (required), axis [3] (default [0, 0, 1]), direction [3] (required)
-//   joint_limits    margin (rad, default 0)
+//   joint_limits    margin (rad, default 0: revolute and continuous joints), prismatic_margin
+//                   (m, default 0: prismatic joints); each capped at 45 % of its joint's range
 //   joint_position  (none)
 //   box             link (required), offset [3] (default 0), center [3], half_extent [3]
 //                   (required), margin (m, default 0)
@@ -228,6 +238,7 @@ struct FeatureSpec {
   Eigen::Vector3d axis_point = Eigen::Vector3d::Zero();
   Eigen::Vector3d axis_direction = Eigen::Vector3d::Zero();
   double margin = 0.0;  // the type's default when absent (collision: 0.05)
+  double prismatic_margin = 0.0;  // joint_limits: the margin of prismatic joints, m
   WritheOutput output = WritheOutput::kMatrix;
 };
 
@@ -281,6 +292,8 @@ struct SuccessSpec {
   double winding_max_jump = -1.0;     // turns; < 0: not checked
   double winding_final_below = -1.0;  // turns; < 0: not checked
   std::string winding_where;          // of "success.winding" (empty: not given)
+  bool through_loop = false;          // the report chain must end through the report loop
+  std::string through_loop_where;     // of "success.through_loop" (empty: not given)
 };
 
 // One AICO attempt: task precisions scaled by name, and its iteration limit.
@@ -298,6 +311,9 @@ struct ScenarioSpec {
   std::vector<std::string> package_paths;
   std::vector<ObjectSpec> objects;
   std::vector<ChainDescription> robot_chains;
+  // "frozen_joints": joint names or SRDF group names held at their start values by every planner.
+  std::vector<std::string> frozen_joints;
+  std::string frozen_where;  // JSON path, for messages
   CollisionSpec collision;
   std::optional<WritheReportSpec> writhe_report;
   StartSpec start;

@@ -5,9 +5,11 @@
 #include <limits>
 #include <span>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "base/enum_names.h"
+#include "base/numbers.h"
 #include "planning/collision/collision.h"
 #include "planning/robot/kinematics.h"
 #include "topology/winding.h"
@@ -40,6 +42,31 @@ PlanVerdict JudgePlan(const Scenario& s, const ScenarioState& w, const Trajector
   return JudgePlan(s, w, path, s.success);
 }
 
+namespace {
+
+// "joint 'NAME' (q[k]) = v outside [lo, hi] rad|m".
+std::string LimitDetail(const Robot& robot, int k, double value) {
+  const Joint& joint = robot.joints[robot.dof_joints[k]];
+  std::string d = "joint '";
+  d.append(joint.name).append("' (q[").append(std::to_string(k)).append("]) = ");
+  d.append(base::FormatShortest(value)).append(" outside [");
+  d.append(base::FormatShortest(joint.limits.lower)).append(", ");
+  d.append(base::FormatShortest(joint.limits.upper)).append("] ");
+  d.append(joint.type == JointType::kPrismatic ? "m" : "rad");
+  return d;
+}
+
+// "LINK vs LINK" or "LINK vs object 'NAME'".
+std::string PairDetail(const Robot& robot, const Environment& env, const ProximityPair& p) {
+  if (p.link_a < 0) return "";
+  std::string d = robot.links[p.link_a].name;
+  if (p.object >= 0) return d.append(" vs object '").append(env.objects[p.object].name).append("'");
+  if (p.link_b >= 0) d.append(" vs ").append(robot.links[p.link_b].name);
+  return d;
+}
+
+}  // namespace
+
 PlanVerdict JudgePlan(const Scenario& s, const ScenarioState& w, const Trajectory& path,
                       const SuccessCriteria& c) {
   if (path.num_points() == 0) throw std::invalid_argument("JudgePlan: empty path");
@@ -62,11 +89,20 @@ PlanVerdict JudgePlan(const Scenario& s, const ScenarioState& w, const Trajector
   for (int k = 0; k < dense.num_points(); ++k) {
     const auto q = dense.q.col(k);
     if (((q.array() < lo.array()) || (q.array() > hi.array())).any()) {
+      if (v.reason == FailureReason::kNone) {
+        for (Eigen::Index j = 0; j < q.size(); ++j) {
+          if (q[j] >= lo[j] && q[j] <= hi[j]) continue;
+          v.detail = LimitDetail(s.robot, static_cast<int>(j), q[j]);
+          break;
+        }
+      }
       fail(FailureReason::kJointLimits, k);
       v.collision_free = false;
     }
     ForwardKinematics(s.robot, q, &kin);
-    if (InCollision(s.robot, kin, &coll)) {
+    ProximityPair hit;
+    if (InCollision(s.robot, kin, &coll, &hit)) {
+      if (v.reason == FailureReason::kNone) v.detail = PairDetail(s.robot, w.env, hit);
       fail(FailureReason::kCollision, k);
       v.collision_free = false;
       v.min_clearance_m = std::min(v.min_clearance_m, 0.0);

@@ -74,6 +74,9 @@ struct PlanVerdict {
   bool loop_checked = false;
   bool passed_through = false;
   int through_segment = -1;
+  // What the first violation was, in words: the joint and its value for kJointLimits ("joint
+  // 'j4' = -3.1 outside [-3.07, -0.07]"), the pair for kCollision; empty otherwise.
+  std::string detail;
   bool ok() const { return reason == FailureReason::kNone; }
 };
 

@@ -2,6 +2,8 @@
 #include "planning/robot/robot.h"
 
 #include <stdexcept>
+#include <string>
+#include <vector>
 
 namespace planning {
 namespace {
@@ -77,6 +79,48 @@ Eigen::VectorXd UpperLimits(const Robot& robot) {
   Eigen::VectorXd hi(num_dofs(robot));
   for (int k = 0; k < num_dofs(robot); ++k) hi[k] = robot.joints[robot.dof_joints[k]].limits.upper;
   return hi;
+}
+
+std::vector<int> FreezeDofs(const std::vector<int>& frozen, const Eigen::VectorXd& q,
+                            Robot* robot) {
+  const int n = num_dofs(*robot);
+  if (q.size() != n) {
+    throw std::invalid_argument("FreezeDofs: q has " + std::to_string(q.size()) +
+                                " values, the robot " + std::to_string(n) + " dofs");
+  }
+  std::vector<bool> is_frozen(n, false);
+  for (int k : frozen) {
+    if (k < 0 || k >= n) throw std::invalid_argument("FreezeDofs: dof index out of range");
+    is_frozen[k] = true;
+  }
+  std::vector<int> new_index(n, -1), kept;
+  for (int k = 0; k < n; ++k) {
+    if (is_frozen[k]) continue;
+    new_index[k] = static_cast<int>(kept.size());
+    kept.push_back(k);
+  }
+  for (Joint& j : robot->joints) {
+    if (j.dof < 0) continue;
+    if (!is_frozen[j.dof]) {
+      j.dof = new_index[j.dof];
+      continue;
+    }
+    const double v = j.is_mimic ? j.mimic_multiplier * q[j.dof] + j.mimic_offset : q[j.dof];
+    Eigen::Isometry3d motion = Eigen::Isometry3d::Identity();
+    if (j.type == JointType::kPrismatic) {
+      motion.translation() = j.axis * v;
+    } else if (j.type != JointType::kFixed) {
+      motion.linear() = Eigen::AngleAxisd(v, j.axis).toRotationMatrix();
+    }
+    j.parent_from_joint = j.parent_from_joint * motion;
+    j.type = JointType::kFixed;
+    j.dof = -1;
+    j.is_mimic = false;
+  }
+  std::vector<int> dof_joints;
+  for (int k : kept) dof_joints.push_back(robot->dof_joints[k]);
+  robot->dof_joints = std::move(dof_joints);
+  return kept;
 }
 
 bool AreAdjacent(const Robot& robot, int link_a, int link_b) {

@@ -133,6 +133,14 @@ std::vector<std::string> DofNames(const Robot& robot);
 Eigen::VectorXd LowerLimits(const Robot& robot);
 Eigen::VectorXd UpperLimits(const Robot& robot);
 
+// Holds the dofs `frozen` (indices into q) at their values in `q` (size num_dofs): each joint
+// driving one of them, mimic joints included, becomes a fixed joint whose origin includes its
+// motion at that value (origin · Rot(axis, v) or origin · Trans(axis · v)); the other dofs keep
+// their order and are renumbered. Returns, for each dof of the new robot, its index in the old q.
+// Throws std::invalid_argument for an index out of range or a q of the wrong size.
+std::vector<int> FreezeDofs(const std::vector<int>& frozen, const Eigen::VectorXd& q,
+                            Robot* robot);
+
 // True if links a and b are rigidly attached (only fixed joints between them) or are parent and
 // child bodies: bodies are links merged across fixed joints, and bodies without collision geometry
 // (e.g. the massless frame between the two axes of a 2-DOF joint) are skipped when looking for the

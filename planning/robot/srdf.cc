@@ -71,6 +71,19 @@ Srdf ParseSrdf(const std::string& xml, const std::string& source) {
         pose.joints.push_back(v);
       }
       s.poses.push_back(pose);
+    } else if (tag == "group") {
+      SrdfGroup g;
+      g.name = XmlAttr(e, "name");
+      g.line = e->Row();
+      if (g.name.empty()) Fail(source, e->Row(), "<group> without a name");
+      for (const TiXmlElement* c = e->FirstChildElement(); c; c = c->NextSiblingElement()) {
+        const std::string ctag = c->Value();
+        if (ctag == "joint") g.joints.push_back(XmlAttr(c, "name"));
+        if (ctag == "link") g.links.push_back(XmlAttr(c, "name"));
+        if (ctag == "group") g.subgroups.push_back(XmlAttr(c, "name"));
+        if (ctag == "chain") g.chains.emplace_back(XmlAttr(c, "base_link"), XmlAttr(c, "tip_link"));
+      }
+      s.groups.push_back(std::move(g));
     } else if (tag == "passive_joint") {
       s.passive_joints.push_back(XmlAttr(e, "name"));
     } else if (tag == "virtual_joint") {
@@ -227,11 +240,92 @@ Eigen::VectorXd NamedPose(const Robot& robot, const Srdf& srdf, const std::strin
   return q;
 }
 
-std::string FindSrdf(const std::string& urdf_path) {
+namespace {
+
+void AddGroupDofs(const Robot& robot, const Srdf& srdf, const std::string& name, int depth,
+                  std::set<int>* dofs) {
+  const SrdfGroup* group = nullptr;
+  for (const SrdfGroup& g : srdf.groups) {
+    if (g.name == name) group = &g;
+  }
+  if (group == nullptr) {
+    std::string have;
+    for (const SrdfGroup& g : srdf.groups) have.append(have.empty() ? "" : ", ").append(g.name);
+    std::string what = srdf.source;
+    what.append(": no group named '").append(name).append("' (");
+    what.append(have.empty() ? std::string("the SRDF has none") : "have: " + have).append(")");
+    throw std::invalid_argument(what);
+  }
+  if (depth > 32) Fail(srdf.source, group->line, "groups nested in a cycle at '" + name + "'");
+  const auto add_joint = [&](int j) {
+    if (robot.joints[j].dof >= 0) dofs->insert(robot.joints[j].dof);
+  };
+  for (const std::string& jn : group->joints) {
+    for (size_t j = 0; j < robot.joints.size(); ++j) {
+      if (robot.joints[j].name == jn) add_joint(static_cast<int>(j));
+    }
+  }
+  for (const std::string& ln : group->links) {
+    for (size_t l = 0; l < robot.links.size(); ++l) {
+      if (robot.links[l].name == ln && robot.links[l].parent_joint >= 0)
+        add_joint(robot.links[l].parent_joint);
+    }
+  }
+  for (const auto& [base, tip] : group->chains) {
+    int base_link = -1, tip_link = -1;
+    for (size_t l = 0; l < robot.links.size(); ++l) {
+      if (robot.links[l].name == base) base_link = static_cast<int>(l);
+      if (robot.links[l].name == tip) tip_link = static_cast<int>(l);
+    }
+    if (base_link < 0 || tip_link < 0) continue;  // CheckSrdf names the unknown link
+    int l = tip_link;
+    while (l != base_link && robot.links[l].parent_joint >= 0) {
+      const int j = robot.links[l].parent_joint;
+      add_joint(j);
+      l = robot.joints[j].parent_link;
+    }
+    if (l != base_link) {
+      Fail(srdf.source, group->line,
+           "group '" + name + "': chain base '" + base + "' is not above tip '" + tip + "'");
+    }
+  }
+  for (const std::string& sub : group->subgroups) AddGroupDofs(robot, srdf, sub, depth + 1, dofs);
+}
+
+}  // namespace
+
+std::vector<int> GroupDofs(const Robot& robot, const Srdf& srdf, const std::string& group) {
+  std::set<int> dofs;
+  AddGroupDofs(robot, srdf, group, 0, &dofs);
+  return {dofs.begin(), dofs.end()};
+}
+
+std::string FindSrdf(const std::string& urdf_path, const std::string& robot_name) {
   const fs::path urdf(urdf_path);
-  const std::string name = urdf.stem().string() + ".srdf";
-  for (const fs::path& p : {urdf.parent_path() / name, urdf.parent_path() / ".." / "srdf" / name}) {
-    if (fs::is_regular_file(p)) return p.lexically_normal().string();
+  const fs::path dirs[2] = {urdf.parent_path(), urdf.parent_path() / ".." / "srdf"};
+  std::vector<std::string> names = {urdf.stem().string() + ".srdf"};
+  if (!robot_name.empty()) names.push_back(robot_name + ".srdf");
+  std::error_code ec;
+  for (const std::string& name : names) {
+    for (const fs::path& d : dirs) {
+      if (fs::is_regular_file(d / name, ec)) return (d / name).lexically_normal().string();
+    }
+  }
+  if (robot_name.empty()) return "";
+  for (const fs::path& d : dirs) {
+    std::vector<fs::path> candidates;
+    for (fs::directory_iterator it(d, ec), end; !ec && it != end; it.increment(ec)) {
+      if (it->path().extension() == ".srdf" && it->is_regular_file(ec))
+        candidates.push_back(it->path());
+    }
+    std::sort(candidates.begin(), candidates.end());
+    for (const fs::path& c : candidates) {
+      try {
+        if (LoadSrdf(c.string()).robot_name == robot_name) return c.lexically_normal().string();
+      } catch (const std::invalid_argument&) {
+        // A broken SRDF is not this robot's: it is reported when named with --srdf.
+      }
+    }
   }
   return "";
 }

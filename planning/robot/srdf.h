@@ -16,7 +16,8 @@
 //                                                          (NamedBasePose), not part of q.
 // Pinocchio's convention is understood too: group_states giving 7 values to a joint 'root_joint'
 // that neither the URDF nor a virtual_joint declares make the root a floating base.
-// Ignored: <group>, <end_effector>, <disable_default_collisions>, <enable_collisions>,
+// <group> is read (Srdf::groups; GroupDofs, e.g. a scenario's "frozen_joints": ["gripper"]).
+// Ignored: <end_effector>, <disable_default_collisions>, <enable_collisions>,
 // <link_sphere_approximations> and any other element.
 //
 // Errors (std::invalid_argument, "FILE:LINE: ..."): unreadable file, XML errors, XML nested
@@ -59,6 +60,13 @@ struct SrdfPose {  // a <group_state>
   int line = 0;
 };
 
+struct SrdfGroup {  // a <group>: its <joint>, <link>, <chain> and <group> children by name
+  std::string name;
+  std::vector<std::string> joints, links, subgroups;
+  std::vector<std::pair<std::string, std::string>> chains;  // (base_link, tip_link)
+  int line = 0;
+};
+
 struct SrdfVirtualJoint {
   std::string name, type, parent_frame, child_link;  // type: fixed, floating or planar
   int line = 0;
@@ -71,6 +79,7 @@ struct Srdf {
   std::vector<SrdfPose> poses;
   std::vector<std::string> passive_joints;  // read, not used (see the file comment)
   std::vector<SrdfVirtualJoint> virtual_joints;
+  std::vector<SrdfGroup> groups;
 };
 
 // Parses SRDF text; `source` names it in messages.
@@ -119,7 +128,16 @@ std::optional<Eigen::Isometry3d> NamedBasePose(const Robot& robot, const Srdf& s
 Eigen::Isometry3d BasePoseFromValues(BaseType type, const std::vector<double>& values,
                                      const std::string& where);
 
-// NAME.srdf next to `urdf_path` (NAME.urdf), else ../srdf/NAME.srdf; "" when neither exists.
-std::string FindSrdf(const std::string& urdf_path);
+// The dofs (indices into q, sorted) a <group> moves: its joints, the joints whose child is one of
+// its links, the joints of its chains (tip up to base) and of its subgroups; fixed joints add
+// nothing, a mimic joint its master. Throws std::invalid_argument "<source>[:<line>]: ..." for an
+// unknown group (listing the groups), a chain whose base is not above its tip, or subgroups
+// nested in a cycle; names the robot lacks are skipped (CheckSrdf warns of them).
+std::vector<int> GroupDofs(const Robot& robot, const Srdf& srdf, const std::string& group);
+
+// The SRDF of the URDF at `urdf_path` (NAME.urdf) whose <robot name> is `robot_name`, looked for
+// in the URDF's folder, then in the sibling ../srdf/: NAME.srdf, else ROBOT_NAME.srdf, else the
+// first (by file name) *.srdf there whose <robot name> is robot_name; "" when there is none.
+std::string FindSrdf(const std::string& urdf_path, const std::string& robot_name = "");
 
 }  // namespace planning

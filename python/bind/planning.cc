@@ -10,6 +10,7 @@
 #include "planning/motion/unwrap_benchmark.h"
 #include "planning/physics/grasp_report.h"
 #include "planning/physics/grasp_trials.h"
+#include "planning/robot/ik.h"
 #include "python/bind/planning_types.h"
 
 namespace topoplan_py {
@@ -243,6 +244,58 @@ py::object GraspTransferPy(const fs::path& grasp_path, const std::string& method
   return JsonToPython(report["grasps"][0]);
 }
 
+// Robot.ik: one position (+ axis) target through planning::SolveIk, as a dict.
+py::dict IkPy(PyRobot& r, const std::string& link, const py::handle& position,
+              const py::handle& offset, const py::object& axis, const py::handle& q0,
+              const std::vector<std::string>& frozen, int starts, std::uint32_t seed,
+              bool check_collision, double tolerance, double axis_tolerance) {
+  planning::IkTarget target;
+  target.link = r.Link(link);
+  target.position = ToVector(position, "position", 3);
+  target.offset = ToVector(offset, "offset", 3);
+  if (!axis.is_none()) {
+    const py::tuple pair = Named("axis", [&] { return py::cast<py::tuple>(axis); });
+    if (pair.size() != 2) ThrowValue("axis: expected (link_axis, world_direction)");
+    target.axis =
+        planning::IkAxis{ToVector(pair[0], "axis[0]", 3), ToVector(pair[1], "axis[1]", 3)};
+    if (target.axis->local.norm() < 1e-12 || target.axis->world.norm() < 1e-12)
+      ThrowValue("axis: directions must be non-zero");
+  }
+  if (starts < 1 || starts > 100000) ThrowValue("starts: must be in 1..100000");
+  if (!(tolerance > 0.0) || !(axis_tolerance > 0.0) || !std::isfinite(tolerance) ||
+      !std::isfinite(axis_tolerance))
+    ThrowValue("tolerance, axis_tolerance: must be finite and > 0");
+  planning::IkProblem problem;
+  problem.targets.push_back(target);
+  if (!q0.is_none()) problem.seed = r.Q(q0);
+  problem.frozen_dofs = Named("frozen", [&] { return planning::DofIndices(r.robot, frozen); });
+  planning::IkOptions options;
+  options.starts = starts;
+  options.random_seed = seed;
+  options.position_tolerance = tolerance;
+  options.axis_tolerance = axis_tolerance;
+  if (check_collision) {
+    planning::CollisionData* coll = r.Coll();
+    options.is_valid = [&r, coll](const Eigen::VectorXd& q) {
+      planning::ForwardKinematics(r.robot, q, r.kin.get());
+      return !planning::InCollision(r.robot, *r.kin, coll);
+    };
+  }
+  planning::IkData data(r.robot);
+  const planning::IkResult result =
+      Named("ik", [&] { return planning::SolveIk(r.robot, problem, options, &data); });
+  py::dict out;
+  out["status"] = planning::IkStatusName(result.status);
+  out["q"] = result.q;
+  out["position_error"] = result.position_error;
+  out["axis_error"] = result.axis_error;
+  out["iterations"] = result.iterations;
+  out["starts"] = result.starts;
+  out["start"] = result.start;
+  out["rejected"] = result.rejected;
+  return out;
+}
+
 // Robot: loading, names, limits and forward kinematics.
 void BindRobotModel(py::class_<PyRobot>& robot) {
   robot
@@ -320,7 +373,19 @@ void BindRobotJacobians(py::class_<PyRobot>& robot) {
             return J;
           },
           py::arg("q"), py::arg("chain"),
-          "(3N) x n Jacobian of the chain points: rows 3k..3k+2 = d p_k / d q.");
+          "(3N) x n Jacobian of the chain points: rows 3k..3k+2 = d p_k / d q.")
+      .def("ik", &IkPy, py::arg("link"), py::arg("position"),
+           py::arg("offset") = std::vector<double>{0, 0, 0}, py::arg("axis") = py::none(),
+           py::arg("q0") = py::none(), py::arg("frozen") = std::vector<std::string>{},
+           py::arg("starts") = 8, py::arg("seed") = 0, py::arg("check_collision") = false,
+           py::arg("tolerance") = 1e-5, py::arg("axis_tolerance") = 1e-5,
+           "Inverse kinematics (damped least squares inside the joint limits, multistart):\n"
+           "q that puts the point offset (link frame, m) of link at position (world, m);\n"
+           "axis=(link_axis, world_direction) also aligns a link axis. q0: start (default the\n"
+           "middle of the limits); frozen: joint names held at q0; check_collision: accept\n"
+           "only collision-free q (placed objects and self). Returns {status ('solved',\n"
+           "'not_reached', 'invalid'), q, position_error [m], axis_error [rad], iterations,\n"
+           "starts, start, rejected}.");
 }
 
 // Robot: placed objects and the collision and distance queries.

@@ -2,6 +2,7 @@
 #include "python/bind/common.h"
 #include "topology/winding.h"
 #include "topology/writhe.h"
+#include "topology/writhe_stream.h"
 
 namespace topoplan_py {
 namespace {
@@ -61,6 +62,41 @@ py::tuple WritheJacobianPy(const py::handle& a_obj, const py::handle& b_obj) {
   return py::make_tuple(w, da, db);
 }
 
+py::dict LinkingNumberPy(const py::handle& a_obj, const py::handle& b_obj, int threads) {
+  const Eigen::Matrix3Xd a = ToPoints(a_obj, "A"), b = ToPoints(b_obj, "B");
+  topology::WritheStreamOptions options;
+  options.threads = threads;
+  topology::LinkingResult r;
+  {
+    py::gil_scoped_release release;  // streamed, O(N_A N_B) time, O(N_A + N_B) memory
+    r = topology::LinkingNumber(a, b, options);
+  }
+  py::dict d;
+  const bool ok = r.status == topology::LinkingStatus::kCertified;
+  d["linking_number"] = ok ? py::object(py::int_(r.linking_number)) : py::object(py::none());
+  d["status"] = topology::LinkingStatusName(r.status);
+  d["gauss_integral"] = r.gauss_integral;
+  d["error_bound"] = r.error_bound;
+  d["distance"] = r.distance;
+  d["degenerate_pairs"] = r.degenerate_pairs;
+  return d;
+}
+
+py::object WritheTotalPy(const py::handle& a_obj, const py::handle& b_obj, bool row_sums,
+                         int threads) {
+  const Eigen::Matrix3Xd a = ToPoints(a_obj, "A"), b = ToPoints(b_obj, "B");
+  topology::WritheStreamOptions options;
+  options.threads = threads;
+  options.row_sums = row_sums;
+  topology::WritheSums s;
+  {
+    py::gil_scoped_release release;
+    s = topology::StreamWritheSums(a, b, options);
+  }
+  if (!row_sums) return py::float_(s.total);
+  return py::make_tuple(s.total, Eigen::VectorXd(s.row_sums));
+}
+
 py::object WindingPy(const py::handle& chain, const py::handle& point, const py::handle& dir,
                      bool gradient, bool unsigned_variant) {
   topology::Axis axis;
@@ -91,6 +127,17 @@ void BindTopology(py::module_& m) {
       "chain point, dW_dA of shape (N_A-1, N_B-1, N_A, 3), dW_dB of shape (N_A-1, N_B-1, N_B, 3)\n"
       "(dW_dA[i, j, p, k] = dW[i, j]/dA[p, k]; nonzero only for p in {i, i+1}). The arrays are\n"
       "dense: sizes whose two Jacobians would exceed 2^27 numbers (1 GiB) raise ValueError.");
+  m.def("linking_number", &LinkingNumberPy, py::arg("A"), py::arg("B"), py::arg("threads") = 0,
+        "Gauss linking number of two closed chains (N x 3; last point = first, up to 1e-9 of the\n"
+        "size), streamed in O(N) memory on `threads` threads (0: all cores). Returns a dict:\n"
+        "linking_number (int, or None unless status == 'certified'), status ('certified',\n"
+        "'not_integer', 'touching', 'uncertain'), gauss_integral, error_bound (a bound on the\n"
+        "float error of gauss_integral), distance (to the nearest integer), degenerate_pairs.\n"
+        "Raises ValueError for an open chain.");
+  m.def("writhe_total", &WritheTotalPy, py::arg("A"), py::arg("B"), py::arg("row_sums") = false,
+        py::arg("threads") = 0,
+        "Sum of the writhe matrix of A and B without forming it (O(N) memory, any length).\n"
+        "row_sums=True returns (total, row_sums) with row_sums of length N_A-1.");
   m.def("winding", &WindingPy, py::arg("chain"), py::arg("axis_point"), py::arg("axis_dir"),
         py::arg("gradient") = false, py::arg("unsigned") = false,
         "Winding number (turns) of chain (N x 3) about the oriented axis through axis_point along\n"

@@ -41,6 +41,7 @@ from ._core import (  # noqa: E402
     available_planners,
     grasp_transfer,
     heatmap,
+    linking_number,
     load_scenario,
     read_png,
     render,
@@ -52,6 +53,7 @@ from ._core import (  # noqa: E402
     write_png,
     writhe_jacobian,
     writhe_matrix,
+    writhe_total,
 )
 
 __all__ = [
@@ -65,6 +67,7 @@ __all__ = [
     "available_planners",
     "grasp_transfer",
     "heatmap",
+    "linking_number",
     "load_scenario",
     "read_png",
     "render",
@@ -76,4 +79,5 @@ __all__ = [
     "write_png",
     "writhe_jacobian",
     "writhe_matrix",
+    "writhe_total",
 ]

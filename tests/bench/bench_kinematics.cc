@@ -1,11 +1,13 @@
 // Kinematics and collision timings on the thesis' 20-link arm (+ SDH, 27 DOF) and the LWR4 + SDH:
-// forward kinematics, point / chain Jacobians, one boolean collision check, one distance query.
+// forward kinematics, point / chain Jacobians, one boolean collision check, one distance query,
+// inverse kinematics of the LWR4 + SDH palm.
 #include <benchmark/benchmark.h>
 
 #include <random>
 #include <string>
 
 #include "planning/collision/collision.h"
+#include "planning/robot/ik.h"
 #include "planning/robot/kinematics.h"
 #include "planning/robot/robot_io.h"
 
@@ -125,5 +127,45 @@ void BM_CollisionCheckLwr(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_CollisionCheckLwr);
+
+// One IK solve of the LWR4 + SDH palm (a point 0.1 m along its z axis) from the middle of the
+// limits, default options, cycling through 64 targets from FK of random in-limit q; with
+// state.range(0) = 1 the palm's z axis is a target too. Counters: solved fraction, iterations.
+void BM_IkLwr(benchmark::State& state) {
+  const planning::Robot robot = planning::LoadRobot(Asset("robots/lwr4_sdh.urdf"));
+  const int palm = planning::FindLink(robot, "sdh_palm");
+  const Eigen::VectorXd lo = planning::LowerLimits(robot), hi = planning::UpperLimits(robot);
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  planning::KinematicsData kin(robot);
+  std::vector<planning::IkProblem> problems(64);
+  for (planning::IkProblem& p : problems) {
+    Eigen::VectorXd q(planning::num_dofs(robot));
+    for (int k = 0; k < q.size(); ++k) q[k] = lo[k] + u(rng) * (hi[k] - lo[k]);
+    planning::ForwardKinematics(robot, q, &kin);
+    planning::IkTarget t;
+    t.link = palm;
+    t.offset = Eigen::Vector3d(0, 0, 0.1);
+    t.position = kin.world_from_link[palm] * t.offset;
+    if (state.range(0) == 1) {
+      t.axis =
+          planning::IkAxis{Eigen::Vector3d::UnitZ(), kin.world_from_link[palm].linear().col(2)};
+    }
+    p.targets = {t};
+  }
+  planning::IkData data(robot);
+  const planning::IkOptions options;
+  long solves = 0, solved = 0, iterations = 0;
+  for (auto _ : state) {
+    const planning::IkResult r =
+        planning::SolveIk(robot, problems[solves % problems.size()], options, &data);
+    ++solves;
+    solved += r.status == planning::IkStatus::kSolved ? 1 : 0;
+    iterations += r.iterations;
+  }
+  state.counters["solved"] = static_cast<double>(solved) / static_cast<double>(solves);
+  state.counters["iterations"] = static_cast<double>(iterations) / static_cast<double>(solves);
+}
+BENCHMARK(BM_IkLwr)->Arg(0)->Arg(1);
 
 }  // namespace

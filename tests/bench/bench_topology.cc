@@ -7,6 +7,7 @@
 
 #include "topology/winding.h"
 #include "topology/writhe.h"
+#include "topology/writhe_stream.h"
 
 namespace {
 
@@ -85,5 +86,31 @@ void BM_WindingWithGradient(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations() * (state.range(0) - 1));
 }
 BENCHMARK(BM_WindingWithGradient)->Arg(21)->Arg(1001);
+
+// Streaming total (topology/writhe_stream.h): Σ W and its error bound without the matrix, on
+// range(1) threads. Args: segments per chain, threads. `topoplan writhe --total` and `linking`.
+void BM_StreamWritheTotal(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  const topology::Chain a = Random(n + 1, 1, 0.0), b = Random(n + 1, 2, 0.05);
+  topology::WritheStreamOptions o;
+  o.threads = static_cast<int>(state.range(1));
+  for (auto _ : state) benchmark::DoNotOptimize(topology::StreamWritheSums(a, b, o).total);
+  state.counters["s_per_pair"] =
+      benchmark::Counter(static_cast<double>(n) * n, benchmark::Counter::kIsIterationInvariantRate |
+                                                         benchmark::Counter::kInvert);
+}
+BENCHMARK(BM_StreamWritheTotal)
+    ->Args({1000, 1})
+    ->Args({1000, 2})
+    ->Args({8000, 1})
+    ->Args({8000, 2})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK(BM_StreamWritheTotal)
+    ->Args({100000, 1})
+    ->Args({100000, 2})
+    ->Iterations(1)
+    ->Unit(benchmark::kSecond)
+    ->UseRealTime();
 
 }  // namespace

@@ -13,6 +13,7 @@
 #include "planning/robot/kinematics.h"
 #include "planning/motion/planner.h"
 #include "planning/motion/scenario.h"
+#include "planning/features/feature.h"
 
 namespace planning {
 namespace {
@@ -254,6 +255,94 @@ TEST(JudgePlan, ThroughLoopNeedsTheChainThroughTheRing) {
   EXPECT_EQ(at_end.reason, FailureReason::kNone) << FailureReasonName(at_end.reason);
   // Without the criterion the verdict still says whether the chain passed (reports use it).
   EXPECT_TRUE(JudgePlan(*s, plan.trajectory).passed_through);
+}
+
+// The scenario key: on in reach_through_ring, refused without a report pair.
+TEST(JudgePlan, ThroughLoopIsAScenarioCriterion) {
+  const auto s = LoadScenario(kAssets + "scenarios/reach_through_ring.json");
+  EXPECT_TRUE(s->success.through_loop);
+  const std::string base = R"({"robot": ")" + kAssets + R"(robots/lwr4_sdh.urdf",
+      "start": {"q": "zero"}, "tasks": [{"feature": {"type": "joint_position"}}], "success": )";
+  try {
+    LoadScenario(WriteTemp("loop.json", base + R"({"through_loop": true}})"));
+    ADD_FAILURE() << "expected an error";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("success.through_loop: the through_loop criterion needs "
+                                         "writhe_report"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
+// A path that leaves the limits is named by its joint, value, range and unit.
+TEST(JudgePlan, JointLimitFailureNamesTheJoint) {
+  const auto s = LoadScenario(kAssets + "scenarios/tinyarm_ring.json");
+  Trajectory path;
+  path.q = s->initial.problem.q0;
+  path.q(5, 0) = -0.01;  // finger_left_joint, prismatic [0, 0.03]
+  const PlanVerdict v = JudgePlan(*s, path);
+  EXPECT_EQ(v.reason, FailureReason::kJointLimits);
+  EXPECT_EQ(v.step, 0);
+  EXPECT_EQ(v.detail, "joint 'finger_left_joint' (q[5]) = -0.01 outside [0, 0.03] m");
+}
+
+// Margins by joint type: `margin` [rad] for revolute joints, `prismatic_margin` [m] for prismatic
+// ones, each at most 45 % of the range (a 5 cm margin never inverts a 3 cm finger range).
+TEST(JointLimitFeature, MarginsFollowTheJointType) {
+  const auto s = LoadScenario(kAssets + "scenarios/tinyarm_ring.json");
+  const Robot& r = s->robot;
+  const auto f = MakeJointLimitFeature(r, 0.05, 0.05);
+  KinematicsData kin(r);
+  Eigen::VectorXd q = s->initial.problem.q0;
+  q[5] = 0.015;  // the middle of the finger's range: inside even with the capped margin
+  Eigen::VectorXd y(f->dim());
+  ForwardKinematics(r, q, &kin);
+  f->Eval(r, kin, nullptr, y, nullptr);
+  EXPECT_EQ(y[5], 0.0);
+  q[5] = 0.0;  // at the lower limit: 0.45 · 0.03 inside the capped margin
+  ForwardKinematics(r, q, &kin);
+  f->Eval(r, kin, nullptr, y, nullptr);
+  EXPECT_NEAR(y[5], 0.45 * 0.03, 1e-12);
+  // Without a prismatic margin the finger at its limit is fine.
+  const auto g = MakeJointLimitFeature(r, 0.05);
+  g->Eval(r, kin, nullptr, y, nullptr);
+  EXPECT_EQ(y[5], 0.0);
+}
+
+// "frozen_joints": an SRDF group held at its start value; unknown names list the joints.
+TEST(FrozenJoints, AGroupIsHeldAndLeavesQ) {
+  std::string text;
+  {
+    std::ifstream in(kAssets + "scenarios/tinyarm_ring.json");
+    text.assign(std::istreambuf_iterator<char>(in), {});
+  }
+  // Paths of the shipped file made absolute, so that the copy can live in the build folder.
+  for (const std::string from : {"\"../robots/", "\"../objects/"}) {
+    for (size_t at = text.find(from); at != std::string::npos; at = text.find(from, at + 1)) {
+      text.replace(at, from.size(), "\"" + kAssets + from.substr(4));
+    }
+  }
+  const auto load = [&](const std::string& frozen) {
+    std::string t = text;
+    t.replace(t.find("\"robot\":"), 0, "\"frozen_joints\": " + frozen + ",\n  ");
+    return LoadScenario(WriteTemp("frozen.json", t));
+  };
+  const auto s = load(R"(["gripper"])");
+  EXPECT_EQ(num_dofs(s->robot), 5);
+  ASSERT_EQ(s->frozen.size(), 1u);
+  EXPECT_EQ(s->frozen[0].first, "finger_left_joint");
+  EXPECT_EQ(s->frozen[0].second, 0.0);  // its value in the start pose 'ready'
+  EXPECT_EQ(s->initial.problem.q0.size(), 5);
+  try {
+    load(R"(["thumb"])");
+    ADD_FAILURE() << "expected an error";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("frozen_joints: 'thumb' is neither a joint of robot "
+                                         "'tinyarm' (joint1, joint2, joint3, joint4, joint5, "
+                                         "finger_left_joint) nor a group of its SRDF"),
+              std::string::npos)
+        << e.what();
+  }
 }
 
 }  // namespace

@@ -1,0 +1,412 @@
+// MakeNewScenario (planning/motion/scenario_new.h): hand, chain, ring, goal by IK, box.
+#include "planning/motion/scenario_new.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <stdexcept>
+
+#include "base/assets.h"
+#include "base/numbers.h"
+#include "planning/collision/collision.h"
+#include "planning/motion/robot_scene.h"
+#include "planning/motion/success.h"
+#include "planning/robot/ik.h"
+#include "planning/robot/kinematics.h"
+#include "planning/robot/robot_io.h"
+
+namespace planning {
+namespace {
+
+namespace fs = std::filesystem;
+using Json = nlohmann::ordered_json;
+
+Json Vec(const Eigen::Vector3d& v) {
+  const auto r = [](double x) { return std::round(x * 1e6) / 1e6; };  // µm: readable files
+  return Json::array({r(v.x()), r(v.y()), r(v.z())});
+}
+
+Json QJson(const Eigen::VectorXd& q) {
+  Json a = Json::array();
+  for (Eigen::Index k = 0; k < q.size(); ++k) a.push_back(std::round(q[k] * 1e6) / 1e6);
+  return a;
+}
+
+// Roll, pitch, yaw (URDF convention: R = Rz(yaw) Ry(pitch) Rx(roll)) of a rotation.
+Json RpyJson(const Eigen::Matrix3d& r) {
+  const double pitch = std::asin(std::clamp(-r(2, 0), -1.0, 1.0));
+  double roll = std::atan2(r(2, 1), r(2, 2)), yaw = std::atan2(r(1, 0), r(0, 0));
+  if (std::abs(std::cos(pitch)) < 1e-9) {  // gimbal lock: put it all in yaw
+    roll = 0.0;
+    yaw = std::atan2(-r(0, 1), r(1, 1));
+  }
+  const auto q = [](double x) { return std::round(x * 1e9) / 1e9; };
+  return Json::array({q(roll), q(pitch), q(yaw)});
+}
+
+// The arm: links root → hand, and the hand (see the header).
+struct Arm {
+  std::vector<int> path;  // link indices, root first, hand last
+  int hand = 0;
+  std::vector<int> arm_dofs, other_dofs;
+};
+
+Arm FindArm(const Robot& robot) {
+  const int nl = static_cast<int>(robot.links.size());
+  std::vector<std::vector<int>> children(nl);
+  for (const Joint& j : robot.joints) children[j.parent_link].push_back(j.child_link);
+  // Movable joints in each subtree (children come after parents: links are in topological order).
+  std::vector<int> movable(nl, 0);
+  for (int l = nl - 1; l >= 0; --l) {
+    for (int c : children[l]) {
+      movable[l] += movable[c] + (robot.joints[robot.links[c].parent_joint].dof >= 0 ? 1 : 0);
+    }
+  }
+  Arm arm;
+  int l = 0;
+  arm.path.push_back(0);
+  for (;;) {
+    std::vector<int> moving;
+    for (int c : children[l]) {
+      if (movable[c] > 0 || robot.joints[robot.links[c].parent_joint].dof >= 0) moving.push_back(c);
+    }
+    if (moving.size() != 1) break;
+    l = moving[0];
+    arm.path.push_back(l);
+  }
+  arm.hand = l;
+  std::vector<bool> on_arm(robot.dof_joints.size(), false);
+  for (int p : arm.path) {
+    const int j = robot.links[p].parent_joint;
+    if (j >= 0 && robot.joints[j].dof >= 0) on_arm[robot.joints[j].dof] = true;
+  }
+  for (size_t k = 0; k < on_arm.size(); ++k) {
+    (on_arm[k] ? arm.arm_dofs : arm.other_dofs).push_back(static_cast<int>(k));
+  }
+  if (arm.arm_dofs.size() < 2) {
+    throw std::invalid_argument(robot.source + ": no arm found (walking down from '" +
+                                robot.links[0].name + "', the tree branches at '" +
+                                robot.links[l].name + "' after " +
+                                std::to_string(arm.arm_dofs.size()) +
+                                " movable joint(s); scenario new needs a serial arm of 2 or more)");
+  }
+  return arm;
+}
+
+// The links of the subtree below `link` (itself excluded).
+std::vector<int> Subtree(const Robot& robot, int link) {
+  std::vector<int> out;
+  for (size_t l = link + 1; l < robot.links.size(); ++l) {
+    for (int p = static_cast<int>(l); p > 0;) {
+      const int parent = robot.joints[robot.links[p].parent_joint].parent_link;
+      if (parent == link) {
+        out.push_back(static_cast<int>(l));
+        break;
+      }
+      if (parent < link) break;
+      p = parent;
+    }
+  }
+  return out;
+}
+
+Eigen::Vector3d Origin(const KinematicsData& kin, int link) {
+  return kin.world_from_link[link].translation();
+}
+
+}  // namespace
+
+NewScenario MakeNewScenario(const std::string& urdf, const NewScenarioOptions& o) {
+  if (o.task != "ring" && o.task != "reach") {
+    throw std::invalid_argument("--task: '" + o.task + "' is not one of ring, reach");
+  }
+  RobotInputOptions input;
+  input.package_paths = o.package_paths;
+  input.srdf = o.srdf;
+  const RobotScene scene = LoadRobotScene(urdf, input);
+  const Robot& robot = scene.robot;
+  NewScenario out;
+  // The start: DefaultQ, moved into the limits (an SRDF reference pose may lie outside them,
+  // and a plan must start inside).
+  Eigen::VectorXd q0 = DefaultQ(scene, &out.notes);
+  const Eigen::VectorXd lower = LowerLimits(robot), upper = UpperLimits(robot);
+  const Eigen::VectorXd clamped = q0.cwiseMax(lower).cwiseMin(upper);
+  const bool start_moved = clamped != q0;
+  if (start_moved) {
+    out.notes.push_back(
+        "the default pose lies outside the joint limits: the start is that pose "
+        "moved into them (written as start.q)");
+    q0 = clamped;
+  }
+  const Arm arm = FindArm(robot);
+  out.hand_link = robot.links[arm.hand].name;
+  KinematicsData kin(robot);
+  ForwardKinematics(robot, q0, &kin);
+
+  // Arm joints (the links they move) and the hand's approach axis and size.
+  std::vector<int> arm_links;
+  for (int p : arm.path) {
+    const int j = robot.links[p].parent_joint;
+    if (j >= 0 && robot.joints[j].dof >= 0) arm_links.push_back(p);
+  }
+  const Eigen::Vector3d hand_origin = Origin(kin, arm.hand);
+  const Eigen::Vector3d last_joint = Origin(
+      kin, arm_links.back() == arm.hand && arm_links.size() > 1 ? arm_links[arm_links.size() - 2]
+                                                                : arm_links.back());
+  Eigen::Vector3d tip_world = hand_origin;
+  double hand_size = 0.0;
+  const std::vector<int> below = Subtree(robot, arm.hand);
+  if (!below.empty()) {
+    Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+    for (int l : below) {
+      centroid += Origin(kin, l);
+      hand_size = std::max(hand_size, (Origin(kin, l) - hand_origin).norm());
+    }
+    tip_world = centroid / static_cast<double>(below.size());
+  }
+  Eigen::Vector3d approach = tip_world - hand_origin;
+  if (approach.norm() < 1e-3) approach = hand_origin - last_joint;
+  if (approach.norm() < 1e-6) approach = kin.world_from_link[arm.hand].linear().col(2);
+  approach.normalize();
+  hand_size = std::max(hand_size, 0.05);
+  const Eigen::Matrix3d hand_rot = kin.world_from_link[arm.hand].linear();
+  const Eigen::Vector3d axis_local = hand_rot.transpose() * approach;
+  const Eigen::Vector3d tool_local = axis_local * hand_size;
+
+  // Reach: the lengths between consecutive arm joints, plus the hand.
+  const Eigen::Vector3d shoulder = Origin(kin, arm_links.front());
+  double reach = hand_size;
+  for (size_t i = 1; i < arm_links.size(); ++i)
+    reach += (Origin(kin, arm_links[i]) - Origin(kin, arm_links[i - 1])).norm();
+  reach += (hand_origin - Origin(kin, arm_links.back())).norm();
+
+  // The hand chain: last three arm links, the hand, the tool point.
+  std::vector<std::pair<int, Eigen::Vector3d>> chain;
+  for (size_t i = arm_links.size() >= 3 ? arm_links.size() - 3 : 0; i < arm_links.size(); ++i) {
+    if (arm_links[i] != arm.hand) chain.emplace_back(arm_links[i], Eigen::Vector3d::Zero());
+  }
+  chain.emplace_back(arm.hand, Eigen::Vector3d::Zero());
+  chain.emplace_back(arm.hand, tool_local);
+  const auto chain_points = [&](const KinematicsData& k) {
+    Eigen::Matrix3Xd p(3, static_cast<Eigen::Index>(chain.size()));
+    for (size_t i = 0; i < chain.size(); ++i)
+      p.col(static_cast<Eigen::Index>(i)) = k.world_from_link[chain[i].first] * chain[i].second;
+    return p;
+  };
+
+  // The object: a ring (its chain "loop"), axis along +x.
+  const std::string object_path =
+      o.object.empty() ? base::AssetPath("objects/ring.urdf") : o.object;
+  const Robot ring = LoadRobot(object_path);
+  double ring_radius = 0.0;
+  int loop = -1;
+  if (o.task == "ring") {
+    loop = FindChain(ring, "loop");
+    KinematicsData rk(ring);
+    ForwardKinematics(ring, Eigen::VectorXd::Zero(num_dofs(ring)), &rk);
+    Eigen::Matrix3Xd lp;
+    ChainPoints(ring, rk, loop, &lp);
+    for (Eigen::Index k = 0; k < lp.cols(); ++k)
+      ring_radius = std::max(ring_radius, lp.col(k).norm());
+  }
+
+  IkData ik_data(robot);
+  IkOptions ik_options;
+  ik_options.starts = 24;
+  ik_options.random_seed = o.seed;
+  // Candidate placements (ring centre, its axis = the approach direction): first straight ahead
+  // of the hand in the start pose (the hand moves on along its approach axis, through the ring),
+  // then in front of the first arm joint along the base's +x at 35–65 % of the reach.
+  struct Placement {
+    Eigen::Vector3d center, axis;
+    std::string what;
+  };
+  std::vector<Placement> placements;
+  const Eigen::Vector3d tool_start = kin.world_from_link[arm.hand] * tool_local;
+  for (double ahead : {0.5, 0.8}) {
+    placements.push_back({tool_start + approach * (ahead * ring_radius + 0.05), approach,
+                          "ahead of the hand by " + base::FormatShortest(ahead) + " ring radii"});
+  }
+  for (double fraction : {0.5, 0.6, 0.4}) {
+    for (double height : {0.25, 0.4, 0.1}) {
+      placements.push_back({shoulder + Eigen::Vector3d::UnitX() * (fraction * reach) +
+                                Eigen::Vector3d::UnitZ() * (height * reach),
+                            Eigen::Vector3d::UnitX(),
+                            "+x " + base::FormatShortest(fraction) + " of the reach, height " +
+                                base::FormatShortest(height)});
+    }
+  }
+  std::string tried;
+  bool found = false;
+  Eigen::Vector3d d = Eigen::Vector3d::UnitX();
+  Eigen::Matrix3d ring_rot = Eigen::Matrix3d::Identity();
+  for (const Placement& placement : placements) {
+    {
+      const Eigen::Vector3d center = placement.center;
+      d = placement.axis.normalized();
+      ring_rot = Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), d).toRotationMatrix();
+      const Eigen::Vector3d target = center + d * (o.task == "ring" ? 0.6 * hand_size : 0.0);
+      Environment env;
+      if (o.task == "ring") {
+        Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+        pose.translation() = center;
+        pose.linear() = ring_rot;
+        AddObject(ring, pose, "ring", &env);
+      }
+      CollisionData coll(robot, env, scene.collision_options);
+      KinematicsData k(robot);
+      ForwardKinematics(robot, q0, &k);
+      tried.append(tried.empty() ? "" : "; ").append(placement.what);
+      if (InCollision(robot, k, &coll)) {
+        tried.append(": the start touches the ring or itself");
+        continue;
+      }
+      const Eigen::Matrix3Xd loop_points =
+          o.task == "ring" ? ObjectChainPoints(env, 0, loop) : Eigen::Matrix3Xd();
+      IkProblem problem;
+      IkTarget t;
+      t.link = arm.hand;
+      t.offset = tool_local;
+      t.position = target;
+      t.axis = IkAxis{axis_local, d};
+      problem.targets.push_back(t);
+      problem.seed = q0;
+      problem.frozen_dofs = arm.other_dofs;
+      ik_options.is_valid = [&](const Eigen::VectorXd& q) {
+        ForwardKinematics(robot, q, &k);
+        if (InCollision(robot, k, &coll)) return false;
+        return o.task != "ring" || ChainThroughLoop(chain_points(k), loop_points);
+      };
+      const IkResult r = SolveIk(robot, problem, ik_options, &ik_data);
+      if (r.status != IkStatus::kSolved) {
+        tried.append(": IK ").append(IkStatusName(r.status));
+        continue;
+      }
+      out.goal_q = r.q;
+      out.tool_target = target;
+      out.ring_center = center;
+      out.notes.push_back("ring placed " + placement.what);
+      found = true;
+      break;
+    }
+  }
+  if (!found) {
+    throw std::invalid_argument(urdf + ": no placement of the " + o.task + " works for hand '" +
+                                out.hand_link + "' (tried " + tried + ")");
+  }
+
+  // The file.
+  const std::vector<std::string> dof_names = DofNames(robot);
+  Json j;
+  j["name"] = o.name.empty() ? robot.name + "_" + o.task : o.name;
+  j["description"] = "Made by `topoplan scenario new --task " + o.task + "` for robot '" +
+                     robot.name + "': the hand '" + out.hand_link + "' reaches " +
+                     (o.task == "ring" ? "through a ring" : "a target") +
+                     " in front of the arm. Keys starting with // are comments.";
+  j["robot"] = fs::absolute(urdf).lexically_normal().string();
+  if (scene.srdf) j["srdf"] = fs::absolute(scene.srdf->source).lexically_normal().string();
+  if (!o.package_paths.empty()) {
+    Json pp = Json::array();
+    for (const std::string& p : o.package_paths)
+      pp.push_back(fs::absolute(p).lexically_normal().string());
+    j["package_paths"] = pp;
+  }
+  if (!arm.other_dofs.empty()) {
+    j["// frozen_joints"] = "joints below the hand (fingers), held at their start values";
+    Json fj = Json::array();
+    for (int k : arm.other_dofs) fj.push_back(dof_names[k]);
+    j["frozen_joints"] = fj;
+  }
+  j["// robot_chains"] =
+      "the hand chain: last arm links, the hand, the tool point (move the points"
+      " to change what must pass through the ring)";
+  Json points = Json::array();
+  for (const auto& [link, xyz] : chain)
+    points.push_back({{"link", robot.links[link].name}, {"xyz", Vec(xyz)}});
+  j["robot_chains"] = Json::array({{{"name", "hand"}, {"points", points}}});
+  if (o.task == "ring") {
+    j["// objects"] =
+        "the ring: move it with xyz (its axis along x by rpy); the goal below follows"
+        " from final_pose";
+    j["objects"] = Json::array({{{"name", "ring"},
+                                 {"urdf", fs::absolute(object_path).lexically_normal().string()},
+                                 {"xyz", Vec(out.ring_center)},
+                                 {"rpy", RpyJson(ring_rot)},
+                                 {"capsules", {{"chain", "loop"}, {"radius", 0.012}}}}});
+    j["writhe_report"] = {{"chain", "hand"}, {"object", "ring"}, {"object_chain", "loop"}};
+  }
+  if (scene.srdf && !scene.srdf->poses.empty() && !start_moved) {
+    j["start"] = {{"pose", scene.srdf->poses.front().name}};
+  } else {
+    j["start"] = {{"q", QJson(q0)}};
+  }
+  j["problem"] = {
+      {"T", 32}, {"duration", 4.0}, {"dynamic", true}, {"h_rate", 1.0}, {"w_rate", 1.0}};
+  const Json box_center = Vec(out.tool_target);
+  const double half = std::max(0.05, 0.5 * hand_size);
+  Json tasks = Json::array();
+  if (o.task == "ring") {
+    tasks.push_back({{"name", "writhe"},
+                     {"feature",
+                      {{"type", "writhe"},
+                       {"chain", "hand"},
+                       {"object", "ring"},
+                       {"object_chain", "loop"},
+                       {"output", "matrix"}}},
+                     {"target", {{"type", "final_pose"}}},
+                     {"precision", 100},
+                     {"final_precision", 1000}});
+  }
+  tasks.push_back({{"name", "box"},
+                   {"feature",
+                    {{"type", "box"},
+                     {"link", out.hand_link},
+                     {"offset", Vec(tool_local)},
+                     {"center", box_center},
+                     {"half_extent", Vec(Eigen::Vector3d::Constant(half))},
+                     {"margin", 0.01}}},
+                   {"precision", 0},
+                   {"final_precision", 1000}});
+  tasks.push_back(
+      {{"name", "reach"},
+       {"feature", {{"type", "position"}, {"link", out.hand_link}, {"offset", Vec(tool_local)}}},
+       {"target", {{"type", "interpolate"}, {"value", box_center}}},
+       {"precision", 10},
+       {"final_precision", 100}});
+  tasks.push_back({{"name", "collision"},
+                   {"feature", {{"type", "collision"}, {"margin", 0.05}}},
+                   {"precision", 100}});
+  tasks.push_back(
+      {{"name", "limits"},
+       {"feature", {{"type", "joint_limits"}, {"margin", 0.05}, {"prismatic_margin", 0.002}}},
+       {"precision", 1000}});
+  tasks.push_back({{"name", "qdot"},
+                   {"feature", {{"type", "joint_position"}}},
+                   {"order", 1},
+                   {"precision", 0.1},
+                   {"final_precision", 0}});
+  j["tasks"] = tasks;
+  j["// final_pose"] =
+      "init: the goal found by inverse kinematics (topoplan ik), all joints in fk"
+      " order";
+  j["final_pose"] = {{"tasks", Json::array({"reach", "box", "collision", "limits"})},
+                     {"init", QJson(out.goal_q)},
+                     {"alpha", 0.05}};
+  Json success = {{"inside_box", "box"}};
+  if (o.task == "ring") success["through_loop"] = true;
+  j["success"] = success;
+  j["aico"] = {{"max_iterations", 40},      {"tolerance", 0.01}, {"damping", 1.0},
+               {"sweep_mode", "forwardly"}, {"max_step", 0.3},   {"rollout_init", true},
+               {"rollout_prior", 100}};
+  j["rrt"] = {{"range", 0.5}, {"resolution", 0.02}, {"goal_bias", 0.1}, {"max_checks", 100000}};
+  j["check_resolution"] = 0.02;
+  out.json = std::move(j);
+  std::string n = "hand '";
+  n.append(out.hand_link).append("', tool point ").append(base::FormatShortest(hand_size));
+  n.append(" m ahead of it; reach ").append(base::FormatShortest(std::round(reach * 1000) / 1000));
+  n.append(" m; goal by IK");
+  out.notes.push_back(n);
+  return out;
+}
+
+}  // namespace planning

@@ -1,0 +1,288 @@
+#include "topology/writhe_stream.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <exception>
+#include <limits>
+#include <mutex>
+#include <stdexcept>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "topology/internal/writhe_rows.h"
+
+namespace topology {
+namespace {
+
+constexpr double kTwoPi = 6.283185307179586476925286766559;
+constexpr double kUnitRoundoff = std::numeric_limits<double>::epsilon() / 2.0;  // u = 2⁻⁵³
+constexpr long long kParallelMinPairs = 200000;
+
+// Neumaier's compensated sum: |result − exact| ≤ 2u Σ|x_k| + O(n u²) Σ|x_k|.
+struct CompensatedSum {
+  double sum = 0.0, comp = 0.0;
+  void Add(double x) {
+    const double t = sum + x;
+    comp += std::abs(sum) >= std::abs(x) ? (sum - t) + x : (x - t) + sum;
+    sum = t;
+  }
+  double Value() const { return sum + comp; }
+};
+
+int ThreadCount(const WritheStreamOptions& o, long long pairs, int tasks) {
+  int n = o.threads > 0 ? o.threads : static_cast<int>(std::thread::hardware_concurrency());
+  if (pairs < kParallelMinPairs) n = 1;
+  return std::max(1, std::min(n, tasks));
+}
+
+// Runs task(t, ws) for t in [0, tasks) on `threads` threads (the caller is one). Tasks are taken
+// in order from a shared counter; each must write only its own outputs. progress(pairs done) is
+// called on the calling thread after each of its tasks; if it (or a task) throws, the remaining
+// tasks are skipped and the first exception is rethrown after every thread has joined.
+template <typename Task>
+void RunTasks(int tasks, int threads, const std::function<void(long long, long long)>& progress,
+              long long pairs_per_task_total, const std::vector<long long>& task_pairs,
+              Task&& task) {
+  std::atomic<int> next{0};
+  std::atomic<long long> done{0};
+  std::atomic<bool> abort{false};
+  std::exception_ptr error;
+  std::mutex error_mutex;
+  auto work = [&](bool caller) {
+    WritheWorkspace ws;
+    try {
+      for (;;) {
+        if (abort.load(std::memory_order_relaxed)) return;
+        const int t = next.fetch_add(1);
+        if (t >= tasks) return;
+        task(t, &ws);
+        const long long d = done.fetch_add(task_pairs[t]) + task_pairs[t];
+        if (caller && progress) progress(d, pairs_per_task_total);
+      }
+    } catch (...) {
+      abort = true;
+      const std::lock_guard<std::mutex> lock(error_mutex);
+      if (!error) error = std::current_exception();
+    }
+  };
+  std::vector<std::thread> pool;
+  pool.reserve(static_cast<size_t>(threads - 1));
+  for (int k = 1; k < threads; ++k) pool.emplace_back(work, false);
+  work(true);
+  for (std::thread& t : pool) t.join();
+  if (error) std::rethrow_exception(error);
+}
+
+// Per row: the sum (four interleaved partial sums in a fixed order, added at the end), Σ|w|,
+// Σ_j 1/|Z_j| for the kernel bound, and the degenerate pairs. Far pairs (|Z|² ≥ 1, almost all)
+// take 1/|Z| ≤ 1 without a square root; the few near pairs their exact 1/|Z|.
+class RowSumSink : public internal::WritheRowSink {
+ public:
+  RowSumSink(double* sum, double* abs_sum, double* bound, long long* degenerate)
+      : sum_(sum), abs_sum_(abs_sum), bound_(bound), degenerate_(degenerate) {}
+  void Row(int i, const double* w, const double* x, const double* y, int cols) override {
+    double s[4] = {0.0, 0.0, 0.0, 0.0}, a[4] = {0.0, 0.0, 0.0, 0.0};
+    int j = 0;
+    for (; j + 3 < cols; j += 4) {
+      for (int k = 0; k < 4; ++k) {
+        s[k] += w[j + k];
+        a[k] += std::abs(w[j + k]);
+      }
+    }
+    for (; j < cols; ++j) {
+      s[0] += w[j];
+      a[0] += std::abs(w[j]);
+    }
+    double inv_mag = 0.0;
+    long long degenerate = 0;
+    for (j = 0; j < cols; ++j) {
+      const double m2 = x[j] * x[j] + y[j] * y[j];
+      if (m2 >= 1.0) {
+        inv_mag += 1.0;
+        if (x[j] == 1.0 && y[j] == 0.0) ++degenerate;
+      } else {
+        inv_mag += 1.0 / std::sqrt(m2);
+      }
+    }
+    sum_[i] = (s[0] + s[1]) + (s[2] + s[3]);
+    abs_sum_[i] = (a[0] + a[1]) + (a[2] + a[3]);
+    // e_ij = u (1024/|Z| + 16)/(2π), summed; ×1.01 covers the rounding of these sums themselves.
+    bound_[i] = 1.01 * kUnitRoundoff * (1024.0 * inv_mag + 16.0 * cols) / kTwoPi;
+    degenerate_[i] = degenerate;
+  }
+
+ private:
+  double *sum_, *abs_sum_, *bound_;
+  long long* degenerate_;
+};
+
+}  // namespace
+
+WritheSums StreamWritheSums(const Chain& a, const Chain& b, const WritheStreamOptions& options) {
+  internal::CheckWritheChain(a, "A");
+  internal::CheckWritheChain(b, "B");
+  WritheSums out;
+  out.rows = static_cast<int>(a.cols()) - 1;
+  out.cols = static_cast<int>(b.cols()) - 1;
+  const long long pairs = static_cast<long long>(out.rows) * out.cols;
+  // Units of work of ~2.6·10⁵ pairs (a few ms) so that progress and Ctrl-C respond quickly.
+  const int rows_per_task = std::max(1, std::min(out.rows, (1 << 18) / out.cols));
+  const int tasks = (out.rows + rows_per_task - 1) / rows_per_task;
+  std::vector<double> sum(out.rows), abs_sum(out.rows), bound(out.rows);
+  std::vector<long long> degenerate(out.rows), task_pairs(tasks);
+  for (int t = 0; t < tasks; ++t) {
+    task_pairs[t] =
+        static_cast<long long>(std::min(rows_per_task, out.rows - t * rows_per_task)) * out.cols;
+  }
+  RunTasks(tasks, ThreadCount(options, pairs, tasks), options.progress, pairs, task_pairs,
+           [&](int t, WritheWorkspace* ws) {
+             RowSumSink sink(sum.data(), abs_sum.data(), bound.data(), degenerate.data());
+             const int begin = t * rows_per_task;
+             const int end = std::min(out.rows, begin + rows_per_task);
+             internal::WritheRows(a, b, options.writhe, begin, end, ws, &sink);
+           });
+  CompensatedSum total;
+  double abs_total = 0.0, kernel_bound = 0.0;
+  for (int i = 0; i < out.rows; ++i) {
+    total.Add(sum[i]);
+    abs_total += abs_sum[i];
+    kernel_bound += bound[i];
+    out.degenerate_pairs += degenerate[i];
+  }
+  out.total = total.Value();
+  out.abs_total = abs_total;
+  if (options.writhe.variant == WritheVariant::kUnsignedSolidAngle) kernel_bound *= 2.0 * kTwoPi;
+  // Row sums: four recursive partial sums of ≤ ⌈cols/4⌉ + 2 terms, error ≤ (cols/4 + 2) u Σ|w|;
+  // the rows: Neumaier, ≤ 3u Σ|r_i| ≤ 3u Σ|w|.
+  const double sum_bound = (out.cols / 4.0 + 5.0) * kUnitRoundoff * abs_total;
+  out.error_bound = 1.01 * (kernel_bound + sum_bound);
+  if (options.row_sums) out.row_sums = Eigen::Map<const Eigen::VectorXd>(sum.data(), out.rows);
+  return out;
+}
+
+namespace {
+
+// Accumulates rows into one row of block sums: cells[q] += Σ_{j ∈ J_q} w[j].
+class BlockRowSink : public internal::WritheRowSink {
+ public:
+  BlockRowSink(double* cells, int col_block) : cells_(cells), col_block_(col_block) {}
+  void Row(int /*i*/, const double* w, const double*, const double*, int cols) override {
+    for (int q = 0, j0 = 0; j0 < cols; ++q, j0 += col_block_) {
+      const int j1 = std::min(cols, j0 + col_block_);
+      double s = 0.0;
+      for (int j = j0; j < j1; ++j) s += w[j];
+      cells_[q] += s;
+    }
+  }
+
+ private:
+  double* cells_;
+  int col_block_;
+};
+
+}  // namespace
+
+WritheBlockSums BlockWritheSums(const Chain& a, const Chain& b, int max_rows, int max_cols,
+                                const WritheStreamOptions& options) {
+  internal::CheckWritheChain(a, "A");
+  internal::CheckWritheChain(b, "B");
+  if (max_rows < 1 || max_cols < 1) {
+    throw std::invalid_argument("BlockWritheSums: at most " + std::to_string(max_rows) + "x" +
+                                std::to_string(max_cols) + " blocks; both must be >= 1");
+  }
+  const int rows = static_cast<int>(a.cols()) - 1, cols = static_cast<int>(b.cols()) - 1;
+  WritheBlockSums out;
+  out.row_block = (rows + max_rows - 1) / max_rows;
+  out.col_block = (cols + max_cols - 1) / max_cols;
+  const int block_rows = (rows + out.row_block - 1) / out.row_block;
+  const int block_cols = (cols + out.col_block - 1) / out.col_block;
+  // Row-major scratch (one contiguous row of cells per task), copied into `sums` at the end.
+  std::vector<double> cells(static_cast<size_t>(block_rows) * block_cols, 0.0);
+  std::vector<long long> task_pairs(block_rows);
+  for (int p = 0; p < block_rows; ++p) {
+    task_pairs[p] =
+        static_cast<long long>(std::min(out.row_block, rows - p * out.row_block)) * cols;
+  }
+  const long long pairs = static_cast<long long>(rows) * cols;
+  RunTasks(block_rows, ThreadCount(options, pairs, block_rows), options.progress, pairs, task_pairs,
+           [&](int p, WritheWorkspace* ws) {
+             BlockRowSink sink(cells.data() + static_cast<size_t>(p) * block_cols, out.col_block);
+             const int begin = p * out.row_block;
+             internal::WritheRows(a, b, options.writhe, begin,
+                                  std::min(rows, begin + out.row_block), ws, &sink);
+           });
+  out.sums =
+      Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(
+          cells.data(), block_rows, block_cols);
+  return out;
+}
+
+bool IsClosedChain(const Chain& c) {
+  if (c.cols() < 4 || !c.allFinite()) return false;
+  const double size = (c.rowwise().maxCoeff() - c.rowwise().minCoeff()).norm();
+  return (c.col(c.cols() - 1) - c.col(0)).norm() <= kClosedGap * size;
+}
+
+const char* LinkingStatusName(LinkingStatus s) {
+  switch (s) {
+    case LinkingStatus::kCertified:
+      return "certified";
+    case LinkingStatus::kNotInteger:
+      return "not_integer";
+    case LinkingStatus::kTouching:
+      return "touching";
+    case LinkingStatus::kUncertain:
+      break;
+  }
+  return "uncertain";
+}
+
+LinkingResult LinkingNumber(const Chain& a, const Chain& b, const WritheStreamOptions& options) {
+  for (const auto& [c, name] : {std::pair<const Chain*, const char*>{&a, "A"}, {&b, "B"}}) {
+    internal::CheckWritheChain(*c, name);
+    if (!IsClosedChain(*c)) {
+      std::string msg = "linking number: chain ";
+      msg.append(name).append(
+          " is not closed (a closed chain has >= 4 points and repeats its first point as its "
+          "last, up to 1e-9 of its size); the linking number is defined only for closed curves");
+      throw std::invalid_argument(msg);
+    }
+  }
+  // Snap a last point within the closing gap onto the first (copies only then).
+  Chain snapped_a, snapped_b;
+  auto snap = [](const Chain& c, Chain* copy) -> const Chain& {
+    if (c.col(0) == c.col(c.cols() - 1)) return c;
+    *copy = c;
+    copy->col(c.cols() - 1) = c.col(0);
+    return *copy;
+  };
+  const Chain& ca = snap(a, &snapped_a);
+  const Chain& cb = snap(b, &snapped_b);
+  WritheStreamOptions o = options;
+  o.writhe.variant = WritheVariant::kSigned;
+  o.row_sums = false;
+  const WritheSums s = StreamWritheSums(ca, cb, o);
+  LinkingResult r;
+  r.gauss_integral = s.total;
+  r.error_bound = s.error_bound;
+  const double nearest = std::nearbyint(s.total);
+  r.distance = std::abs(s.total - nearest);
+  r.linking_number = static_cast<long long>(nearest);
+  r.degenerate_pairs = s.degenerate_pairs;
+  r.segments_a = s.rows;
+  r.segments_b = s.cols;
+  if (s.degenerate_pairs > 0) {
+    r.status = LinkingStatus::kTouching;
+  } else if (!(s.error_bound < 0.5)) {
+    r.status = LinkingStatus::kUncertain;
+  } else if (r.distance > s.error_bound) {
+    r.status = LinkingStatus::kNotInteger;
+  } else {
+    r.status = LinkingStatus::kCertified;
+  }
+  return r;
+}
+
+}  // namespace topology
