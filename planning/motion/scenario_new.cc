@@ -210,6 +210,34 @@ NewScenario MakeNewScenario(const std::string& urdf, const NewScenarioOptions& o
       ring_radius = std::max(ring_radius, lp.col(k).norm());
   }
 
+  // Goal and start keep the arm's revolute joints 0.1 rad inside their limits (a planner's soft
+  // limit terms need room); fingers and prismatic joints are not held to it.
+  const auto AwayFromLimits = [&](const Eigen::VectorXd& q) {
+    for (int k : arm.arm_dofs) {
+      const Joint& joint = robot.joints[robot.dof_joints[k]];
+      if (joint.type == JointType::kPrismatic) continue;
+      const double room = std::min(0.1, 0.25 * (upper[k] - lower[k]));
+      if (q[k] < lower[k] + room || q[k] > upper[k] - room) return false;
+    }
+    return true;
+  };
+  // Link pairs that touch in the start pose (no SRDF, or one that misses them) are disabled, as
+  // MoveIt's set-up assistant disables pairs in collision by default; written to the file.
+  CollisionOptions collision_options = scene.collision_options;
+  std::vector<std::pair<std::string, std::string>> touching;
+  {
+    CollisionData self(robot, Environment{}, collision_options);
+    const CollisionReport report = CheckCollisions(robot, kin, &self, 1000);
+    for (const ProximityPair& p : report.pairs) {
+      touching.emplace_back(robot.links[p.link_a].name, robot.links[p.link_b].name);
+      collision_options.disabled_pairs.push_back(touching.back());
+    }
+    if (!touching.empty()) {
+      out.notes.push_back(
+          std::to_string(touching.size()) +
+          " link pair(s) touch in the start pose: disabled (collision.disabled_pairs)");
+    }
+  }
   IkData ik_data(robot);
   IkOptions ik_options;
   ik_options.starts = 24;
@@ -253,7 +281,7 @@ NewScenario MakeNewScenario(const std::string& urdf, const NewScenarioOptions& o
         pose.linear() = ring_rot;
         AddObject(ring, pose, "ring", &env);
       }
-      CollisionData coll(robot, env, scene.collision_options);
+      CollisionData coll(robot, env, collision_options);
       KinematicsData k(robot);
       ForwardKinematics(robot, q0, &k);
       tried.append(tried.empty() ? "" : "; ").append(placement.what);
@@ -273,6 +301,7 @@ NewScenario MakeNewScenario(const std::string& urdf, const NewScenarioOptions& o
       problem.seed = q0;
       problem.frozen_dofs = arm.other_dofs;
       ik_options.is_valid = [&](const Eigen::VectorXd& q) {
+        if (!AwayFromLimits(q)) return false;
         ForwardKinematics(robot, q, &k);
         if (InCollision(robot, k, &coll)) return false;
         return o.task != "ring" || ChainThroughLoop(chain_points(k), loop_points);
@@ -287,6 +316,27 @@ NewScenario MakeNewScenario(const std::string& urdf, const NewScenarioOptions& o
       out.ring_center = center;
       out.notes.push_back("ring placed " + placement.what);
       found = true;
+      // The start: the hand in front of the ring on its axis (tool 0.1 m + its length before the
+      // ring's plane, same approach), reached from the goal by IK; a planner then moves the hand
+      // on along its axis through the ring. Kept only if collision-free and not yet through.
+      for (double standoff : {0.6 * hand_size + 0.1, 0.3 * hand_size + 0.05, 0.05}) {
+        if (o.task != "ring") break;
+        IkProblem before = problem;
+        before.targets[0].position = center - d * standoff;
+        before.seed = r.q;
+        ik_options.is_valid = [&](const Eigen::VectorXd& q) {
+          if (!AwayFromLimits(q)) return false;
+          ForwardKinematics(robot, q, &k);
+          return !InCollision(robot, k, &coll) && !ChainThroughLoop(chain_points(k), loop_points);
+        };
+        const IkResult pre = SolveIk(robot, before, ik_options, &ik_data);
+        if (pre.status != IkStatus::kSolved) continue;
+        out.start_q = pre.q;
+        out.notes.push_back("start: the tool " +
+                            base::FormatShortest(std::round(standoff * 1e3) / 1e3) +
+                            " m in front of the ring (inverse kinematics)");
+        break;
+      }
       break;
     }
   }
@@ -324,6 +374,14 @@ NewScenario MakeNewScenario(const std::string& urdf, const NewScenarioOptions& o
   for (const auto& [link, xyz] : chain)
     points.push_back({{"link", robot.links[link].name}, {"xyz", Vec(xyz)}});
   j["robot_chains"] = Json::array({{{"name", "hand"}, {"points", points}}});
+  if (!touching.empty()) {
+    j["// collision"] =
+        "link pairs in contact in the start pose, never checked (as MoveIt's "
+        "set-up assistant disables them); remove a pair to check it";
+    Json pairs = Json::array();
+    for (const auto& [a, b] : touching) pairs.push_back(Json::array({a, b}));
+    j["collision"] = {{"disabled_pairs", pairs}};
+  }
   if (o.task == "ring") {
     j["// objects"] =
         "the ring: move it with xyz (its axis along x by rpy); the goal below follows"
@@ -335,7 +393,12 @@ NewScenario MakeNewScenario(const std::string& urdf, const NewScenarioOptions& o
                                  {"capsules", {{"chain", "loop"}, {"radius", 0.012}}}}});
     j["writhe_report"] = {{"chain", "hand"}, {"object", "ring"}, {"object_chain", "loop"}};
   }
-  if (scene.srdf && !scene.srdf->poses.empty() && !start_moved) {
+  if (out.start_q.size() > 0) {
+    j["// start"] =
+        "the hand in front of the ring, found by inverse kinematics; or {\"pose\": "
+        "NAME} for an SRDF group_state";
+    j["start"] = {{"q", QJson(out.start_q)}};
+  } else if (scene.srdf && !scene.srdf->poses.empty() && !start_moved) {
     j["start"] = {{"pose", scene.srdf->poses.front().name}};
   } else {
     j["start"] = {{"q", QJson(q0)}};

@@ -16,7 +16,10 @@
 //            arm joint to the hand, or to the centroid of the hand's subtree), L = the hand's
 //            size, at least 0.05 m.
 //   chain    "hand": the origins of the last three arm links, the hand and the tool point.
-//   start    the SRDF's first group_state, else zeros moved into the limits (DefaultQ).
+//   start    "ring": the hand in front of the ring on its axis (tool 0.1 m + 0.6 × its length
+//            before the ring's plane), by IK from the goal, collision-free and not yet through;
+//            "reach" (or when that fails): the SRDF's first group_state, else zeros moved into
+//            the limits (DefaultQ).
 //   ring     assets/objects/ring.urdf (or --object), its axis along the base's +x, in front of the
 //            first arm joint: candidates at 35–65 % of the arm's reach and three heights, the
 //            first where IK puts the tool through the ring, collision-free, with the hand chain
@@ -51,6 +54,8 @@ struct NewScenario {
   Eigen::Vector3d tool_target = Eigen::Vector3d::Zero();  // world, m
   Eigen::Vector3d ring_center = Eigen::Vector3d::Zero();  // world, m ("ring" only)
   Eigen::VectorXd goal_q;                                 // the IK goal, q order
+  // The start (q order): "ring", the hand in front of the ring by IK; empty: the default pose.
+  Eigen::VectorXd start_q;
   std::vector<std::string> notes;  // what was chosen and why (printed by the command)
 };
 

@@ -1,6 +1,7 @@
 // `scenario new` (MakeNewScenario): for robots the project does not ship — made here from
-// published dimensions — and for tinyarm, the written scenario loads, and a planner takes the hand
-// chain through the ring with no edits.
+// published dimensions (a UR5-like 6-DOF arm, the same with limits that exclude zero, a
+// Panda-like 7-DOF arm with a prismatic two-finger gripper) — and for tinyarm, the written
+// scenario loads, and AICO and BiRRT take the hand chain through the ring with no edits.
 #include "planning/motion/scenario_new.h"
 
 #include <gtest/gtest.h>
@@ -64,6 +65,53 @@ std::string UrLikeArm(double lower2) {
   return u.append("</robot>\n");
 }
 
+// A 7-DOF arm with the Franka Panda's published kinematics (joint origins and limits of its
+// datasheet: d1 0.333, d3 0.316, a4 0.0825, a5 −0.0825, d5 0.384, a7 0.088, flange 0.107 m;
+// joint 4 in [−3.0718, −0.0698], so zero lies outside its limits) and a prismatic two-finger
+// gripper (0–0.04 m each); links as spheres of radius 0.045 at the joint frames.
+std::string PandaLikeArm() {
+  struct J {
+    const char* xyz;
+    const char* rpy;
+    double lo, hi;
+  };
+  const J joints[7] = {{"0 0 0.333", "0 0 0", -2.8973, 2.8973},
+                       {"0 0 0", "-1.5707963 0 0", -1.7628, 1.7628},
+                       {"0 -0.316 0", "1.5707963 0 0", -2.8973, 2.8973},
+                       {"0.0825 0 0", "1.5707963 0 0", -3.0718, -0.0698},
+                       {"-0.0825 0.384 0", "-1.5707963 0 0", -2.8973, 2.8973},
+                       {"0 0 0", "1.5707963 0 0", -0.0175, 3.7525},
+                       {"0.088 0 0", "1.5707963 0 0", -2.8973, 2.8973}};
+  std::string u =
+      "<robot name=\"pandalike\">\n<link name=\"l0\"><collision><geometry><sphere "
+      "radius=\"0.06\"/></geometry></collision></link>\n";
+  for (int i = 0; i < 7; ++i) {
+    const std::string n = std::to_string(i + 1), parent = std::to_string(i);
+    u.append("<link name=\"l").append(n).append("\"><collision><geometry><sphere radius=");
+    u.append("\"0.045\"/></geometry></collision></link>\n<joint name=\"j").append(n);
+    u.append("\" type=\"revolute\"><parent link=\"l").append(parent).append("\"/><child link=");
+    u.append("\"l").append(n).append("\"/><origin xyz=\"").append(joints[i].xyz);
+    u.append("\" rpy=\"").append(joints[i].rpy).append("\"/><axis xyz=\"0 0 1\"/><limit ");
+    u.append("lower=\"").append(std::to_string(joints[i].lo)).append("\" upper=\"");
+    u.append(std::to_string(joints[i].hi)).append("\" effort=\"1\" velocity=\"1\"/></joint>\n");
+  }
+  u.append("<link name=\"hand\"><collision><origin xyz=\"0 0 0.03\"/><geometry><box size=\"0.05 ");
+  u.append("0.18 0.05\"/></geometry></collision></link>\n<joint name=\"hand_joint\" type=\"fixed");
+  u.append("\"><parent link=\"l7\"/><child link=\"hand\"/><origin xyz=\"0 0 0.107\" rpy=\"0 0 ");
+  u.append("-0.7853982\"/></joint>\n");
+  for (const char* side : {"left", "right"}) {
+    const bool left = side[0] == 'l';
+    u.append("<link name=\"finger_").append(side).append("\"><collision><origin xyz=\"0 ");
+    u.append(left ? "0.01" : "-0.01").append(" 0.025\"/><geometry><box size=\"0.02 0.015 0.05\"/>");
+    u.append("</geometry></collision></link>\n<joint name=\"finger_").append(side);
+    u.append("_joint\" type=\"prismatic\"><parent link=\"hand\"/><child link=\"finger_");
+    u.append(side).append("\"/><origin xyz=\"0 0 0.0584\"/><axis xyz=\"0 ");
+    u.append(left ? "1" : "-1").append(" 0\"/><limit lower=\"0\" upper=\"0.04\" effort=\"1\" ");
+    u.append("velocity=\"1\"/></joint>\n");
+  }
+  return u.append("</robot>\n");
+}
+
 void ExpectPlans(const std::string& urdf, const std::string& name, bool aico_too) {
   NewScenarioOptions o;
   const NewScenario made = MakeNewScenario(urdf, o);
@@ -88,11 +136,15 @@ TEST(ScenarioNew, TinyarmRingPlansWithAicoAndBiRrt) {
 }
 
 TEST(ScenarioNew, UrLikeArmFromPublishedDimensions) {
-  ExpectPlans(TempFile("urlike.urdf", UrLikeArm(-3.1)), "urlike", false);
+  ExpectPlans(TempFile("urlike.urdf", UrLikeArm(-3.1)), "urlike", true);
 }
 
 TEST(ScenarioNew, ArmWhoseLimitsExcludeZero) {
-  ExpectPlans(TempFile("urlike_offzero.urdf", UrLikeArm(0.3)), "urlike_offzero", false);
+  ExpectPlans(TempFile("urlike_offzero.urdf", UrLikeArm(0.3)), "urlike_offzero", true);
+}
+
+TEST(ScenarioNew, PandaLikeArmWithAPrismaticGripper) {
+  ExpectPlans(TempFile("pandalike.urdf", PandaLikeArm()), "pandalike", true);
 }
 
 TEST(ScenarioNew, ARobotWithoutAnArmIsRefused) {
