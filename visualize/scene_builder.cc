@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 
+#include "base/assets.h"
 #include "base/json_reader.h"
 
 namespace visualize {
@@ -342,6 +343,10 @@ SceneDocument RobotSceneDocument(const std::string& path, const std::string& q_t
   SceneDocument doc;
   doc.warnings = std::move(warnings);
   doc.scene = BuildRobotScene(rs.robot, kin, rs.env, options, &cache);
+  // A planning scenario: its "box" tasks, as plan frames and the viewer draw them.
+  if (rs.document.is_object() && rs.document.contains("tasks")) {
+    AddTaskBoxes(planning::ParseScenarioSpec(path, {base::AssetRoot()}), &doc.scene);
+  }
   doc.camera = FrameSceneCamera(doc.scene);
   if (rs.document.is_object() && rs.document.contains("camera")) {
     doc.camera = ParseCameraJson(rs.document["camera"], path, "camera");

@@ -80,6 +80,15 @@ TEST(OwnRobot, Step6RenderAFrame) {
                                                          "", "ready", planning::RobotInputOptions{});
   const render::Image image = renderer.Render(doc.scene, doc.camera, 96, 72, {});
   EXPECT_EQ(image.width, 96);
+  // The scenario's box task is drawn (as in plan frames): one box more than the robot alone.
+  const auto boxes = [](const render::Scene& scene) {
+    int n = 0;
+    for (const render::Shape& shape : scene.shapes) n += shape.kind == render::Shape::Kind::kBox;
+    return n;
+  };
+  const visualize::SceneDocument robot_only = visualize::RobotSceneDocument(
+      AssetFile("robots/tinyarm/urdf/tinyarm.urdf"), "", "ready", planning::RobotInputOptions{});
+  EXPECT_EQ(boxes(doc.scene), boxes(robot_only.scene) + 1);
   // Something is drawn: not every pixel equals the first.
   bool varied = false;
   for (size_t i = 4; i < image.rgba.size() && !varied; i += 4)
