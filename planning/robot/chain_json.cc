@@ -42,8 +42,17 @@ ChainSpec ResolveChain(const ChainDescription& chain, const Robot& robot) {
       if (names[l] == chain.links[k]) index = static_cast<int>(l);
     }
     if (index < 0) {
+      std::string hint = base::DidYouMean(chain.links[k], names);
+      if (hint.empty()) {  // nothing close: list the links (at most 40)
+        hint = " (links: ";
+        for (size_t l = 0; l < names.size() && l < 40; ++l)
+          hint.append(l ? ", " : "").append(names[l]);
+        if (names.size() > 40)
+          hint.append(", ... (").append(std::to_string(names.size() - 40)).append(" more)");
+        hint.append(")");
+      }
       throw std::invalid_argument(chain.link_where[k] + ": unknown link '" + chain.links[k] + "'" +
-                                  base::DidYouMean(chain.links[k], names));
+                                  hint);
     }
     spec.point_link.push_back(index);
   }

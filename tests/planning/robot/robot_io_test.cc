@@ -247,7 +247,8 @@ TEST(RobotIoErrors, ChainSidecarErrorsNameTheJsonPath) {
     LoadChains(path, &robot);
     ADD_FAILURE();
   } catch (const std::invalid_argument& e) {
-    EXPECT_THAT(e.what(), HasSubstr("chains[0].points[1].link: unknown link 'nolink'"));
+    EXPECT_THAT(e.what(),
+                HasSubstr("chains[0].points[1].link: unknown link 'nolink' (links: box)"));
   }
 }
 
