@@ -56,7 +56,8 @@ case "$cmd" in
         planning_aico_step_test planning_rrt_step_test planning_feature_test
         planning_scenario_test planning_grasp_test grasp_quality_test planning_success_test
         planning_replan_test grasp_simulation_test stability_step_test hand_builder_test
-        human_hand_test grasp_trials_test)
+        human_hand_test grasp_trials_test exact_confirm_test freeze_test
+        planning_robot_collection_test)
       cmake --build "$ASAN_BUILD_DIR" -j "$JOBS" --target "${sanitized[@]}"
       echo "run.sh: sanitizer build took $((SECONDS - sanitize_start)) s"
       # JOBS programs at a time, each one's output in ASAN_BUILD_DIR/sanitized-logs. Leak checking
