@@ -1,5 +1,6 @@
 // `topoplan ik`: joint values that put a point of a link at a world position (and a link axis
 // along a world direction), by planning/robot/ik.h.
+#include <algorithm>
 #include <cstdio>
 #include <iostream>
 #include <memory>
@@ -90,10 +91,30 @@ int RunIk(const IkArgs& a) {
   if (!a.axis.empty()) target.axis = ParseAxis(a.axis);
   problem.targets.push_back(target);
   // The start: --q / --pose, else what `fk` shows without them (moved into the limits by SolveIk).
-  problem.seed = planning::ChooseQ(scene, a.q, a.pose, &warnings);
-  problem.frozen_dofs =
-      ParseFlag("--frozen", [&] { return planning::DofIndices(robot, SplitNames(a.frozen)); });
+  std::vector<std::string> notes = scene.notes;
+  problem.seed = planning::ChooseQ(scene, a.q, a.pose, &warnings, &notes);
+  // --frozen: joint names, or SRDF group names (e.g. "gripper": every joint the group moves).
+  problem.frozen_dofs = ParseFlag("--frozen", [&] {
+    std::vector<int> dofs;
+    std::vector<std::string> joints;
+    for (const std::string& name : SplitNames(a.frozen)) {
+      bool group = false;
+      if (scene.srdf) {
+        for (const planning::SrdfGroup& g : scene.srdf->groups) group = group || g.name == name;
+      }
+      if (!group) {
+        joints.push_back(name);
+        continue;
+      }
+      for (int k : planning::GroupDofs(robot, *scene.srdf, name)) dofs.push_back(k);
+    }
+    for (int k : planning::DofIndices(robot, joints)) dofs.push_back(k);
+    std::sort(dofs.begin(), dofs.end());
+    dofs.erase(std::unique(dofs.begin(), dofs.end()), dofs.end());
+    return dofs;
+  });
   ReportWarnings(warnings);
+  ReportNotes(notes);
 
   planning::IkOptions options;
   options.starts = a.starts;
@@ -167,7 +188,8 @@ void AddIkCommand(CLI::App* root, CommandList* commands) {
                  "into them); --frozen joints keep it");
   AddRobotInputFlags(ik, &a->input, &a->pose);
   ik->add_option("--frozen", a->frozen,
-                 "joints held at their start value, comma-separated names (e.g. the fingers)");
+                 "joints held at their start value, comma-separated joint names or SRDF group "
+                 "names (e.g. gripper)");
   IntIn(ik->add_option("--starts", a->starts,
                        "starts: the start configuration, then random ones in the limits "
                        "(default 8)"),
