@@ -225,20 +225,6 @@ bool IsClosedChain(const Chain& c) {
   return (c.col(c.cols() - 1) - c.col(0)).norm() <= kClosedGap * size;
 }
 
-const char* LinkingStatusName(LinkingStatus s) {
-  switch (s) {
-    case LinkingStatus::kCertified:
-      return "certified";
-    case LinkingStatus::kNotInteger:
-      return "not_integer";
-    case LinkingStatus::kTouching:
-      return "touching";
-    case LinkingStatus::kUncertain:
-      break;
-  }
-  return "uncertain";
-}
-
 LinkingResult LinkingNumber(const Chain& a, const Chain& b, const WritheStreamOptions& options) {
   for (const auto& [c, name] : {std::pair<const Chain*, const char*>{&a, "A"}, {&b, "B"}}) {
     internal::CheckWritheChain(*c, name);

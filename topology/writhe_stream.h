@@ -23,7 +23,9 @@
 
 #include <Eigen/Core>
 #include <functional>
+#include <span>
 
+#include "base/enum_names.h"
 #include "topology/polyline.h"
 #include "topology/writhe.h"
 
@@ -80,7 +82,15 @@ enum class LinkingStatus {
   kTouching,    // some segment pairs touch or cross (degenerate_pairs > 0): not defined
   kUncertain,   // B ≥ 1/2: the bound cannot single out one integer
 };
-const char* LinkingStatusName(LinkingStatus s);  // "certified", "not_integer", ...
+inline constexpr base::EnumName<LinkingStatus> kLinkingStatusNames[] = {
+    {LinkingStatus::kCertified, "certified"},
+    {LinkingStatus::kNotInteger, "not_integer"},
+    {LinkingStatus::kTouching, "touching"},
+    {LinkingStatus::kUncertain, "uncertain"}};
+constexpr std::span<const base::EnumName<LinkingStatus>> EnumNames(LinkingStatus) {
+  return kLinkingStatusNames;
+}
+inline const char* LinkingStatusName(LinkingStatus s) { return base::ToName(s); }
 
 struct LinkingResult {
   double gauss_integral = 0.0;   // T

@@ -22,7 +22,8 @@ namespace {
 using Json = nlohmann::ordered_json;
 
 struct IkArgs {
-  std::string urdf, link, position, offset, axis, q, pose, frozen;
+  std::string urdf, link, position, offset, axis, q, pose;
+  std::vector<std::string> frozen;
   planning::RobotInputOptions input;
   int starts = 8, iterations = 200;
   long long seed = 0;
@@ -59,17 +60,6 @@ planning::IkAxis ParseAxis(const std::string& text) {
   return axis;
 }
 
-std::vector<std::string> SplitNames(const std::string& text) {
-  std::vector<std::string> out;
-  size_t start = 0;
-  while (start <= text.size()) {
-    const size_t comma = std::min(text.find(',', start), text.size());
-    if (comma > start) out.push_back(text.substr(start, comma - start));
-    start = comma + 1;
-  }
-  return out;
-}
-
 std::string QText(const Eigen::VectorXd& q) {
   std::string out;
   for (int k = 0; k < q.size(); ++k) {
@@ -97,7 +87,7 @@ int RunIk(const IkArgs& a) {
   problem.frozen_dofs = ParseFlag("--frozen", [&] {
     std::vector<int> dofs;
     std::vector<std::string> joints;
-    for (const std::string& name : SplitNames(a.frozen)) {
+    for (const std::string& name : a.frozen) {
       bool group = false;
       if (scene.srdf) {
         for (const planning::SrdfGroup& g : scene.srdf->groups) group = group || g.name == name;
@@ -189,7 +179,8 @@ void AddIkCommand(CLI::App* root, CommandList* commands) {
   AddRobotInputFlags(ik, &a->input, &a->pose);
   ik->add_option("--frozen", a->frozen,
                  "joints held at their start value, comma-separated joint names or SRDF group "
-                 "names (e.g. gripper)");
+                 "names (e.g. gripper)")
+      ->delimiter(',');
   IntIn(ik->add_option("--starts", a->starts,
                        "starts: the start configuration, then random ones in the limits "
                        "(default 8)"),

@@ -44,18 +44,6 @@ struct CheckArgs {
   int max_pairs = 100;
 };
 
-const char* BaseTypeName(planning::BaseType t) {
-  switch (t) {
-    case planning::BaseType::kFloating:
-      return "floating";
-    case planning::BaseType::kPlanar:
-      return "planar";
-    case planning::BaseType::kFixed:
-      break;
-  }
-  return "fixed";
-}
-
 // x, y, z, qx, qy, qz, qw of a pose.
 std::vector<double> PoseValues(const Eigen::Isometry3d& t) {
   const Eigen::Quaterniond r(t.linear());
@@ -81,13 +69,6 @@ void PlaceBase(planning::RobotScene* scene, const std::string& base, const std::
   if (named.empty() && q.empty() && !scene->q_given && scene->srdf && !scene->srdf->poses.empty())
     named = scene->srdf->poses.front().name;
   scene->robot.world_from_root = planning::ChooseBase(*scene, base, named);
-}
-
-std::string PairName(const planning::RobotScene& s, const planning::Environment& env,
-                     const planning::ProximityPair& p) {
-  const std::string a = s.robot.links[p.link_a].name;
-  if (p.object >= 0) return a + " vs object '" + env.objects[p.object].name + "'";
-  return a + " vs " + s.robot.links[p.link_b].name;
 }
 
 Json PairJson(const planning::RobotScene& s, const planning::Environment& env,
@@ -247,7 +228,7 @@ void AddRobotCommands(CLI::App* root, CommandList* commands) {
            out["robot"] = scene.robot.name;
            out["joints"] = planning::DofNames(scene.robot);
            out["q"] = std::vector<double>(scene.q.data(), scene.q.data() + scene.q.size());
-           out["base_type"] = BaseTypeName(scene.robot.base_type);
+           out["base_type"] = base::ToName(scene.robot.base_type);
            out["base"] = PoseValues(scene.robot.world_from_root);
            out["in_collision"] = report.in_collision;
            Json list = Json::array();
@@ -275,7 +256,7 @@ void AddRobotCommands(CLI::App* root, CommandList* commands) {
            std::string verdict = "collision-free";
            if (report.in_collision) {
              verdict = "IN COLLISION (";
-             verdict.append(PairName(scene, env, report.pairs.front())).append(")");
+             verdict.append(planning::PairName(scene.robot, env, report.pairs.front())).append(")");
              if (report.pairs.size() > 1) {
                verdict.append(", ").append(std::to_string(report.pairs.size()));
                verdict.append(" colliding pairs");
@@ -283,25 +264,26 @@ void AddRobotCommands(CLI::App* root, CommandList* commands) {
            }
            std::printf("%s: %s\n", scene.robot.name.c_str(), verdict.c_str());
            if (free_base || !ca->base.empty()) {
-             std::printf("base (%s%s%s): %s\n", BaseTypeName(scene.robot.base_type),
+             std::printf("base (%s%s%s): %s\n", base::ToName(scene.robot.base_type),
                          scene.robot.base_joint.empty() ? "" : ", joint ",
                          scene.robot.base_joint.c_str(),
                          PoseText(scene.robot.world_from_root).c_str());
            }
            if (report.pairs.size() > 1) {
              for (const planning::ProximityPair& p : report.pairs)
-               std::printf("  colliding: %s\n", PairName(scene, env, p).c_str());
+               std::printf("  colliding: %s\n", planning::PairName(scene.robot, env, p).c_str());
            }
            for (const planning::ProximityPair& p : report.hull_only) {
              std::printf("  hull-only (convex hulls overlap, meshes do not): %s\n",
-                         PairName(scene, env, p).c_str());
+                         planning::PairName(scene.robot, env, p).c_str());
            }
            if (want_distance && std::isfinite(min_distance)) {
              std::printf("minimum distance %.6f m (%s)\n", min_distance,
-                         PairName(scene, env, closest).c_str());
+                         planning::PairName(scene.robot, env, closest).c_str());
            }
            for (const planning::ProximityPair& p : near) {
-             std::printf("  %-50s %+.6f m\n", PairName(scene, env, p).c_str(), p.distance);
+             std::printf("  %-50s %+.6f m\n", planning::PairName(scene.robot, env, p).c_str(),
+                         p.distance);
            }
            std::printf("narrow-phase calls: %lld\n",
                        static_cast<long long>(coll.narrow_phase_calls));

@@ -29,18 +29,6 @@ std::string Shown(const std::string& path, const std::string& root) {
   return rel.empty() || *rel.begin() == ".." ? path : rel.string();
 }
 
-const char* StatusName(planning::CollectionStatus s) {
-  switch (s) {
-    case planning::CollectionStatus::kLoaded:
-      return "loaded";
-    case planning::CollectionStatus::kNoUrdf:
-      return "no-urdf";
-    case planning::CollectionStatus::kRefused:
-      break;
-  }
-  return "refused";
-}
-
 const char* Verdict(const planning::CollectionPose& p) {
   if (!p.error.empty()) return "error";
   return p.in_collision ? "collision" : "free";
@@ -62,7 +50,7 @@ Json RowJson(const planning::CollectionRow& r, const std::string& root, bool tim
   j["urdf"] = r.robot.urdf.empty() ? Json(nullptr) : Json(Shown(r.robot.urdf, root));
   j["srdf"] = r.robot.srdf.empty() ? Json(nullptr) : Json(Shown(r.robot.srdf, root));
   j["paired_by"] = r.robot.paired_by.empty() ? Json(nullptr) : Json(r.robot.paired_by);
-  j["status"] = StatusName(r.status);
+  j["status"] = base::ToName(r.status);
   if (r.status != planning::CollectionStatus::kLoaded) j["reason"] = r.reason;
   if (r.status == planning::CollectionStatus::kLoaded) {
     j["name"] = r.name;
@@ -92,7 +80,7 @@ Json RowJson(const planning::CollectionRow& r, const std::string& root, bool tim
 
 void PrintRow(const planning::CollectionRow& r, const std::string& root, bool times) {
   const std::string file = r.robot.urdf.empty() ? r.robot.srdf : r.robot.urdf;
-  std::printf("%-60s %-8s", Shown(file, root).c_str(), StatusName(r.status));
+  std::printf("%-60s %-8s", Shown(file, root).c_str(), base::ToName(r.status));
   if (r.status != planning::CollectionStatus::kLoaded) {
     std::printf(" %s\n", ShortReason(r.reason, file).c_str());
     return;

@@ -272,6 +272,16 @@ Robot MakePrimitiveObject(const std::string& name, const Geometry& geometry) {
   return r;
 }
 
+std::string PairName(const Robot& robot, const Environment& env, const ProximityPair& pair) {
+  if (pair.link_a < 0) return "";
+  std::string name = robot.links[pair.link_a].name;
+  if (pair.object >= 0) {
+    return name.append(" vs object '").append(env.objects[pair.object].name).append("'");
+  }
+  if (pair.link_b >= 0) name.append(" vs ").append(robot.links[pair.link_b].name);
+  return name;
+}
+
 int FindObject(const Environment& env, const std::string& name) {
   for (size_t i = 0; i < env.objects.size(); ++i) {
     if (env.objects[i].name == name) return static_cast<int>(i);

@@ -127,6 +127,10 @@ struct ProximityPair {
   Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();
 };
 
+// "LINK_A vs LINK_B" for a self pair, "LINK_A vs object 'NAME'" for an environment pair; "" for
+// an unset pair (link_a < 0). For messages and reports.
+std::string PairName(const Robot& robot, const Environment& env, const ProximityPair& pair);
+
 // Boolean check of the configuration in `kin` (ForwardKinematics must have been called): robot vs
 // environment and non-adjacent self pairs. Stops at the first colliding shape pair; if `hit` is
 // not null it receives that pair (distance/points unset). Counts one query and every narrow-phase

@@ -204,9 +204,7 @@ CollectionRow CheckCollectionRobot(const CollectionRobot& robot, const Collectio
     row.links = static_cast<int>(scene.robot.links.size());
     row.dofs = num_dofs(scene.robot);
     row.meshes = static_cast<int>(scene.robot.meshes.size());
-    row.base = scene.robot.base_type == BaseType::kFloating ? "floating"
-               : scene.robot.base_type == BaseType::kPlanar ? "planar"
-                                                            : "fixed";
+    row.base = base::ToName(scene.robot.base_type);
     row.warnings = scene.warnings;
     if (!scene.srdf) return row;
     if (row.robot.srdf.empty()) {  // found by the loader (FindSrdf), as `check` finds it
@@ -226,15 +224,11 @@ CollectionRow CheckCollectionRobot(const CollectionRobot& robot, const Collectio
         ForwardKinematics(scene.robot, q, &kin);
         const CollisionReport report =
             CheckCollisions(scene.robot, kin, &coll, std::max(options.max_pairs, 1));
-        const auto name = [&](const ProximityPair& p) {
-          std::string s = scene.robot.links[p.link_a].name;
-          s.append(" vs ");
-          s.append(p.object >= 0 ? env.objects[p.object].name : scene.robot.links[p.link_b].name);
-          return s;
-        };
         checked.in_collision = report.in_collision;
-        for (const ProximityPair& p : report.pairs) checked.pairs.push_back(name(p));
-        for (const ProximityPair& p : report.hull_only) checked.hull_only.push_back(name(p));
+        for (const ProximityPair& p : report.pairs)
+          checked.pairs.push_back(PairName(scene.robot, env, p));
+        for (const ProximityPair& p : report.hull_only)
+          checked.hull_only.push_back(PairName(scene.robot, env, p));
       } catch (const std::exception& e) {
         checked.error = e.what();
       }

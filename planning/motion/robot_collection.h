@@ -14,8 +14,11 @@
 // with status kNoUrdf.
 #pragma once
 
+#include <span>
 #include <string>
 #include <vector>
+
+#include "base/enum_names.h"
 
 namespace planning {
 
@@ -49,6 +52,13 @@ struct CollectionPose {
 };
 
 enum class CollectionStatus { kLoaded, kRefused, kNoUrdf };
+inline constexpr base::EnumName<CollectionStatus> kCollectionStatusNames[] = {
+    {CollectionStatus::kLoaded, "loaded"},
+    {CollectionStatus::kRefused, "refused"},
+    {CollectionStatus::kNoUrdf, "no-urdf"}};
+constexpr std::span<const base::EnumName<CollectionStatus>> EnumNames(CollectionStatus) {
+  return kCollectionStatusNames;
+}
 
 struct CollectionRow {
   CollectionRobot robot;

@@ -416,19 +416,8 @@ Eigen::VectorXd ChooseQ(const RobotScene& scene, const std::string& q_text, cons
 Eigen::Isometry3d ChooseBase(const RobotScene& scene, const std::string& base_text,
                              const std::string& pose) {
   if (!base_text.empty()) {
-    std::vector<double> values;
-    std::stringstream ss(base_text);
-    std::string item;
-    while (std::getline(ss, item, ',')) {
-      const std::optional<double> v = base::ParseFiniteDouble(item);
-      if (!v) {
-        throw std::invalid_argument("--base: '" + item +
-                                    "' is not a finite number (expected x,y,z or "
-                                    "x,y,z,qx,qy,qz,qw)");
-      }
-      values.push_back(*v);
-    }
-    return BasePoseFromValues(BaseType::kFloating, values, "--base");
+    return BasePoseFromValues(BaseType::kFloating, base::ParseNumberList(base_text, "--base"),
+                              "--base");
   }
   if (!pose.empty() && scene.srdf) {
     if (const auto base = NamedBasePose(scene.robot, *scene.srdf, pose)) return *base;

@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "base/assets.h"
-#include "base/numbers.h"
 #include "planning/motion/internal/scenario_build.h"
+#include "planning/motion/robot_scene.h"
 #include "planning/motion/scenario.h"
 #include "planning/motion/success.h"
 #include "planning/robot/kinematics.h"
@@ -129,9 +129,11 @@ void FreezeScenarioJoints(const Srdf* srdf, Scenario* s) {
     }
     if (!group) {
       std::string known;
-      for (const std::string& d : DofNames(robot)) known.append(known.empty() ? "" : ", ").append(d);
-      throw std::invalid_argument(sp.frozen_where + ": '" + name + "' is neither a joint of robot '" +
-                                  robot.name + "' (" + known + ") nor a group of its SRDF");
+      for (const std::string& d : DofNames(robot))
+        known.append(known.empty() ? "" : ", ").append(d);
+      throw std::invalid_argument(sp.frozen_where + ": '" + name +
+                                  "' is neither a joint of robot '" + robot.name + "' (" + known +
+                                  ") nor a group of its SRDF");
     }
     for (int k : GroupDofs(robot, *srdf, name)) dofs.insert(k);
   }
@@ -195,16 +197,12 @@ StartPose ResolveStart(const Scenario& s, const std::optional<double>& wrap_over
   // Planners start where the robot can be: a start outside the limits is refused (a coil start is
   // made inside them).
   if (start.kind != StartKind::kCoil) {
-    const Eigen::VectorXd lo = LowerLimits(s.robot), hi = UpperLimits(s.robot);
-    const std::vector<std::string> names = DofNames(s.robot);
-    for (int k = 0; k < n; ++k) {
-      if (out.q0[k] >= lo[k] - 1e-6 && out.q0[k] <= hi[k] + 1e-6) continue;
-      std::string what = start.kind == StartKind::kZero ? "start (none given: zeros)" : start.where;
-      what.append("[").append(std::to_string(k)).append("] (").append(names[k]).append("): ");
-      what.append(base::FormatShortest(out.q0[k])).append(" is outside the joint limits [");
-      what.append(base::FormatShortest(lo[k])).append(", ").append(base::FormatShortest(hi[k]));
-      what.append("]; a plan must start inside them");
-      throw std::invalid_argument(what);
+    const std::string where =
+        start.kind == StartKind::kZero ? "start (none given: zeros)" : start.where;
+    try {
+      CheckJointValues(s.robot, out.q0, where);
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument(std::string(e.what()) + "; a plan must start inside them");
     }
   }
   return out;

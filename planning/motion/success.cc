@@ -56,15 +56,6 @@ std::string LimitDetail(const Robot& robot, int k, double value) {
   return d;
 }
 
-// "LINK vs LINK" or "LINK vs object 'NAME'".
-std::string PairDetail(const Robot& robot, const Environment& env, const ProximityPair& p) {
-  if (p.link_a < 0) return "";
-  std::string d = robot.links[p.link_a].name;
-  if (p.object >= 0) return d.append(" vs object '").append(env.objects[p.object].name).append("'");
-  if (p.link_b >= 0) d.append(" vs ").append(robot.links[p.link_b].name);
-  return d;
-}
-
 }  // namespace
 
 PlanVerdict JudgePlan(const Scenario& s, const ScenarioState& w, const Trajectory& path,
@@ -102,7 +93,7 @@ PlanVerdict JudgePlan(const Scenario& s, const ScenarioState& w, const Trajector
     ForwardKinematics(s.robot, q, &kin);
     ProximityPair hit;
     if (InCollision(s.robot, kin, &coll, &hit)) {
-      if (v.reason == FailureReason::kNone) v.detail = PairDetail(s.robot, w.env, hit);
+      if (v.reason == FailureReason::kNone) v.detail = PairName(s.robot, w.env, hit);
       fail(FailureReason::kCollision, k);
       v.collision_free = false;
       v.min_clearance_m = std::min(v.min_clearance_m, 0.0);

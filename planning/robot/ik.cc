@@ -170,18 +170,6 @@ void StartConfiguration(const Robot& robot, const Eigen::VectorXd& seed, int s, 
 
 }  // namespace
 
-const char* IkStatusName(IkStatus status) {
-  switch (status) {
-    case IkStatus::kSolved:
-      return "solved";
-    case IkStatus::kInvalid:
-      return "invalid";
-    case IkStatus::kNotReached:
-      break;
-  }
-  return "not_reached";
-}
-
 IkData::IkData(const Robot& robot)
     : kin(robot),
       lower(LowerLimits(robot)),

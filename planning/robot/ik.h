@@ -27,9 +27,11 @@
 #include <cstdint>
 #include <functional>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
+#include "base/enum_names.h"
 #include "planning/robot/kinematics.h"
 #include "planning/robot/robot.h"
 
@@ -83,7 +85,12 @@ enum class IkStatus {
   kNotReached,  // no start reached the targets: q is the start with the lowest ½‖e‖²
   kInvalid,     // some start reached the targets, but is_valid rejected every such q (q: the first)
 };
-const char* IkStatusName(IkStatus status);  // "solved", "not_reached", "invalid"
+inline constexpr base::EnumName<IkStatus> kIkStatusNames[] = {
+    {IkStatus::kSolved, "solved"},
+    {IkStatus::kNotReached, "not_reached"},
+    {IkStatus::kInvalid, "invalid"}};
+constexpr std::span<const base::EnumName<IkStatus>> EnumNames(IkStatus) { return kIkStatusNames; }
+inline const char* IkStatusName(IkStatus status) { return base::ToName(status); }
 
 struct IkResult {
   IkStatus status = IkStatus::kNotReached;

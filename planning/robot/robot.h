@@ -20,8 +20,11 @@
 #include <Eigen/Geometry>
 #include <array>
 #include <limits>
+#include <span>
 #include <string>
 #include <vector>
+
+#include "base/enum_names.h"
 
 namespace planning {
 
@@ -31,6 +34,9 @@ enum class JointType { kFixed, kRevolute, kContinuous, kPrismatic };
 // floating/planar joint below the root link, or an SRDF virtual_joint of that type): its pose is
 // not part of q (planners keep it where it is); Robot::world_from_root places the robot.
 enum class BaseType { kFixed, kFloating, kPlanar };
+inline constexpr base::EnumName<BaseType> kBaseTypeNames[] = {
+    {BaseType::kFixed, "fixed"}, {BaseType::kFloating, "floating"}, {BaseType::kPlanar, "planar"}};
+constexpr std::span<const base::EnumName<BaseType>> EnumNames(BaseType) { return kBaseTypeNames; }
 
 // Joint limits. Continuous and fixed joints have lower = −∞, upper = +∞.
 struct JointLimits {
@@ -138,8 +144,7 @@ Eigen::VectorXd UpperLimits(const Robot& robot);
 // motion at that value (origin · Rot(axis, v) or origin · Trans(axis · v)); the other dofs keep
 // their order and are renumbered. Returns, for each dof of the new robot, its index in the old q.
 // Throws std::invalid_argument for an index out of range or a q of the wrong size.
-std::vector<int> FreezeDofs(const std::vector<int>& frozen, const Eigen::VectorXd& q,
-                            Robot* robot);
+std::vector<int> FreezeDofs(const std::vector<int>& frozen, const Eigen::VectorXd& q, Robot* robot);
 
 // True if links a and b are rigidly attached (only fixed joints between them) or are parent and
 // child bodies: bodies are links merged across fixed joints, and bodies without collision geometry
