@@ -10,6 +10,7 @@
 #include <initializer_list>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -85,12 +86,16 @@ class JsonNode {
 };
 
 // Calls f() and prefixes any std::invalid_argument it throws with `prefix` ("<prefix>: <what>"):
-// the one way a caller adds its context (file and JSON path, a flag name) to a library error.
+// the one way a caller adds its context (file and JSON path, a flag name) to a library error. A
+// message that already starts with `prefix` (located by an inner PrefixErrors at or below the same
+// place, e.g. "f.json: tasks[0].feature.chain: ..." inside "f.json: tasks[0].feature") is kept as
+// it is, so no location is said twice.
 template <typename F>
 auto PrefixErrors(const std::string& prefix, F&& f) -> decltype(f()) {
   try {
     return f();
   } catch (const std::invalid_argument& e) {
+    if (std::string_view(e.what()).substr(0, prefix.size()) == prefix) throw;
     throw std::invalid_argument(prefix + ": " + e.what());
   }
 }

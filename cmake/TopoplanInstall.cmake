@@ -35,6 +35,7 @@ set(_topoplan_dependency_rules
   "^fcl$"                           "find_dependency(fcl)"
   "^nlohmann_json::"                "find_dependency(nlohmann_json 3.10)"
   "^(urdfdom|urdfdom_headers|console_bridge)::" "find_dependency(urdfdom)"
+  "^mujoco::"                       "find_dependency(mujoco)"
   "^topoplan::ompl$"                "_topoplan_find_ompl()")
 
 # Plain library paths (urdfdom's and OMPL's CMake variables) would freeze this machine's files

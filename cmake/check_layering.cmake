@@ -3,7 +3,7 @@
 #   base/      -> the standard library, Eigen, nlohmann-json only (the lowest layer)
 #   topology/  -> base/, Eigen and the standard library only
 #   render/    -> render/ only; no planning, topology, app, ImGui
-#   planning/  -> planning/, topology/; no render, app, GL, ImGui, ODE (ODE only in planning/physics/)
+#   planning/  -> planning/, topology/; no render, app, GL, ImGui, ODE, MuJoCo (only in planning/physics/)
 #   visualize/ -> planning/, render/, topology/, base/; no app, GL windows or CLI
 #   app/       -> everything, but ImGui only inside app/viewer/
 #   python/    -> the libraries, never app/
@@ -36,7 +36,7 @@ set(GUI "[<\"](imgui|GLFW/|GL/|EGL/|backends/)")
 check_dir(base "[<\"](topology|render|planning|visualize|app)/|[<\"](imgui|GLFW|GL|EGL|ode|fcl|urdf|assimp|CLI)")
 check_dir(topology "[<\"](planning|render|visualize|app)/|[<\"](imgui|GLFW|GL|EGL|ode|fcl|urdf|assimp|nlohmann|CLI)")
 check_dir(render "[<\"](planning|topology|visualize|app)/|[<\"]imgui")
-check_dir(planning "[<\"](render|visualize|app)/|${GUI}|[<\"]ode/|\"planning/physics/" "^planning/physics/")
+check_dir(planning "[<\"](render|visualize|app)/|${GUI}|[<\"](ode|mujoco)/|\"planning/physics/" "^planning/physics/")
 check_dir(planning/physics "[<\"](render|visualize|app)/|${GUI}")
 check_dir(visualize "[<\"]app/|${GUI}|[<\"](CLI)/")
 check_dir(python "\"app/")

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Installs every Debian package topoplan needs to build, test and run its demo.
 # Idempotent: packages already present are skipped. Uses sudo when not run as root.
-# Usage: scripts/setup.sh [--minimal | --fuzz]   (--minimal skips optional tools: ffmpeg, OMPL;
+# Usage: scripts/setup.sh [--minimal | --fuzz]   (--minimal skips optional tools: ffmpeg, OMPL, MuJoCo;
 #        --fuzz adds clang and libFuzzer for scripts/fuzz.sh)
 set -euo pipefail
 
@@ -27,7 +27,9 @@ REQUIRED=(
   python3-dask python3-distributed                # sweeps on Dask (topoplan.sweep)
   xvfb xauth xdotool imagemagick                  # headless window tests
 )
-OPTIONAL=(ffmpeg libompl-dev)
+# Optional: ffmpeg (frame videos), OMPL (ompl-* planners), MuJoCo 2.2 (the second physics engine
+# of `bench grasp`: its stability verdict next to ODE's).
+OPTIONAL=(ffmpeg libompl-dev libmujoco-dev)
 FUZZ=(clang libclang-rt-14-dev libfuzzer-14-dev)     # scripts/fuzz.sh only
 
 minimal=0

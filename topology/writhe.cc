@@ -9,6 +9,7 @@
 #include <string>
 
 #include "topology/internal/writhe_rows.h"
+#include "topology/internal/writhe_tile.h"
 #include "topology/writhe_stream.h"
 
 namespace topology {
@@ -177,6 +178,30 @@ void Compute(const Chain& a, const Chain& b, const WritheOptions& opt, Eigen::Ma
   }
   WritheWorkspace local;
   if (ws == nullptr) ws = &local;
+  // The SIMD kernel fills 4 pairs per step along B: with fewer than 4 segments of B (an arm
+  // against one pole segment) most lanes would be wasted, and the scalar kernel is faster. Small
+  // matrices (fewer than kMinSimdPairs pairs: the planners' features, evaluated thousands of times
+  // per solve) keep the scalar kernel too, so planning results do not change with the CPU's
+  // vector unit (the two kernels agree to ~1e-15 relative, not bitwise).
+  if (cols >= internal::kMinSimdCols && rows * cols >= internal::kMinSimdPairs &&
+      internal::ActiveSimdLevel() != internal::SimdLevel::kScalar) {
+    internal::TileArgs t;
+    t.a = a.data();
+    internal::FillDegenerateSegments(a, opt.degenerate_length, &ws->a_degenerate);
+    t.a_degenerate = ws->a_degenerate.data();
+    t.SetB(ws->simd_b, internal::FillSoaChain(b, opt.degenerate_length, &ws->simd_b));
+    t.row_end = rows;
+    t.col_end = t.cols = cols;
+    t.degenerate_length = opt.degenerate_length;
+    t.unsigned_variant = opt.variant == WritheVariant::kUnsignedSolidAngle;
+    ws->simd_scratch.resize(internal::TileScratchSize());
+    t.scratch = ws->simd_scratch.data();
+    t.out.dense = w->data();
+    t.out.ld = rows;
+    if constexpr (kGrad) t.out.jacobian = jac->pair.data();
+    internal::WritheTile(t);
+    return;
+  }
   ComputeRows<kGrad>(a, b, opt, 0, rows, jac, ws, [&](int i) {
     for (int j = 0; j < cols; ++j) (*w)(i, j) = ws->w_row[j];
   });
@@ -198,6 +223,30 @@ void CheckWritheChain(const Chain& c, const char* name) {
   if (c.cwiseAbs().maxCoeff() > kMaxCoordinate) {
     throw std::invalid_argument(std::string("writhe: chain ") + name +
                                 " has a coordinate beyond ±1e100 (squared lengths would overflow)");
+  }
+}
+
+int FillSoaChain(const Chain& c, double degenerate_length, std::vector<double>* soa) {
+  const int n = static_cast<int>(c.cols());
+  const int stride = n + 8;
+  soa->resize(4 * static_cast<size_t>(stride));
+  double* p = soa->data();
+  for (int k = 0; k < 3; ++k) {
+    for (int q = 0; q < stride; ++q) p[k * stride + q] = c(k, q < n ? q : n - 1);
+  }
+  for (int j = 0; j < stride; ++j) {
+    p[3 * stride + j] =
+        j + 1 < n && !((c.col(j + 1) - c.col(j)).norm() < degenerate_length) ? 0.0 : 1.0;
+  }
+  return stride;
+}
+
+void FillDegenerateSegments(const Chain& c, double degenerate_length,
+                            std::vector<std::uint8_t>* flags) {
+  const int segments = static_cast<int>(c.cols()) - 1;
+  flags->resize(segments);
+  for (int i = 0; i < segments; ++i) {
+    (*flags)[i] = (c.col(i + 1) - c.col(i)).norm() < degenerate_length ? 1 : 0;
   }
 }
 

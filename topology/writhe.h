@@ -15,9 +15,15 @@
 //
 // Degenerate pairs (zero-length segment, touching endpoints, coplanar crossing, collinear overlap)
 // give 0 and a zero gradient, never NaN or Inf; near-singular gradients are floored.
+//
+// Evaluation: 4 segment pairs per step (AVX2 when the CPU has it, else SSE2), blocked in tiles of
+// 256 segments of B that stay in L1 (topology/internal/writhe_tile.h); same formula as the scalar
+// kernel (entries agree to a few ulp), which remains for B with fewer than 4 segments and for
+// matrices of fewer than 4096 pairs (the planners' features: their results stay bit-identical).
 #pragma once
 
 #include <Eigen/Core>
+#include <cstdint>
 #include <vector>
 
 #include "topology/polyline.h"
@@ -61,6 +67,8 @@ struct WritheWorkspace {
   std::vector<double> len_row0, len_row1;           // and their lengths
   std::vector<double> x_row, y_row, w_row;          // per-pair atan2 arguments and results
   std::vector<char> b_degenerate;                   // per segment of B: shorter than the floor
+  std::vector<double> simd_b, simd_scratch;         // SIMD kernel: B as arrays, direction tiles
+  std::vector<std::uint8_t> a_degenerate;           // per segment of A: shorter than the floor
 };
 
 // W = writhe matrix of A (3×N_A) against B (3×N_B); W is resized to (N_A−1)×(N_B−1).

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <cstdint>
 #include <exception>
 #include <limits>
 #include <mutex>
@@ -11,7 +12,9 @@
 #include <thread>
 #include <vector>
 
+#include "topology/gauss_far_field.h"
 #include "topology/internal/writhe_rows.h"
+#include "topology/internal/writhe_tile.h"
 
 namespace topology {
 namespace {
@@ -118,6 +121,42 @@ class RowSumSink : public internal::WritheRowSink {
   long long* degenerate_;
 };
 
+// Rows [begin, end) by the SIMD kernel: per row the same four lane sums (j mod 4, the tail in
+// lane 0) as RowSumSink, so the row sums are bitwise those of the scalar path given equal entries.
+void SimdRowSums(const Chain& a, const std::vector<std::uint8_t>& a_degenerate,
+                 const std::vector<double>& soa_b, int stride, const WritheOptions& opt, int begin,
+                 int end, int cols, WritheWorkspace* ws, double* sum, double* abs_sum,
+                 double* bound, long long* degenerate) {
+  const int n = end - begin;
+  ws->simd_scratch.assign(internal::TileScratchSize() + 12 * static_cast<size_t>(n), 0.0);
+  internal::TileArgs t;
+  t.a = a.data();
+  t.a_degenerate = a_degenerate.data();
+  t.SetB(soa_b, stride);
+  t.row_begin = begin;
+  t.row_end = end;
+  t.col_end = t.cols = cols;
+  t.degenerate_length = opt.degenerate_length;
+  t.unsigned_variant = opt.variant == WritheVariant::kUnsignedSolidAngle;
+  t.scratch = ws->simd_scratch.data();
+  double* lanes = t.scratch + internal::TileScratchSize();
+  t.out.lane_sum = lanes;
+  t.out.lane_abs = lanes + 4 * n;
+  t.out.lane_inv_mag = lanes + 8 * n;
+  for (int i = begin; i < end; ++i) degenerate[i] = 0;
+  t.out.degenerate = degenerate + begin;
+  internal::WritheTile(t);
+  for (int r = 0; r < n; ++r) {
+    const double* s = t.out.lane_sum + 4 * r;
+    const double* m = t.out.lane_abs + 4 * r;
+    const double* v = t.out.lane_inv_mag + 4 * r;
+    sum[begin + r] = (s[0] + s[1]) + (s[2] + s[3]);
+    abs_sum[begin + r] = (m[0] + m[1]) + (m[2] + m[3]);
+    const double inv_mag = (v[0] + v[1]) + (v[2] + v[3]);
+    bound[begin + r] = 1.01 * kUnitRoundoff * (1024.0 * inv_mag + 16.0 * cols) / kTwoPi;
+  }
+}
+
 }  // namespace
 
 WritheSums StreamWritheSums(const Chain& a, const Chain& b, const WritheStreamOptions& options) {
@@ -126,9 +165,37 @@ WritheSums StreamWritheSums(const Chain& a, const Chain& b, const WritheStreamOp
   WritheSums out;
   out.rows = static_cast<int>(a.cols()) - 1;
   out.cols = static_cast<int>(b.cols()) - 1;
+  if (options.far_field_tol != 0.0) {
+    if (options.row_sums || options.writhe.variant != WritheVariant::kSigned) {
+      throw std::invalid_argument(
+          "far field (--tol): only for the signed total, not with row sums or the unsigned "
+          "variant");
+    }
+    FarFieldOptions f;
+    f.tol = options.far_field_tol;
+    f.threads = options.threads;
+    f.degenerate_length = options.writhe.degenerate_length;
+    f.progress = options.progress;
+    const FarFieldSums r = FarFieldGaussIntegral(a, b, f);
+    out.total = r.total;
+    out.error_bound = r.error_bound;
+    out.degenerate_pairs = r.degenerate_pairs;
+    out.abs_total = std::numeric_limits<double>::quiet_NaN();
+    return out;
+  }
   const long long pairs = static_cast<long long>(out.rows) * out.cols;
-  // Units of work of ~2.6·10⁵ pairs (a few ms) so that progress and Ctrl-C respond quickly.
-  const int rows_per_task = std::max(1, std::min(out.rows, (1 << 18) / out.cols));
+  const bool simd = out.cols >= internal::kMinSimdCols &&
+                    internal::ActiveSimdLevel() != internal::SimdLevel::kScalar;
+  // Units of work of ~2.6·10⁵ pairs (a few ms) so that progress and Ctrl-C respond quickly. The
+  // SIMD kernel walks column tiles inside a unit and recomputes one row of directions per unit and
+  // tile, so its units have at least 8 rows (~10⁶ pairs, ≤ 256 rows), and at least 4 per thread.
+  int rows_per_task = std::max(1, std::min(out.rows, (1 << 18) / out.cols));
+  if (simd) {
+    const int threads = ThreadCount(options, pairs, out.rows);
+    rows_per_task = std::clamp((1 << 20) / out.cols, 8, 256);
+    if (threads > 1) rows_per_task = std::min(rows_per_task, out.rows / (4 * threads));
+    rows_per_task = std::max(1, std::min(rows_per_task, out.rows));
+  }
   const int tasks = (out.rows + rows_per_task - 1) / rows_per_task;
   std::vector<double> sum(out.rows), abs_sum(out.rows), bound(out.rows);
   std::vector<long long> degenerate(out.rows), task_pairs(tasks);
@@ -136,11 +203,23 @@ WritheSums StreamWritheSums(const Chain& a, const Chain& b, const WritheStreamOp
     task_pairs[t] =
         static_cast<long long>(std::min(rows_per_task, out.rows - t * rows_per_task)) * out.cols;
   }
+  std::vector<double> soa_b;
+  std::vector<std::uint8_t> a_degenerate;
+  int stride = 0;
+  if (simd) {
+    stride = internal::FillSoaChain(b, options.writhe.degenerate_length, &soa_b);
+    internal::FillDegenerateSegments(a, options.writhe.degenerate_length, &a_degenerate);
+  }
   RunTasks(tasks, ThreadCount(options, pairs, tasks), options.progress, pairs, task_pairs,
            [&](int t, WritheWorkspace* ws) {
-             RowSumSink sink(sum.data(), abs_sum.data(), bound.data(), degenerate.data());
              const int begin = t * rows_per_task;
              const int end = std::min(out.rows, begin + rows_per_task);
+             if (simd) {
+               SimdRowSums(a, a_degenerate, soa_b, stride, options.writhe, begin, end, out.cols, ws,
+                           sum.data(), abs_sum.data(), bound.data(), degenerate.data());
+               return;
+             }
+             RowSumSink sink(sum.data(), abs_sum.data(), bound.data(), degenerate.data());
              internal::WritheRows(a, b, options.writhe, begin, end, ws, &sink);
            });
   CompensatedSum total;
@@ -182,6 +261,55 @@ class BlockRowSink : public internal::WritheRowSink {
   int col_block_;
 };
 
+// Rows [begin, end) into one row of block sums by the SIMD kernel, in column chunks: the same
+// additions in the same order as BlockRowSink (per row and block a sum from 0 in increasing j,
+// then added to the cell, rows in order), the open block's partial sum carried across chunks.
+void SimdBlockRow(const Chain& a, const std::vector<std::uint8_t>& a_degenerate,
+                  const std::vector<double>& soa_b, int stride, const WritheOptions& opt, int begin,
+                  int end, int cols, int col_block, WritheWorkspace* ws, double* cells) {
+  constexpr int kChunk = 2 * internal::kTileCols;
+  const int n = end - begin;
+  ws->simd_scratch.resize(internal::TileScratchSize() + static_cast<size_t>(n) * (kChunk + 1));
+  internal::TileArgs t;
+  t.a = a.data();
+  t.a_degenerate = a_degenerate.data();
+  t.SetB(soa_b, stride);
+  t.row_begin = begin;
+  t.row_end = end;
+  t.cols = cols;
+  t.degenerate_length = opt.degenerate_length;
+  t.unsigned_variant = opt.variant == WritheVariant::kUnsignedSolidAngle;
+  t.scratch = ws->simd_scratch.data();
+  double* w = t.scratch + internal::TileScratchSize();  // n × kChunk, column-major
+  double* open = w + static_cast<size_t>(n) * kChunk;   // per row: the open block's partial sum
+  std::fill(open, open + n, 0.0);
+  t.out.dense = w;
+  t.out.ld = n;
+  t.out.dense_row0 = begin;
+  for (int c0 = 0; c0 < cols; c0 += kChunk) {
+    const int c1 = std::min(cols, c0 + kChunk);
+    t.col_begin = c0;
+    t.col_end = c1;
+    t.out.dense_col0 = c0;
+    internal::WritheTile(t);
+    for (int r = 0; r < n; ++r) {
+      for (int j0 = c0; j0 < c1;) {
+        const int q = j0 / col_block;
+        const int block_end = std::min(cols, (q + 1) * col_block);
+        const int j1 = std::min(c1, block_end);
+        double s = open[r];
+        for (int j = j0; j < j1; ++j) s += w[r + static_cast<size_t>(j - c0) * n];
+        if (j1 == block_end) {
+          cells[q] += s;
+          s = 0.0;
+        }
+        open[r] = s;
+        j0 = j1;
+      }
+    }
+  }
+}
+
 }  // namespace
 
 WritheBlockSums BlockWritheSums(const Chain& a, const Chain& b, int max_rows, int max_cols,
@@ -206,12 +334,27 @@ WritheBlockSums BlockWritheSums(const Chain& a, const Chain& b, int max_rows, in
         static_cast<long long>(std::min(out.row_block, rows - p * out.row_block)) * cols;
   }
   const long long pairs = static_cast<long long>(rows) * cols;
+  const bool simd =
+      cols >= internal::kMinSimdCols && internal::ActiveSimdLevel() != internal::SimdLevel::kScalar;
+  std::vector<double> soa_b;
+  std::vector<std::uint8_t> a_degenerate;
+  int stride = 0;
+  if (simd) {
+    stride = internal::FillSoaChain(b, options.writhe.degenerate_length, &soa_b);
+    internal::FillDegenerateSegments(a, options.writhe.degenerate_length, &a_degenerate);
+  }
   RunTasks(block_rows, ThreadCount(options, pairs, block_rows), options.progress, pairs, task_pairs,
            [&](int p, WritheWorkspace* ws) {
-             BlockRowSink sink(cells.data() + static_cast<size_t>(p) * block_cols, out.col_block);
+             double* row_cells = cells.data() + static_cast<size_t>(p) * block_cols;
              const int begin = p * out.row_block;
-             internal::WritheRows(a, b, options.writhe, begin,
-                                  std::min(rows, begin + out.row_block), ws, &sink);
+             const int end = std::min(rows, begin + out.row_block);
+             if (simd) {
+               SimdBlockRow(a, a_degenerate, soa_b, stride, options.writhe, begin, end, cols,
+                            out.col_block, ws, row_cells);
+               return;
+             }
+             BlockRowSink sink(row_cells, out.col_block);
+             internal::WritheRows(a, b, options.writhe, begin, end, ws, &sink);
            });
   out.sums =
       Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(

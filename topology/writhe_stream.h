@@ -37,6 +37,9 @@ struct WritheStreamOptions {
   // Inputs under 2·10⁵ segment pairs use one thread. Results do not depend on it.
   int threads = 0;
   bool row_sums = false;  // also return r_i (StreamWritheSums only)
+  // > 0: Barnes–Hut far field (topology/gauss_far_field.h) with this bound on the approximation
+  // error, added to error_bound; signed variant only, no row sums, abs_total is NaN.
+  double far_field_tol = 0.0;
   // Called on the calling thread after each unit of work it finished, with (segment pairs done,
   // segment pairs total). It may throw (e.g. to stop on Ctrl-C): the other threads stop after
   // their current unit and the exception propagates once they have joined.
@@ -46,7 +49,7 @@ struct WritheStreamOptions {
 struct WritheSums {
   int rows = 0, cols = 0;    // N_A − 1, N_B − 1
   double total = 0.0;        // T
-  double abs_total = 0.0;    // Σ|W[i][j]|
+  double abs_total = 0.0;    // Σ|W[i][j]| (NaN with far_field_tol)
   double error_bound = 0.0;  // B above: |total − exact T| ≤ error_bound
   long long degenerate_pairs =
       0;                     // pairs the kernel reports as 0 (touching, crossing, zero length)

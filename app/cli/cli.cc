@@ -1,9 +1,9 @@
 #include "app/cli/cli.h"
 
 #include <CLI/CLI.hpp>
-
 #include <cstdio>
 
+#include "app/cli/cmd_grasp_bench.h"
 #include "app/cli/command.h"
 #include "app/cli/io.h"
 #include "base/version.h"
@@ -16,8 +16,8 @@ int RunCommandLine(int argc, char** argv) {
       "topoplan: writhe/winding features, AICO planning, grasp transfer and offscreen rendering.\n"
       "Every subcommand has --help. Exit codes: 0 ok, 1 task failed, 2 bad input, 3 environment."};
   root.require_subcommand(1);
-  root.set_version_flag("--version", std::string("topoplan ") + base::Version() + " (" +
-                                          base::Commit() + ")");
+  root.set_version_flag("--version",
+                        std::string("topoplan ") + base::Version() + " (" + base::Commit() + ")");
   // -q/-v apply to every command, before or after its name (`topoplan -q plan ...`,
   // `topoplan plan ... -q`).
   root.fallthrough();
@@ -39,6 +39,7 @@ int RunCommandLine(int argc, char** argv) {
   AddScenarioCommand(&root, &commands);
   AddIkCommand(&root, &commands);
   AddPlanCommands(&root, &commands);
+  AddGraspBenchCommand(&root, &commands);  // under `bench`, after bench unwrap
   AddViewCommand(&root, &commands);
   StrictIntegerOptions(&root);
   try {
@@ -58,7 +59,13 @@ int RunCommandLine(int argc, char** argv) {
   if (strict) SetStrict(true);
   for (const Command& c : commands) {
     if (c.sub->parsed()) {
-      const int rc = RunGuarded(c.sub->get_name(), c.run);
+      // The full command path in messages ("scenario new", "robots check").
+      std::string name = c.sub->get_name();
+      for (const CLI::App* a = c.sub->get_parent(); a != nullptr && a->get_parent() != nullptr;
+           a = a->get_parent()) {
+        name = std::string(a->get_name()).append(" ").append(name);
+      }
+      const int rc = RunGuarded(name, c.run);
       SetVerbosity(previous);
       SetStrict(previous_strict);
       return rc;

@@ -19,6 +19,7 @@ struct LinkingArgs {
   std::string a_path, b_path, batch;
   bool json = false, close = false;
   int threads = 0;
+  double tol = 0.0;  // > 0: Barnes–Hut far field with this approximation bound
 };
 
 // Appends the first point when the chain does not end on it (`--close`).
@@ -122,6 +123,7 @@ int RunBatch(const LinkingArgs& la) {
   const std::string source = la.batch == "-" ? "stdin" : la.batch;
   topology::WritheStreamOptions options;
   options.threads = la.threads;
+  options.far_field_tol = la.tol;
   const StopCheck stop(0.0);
   topology::Chain a, b;
   nlohmann::json id;
@@ -170,6 +172,12 @@ void AddLinkingCommand(CLI::App* root, CommandList* commands) {
                     "\"distance\", \"segments\", \"degenerate_pairs\"}");
   linking->add_flag("--close", la->close, "close an open chain by appending its first point");
   AddStreamThreadsFlag(linking, &la->threads);
+  linking
+      ->add_option("--tol", la->tol,
+                   "approximate far segment pairs (Barnes-Hut, Qu & James 2021) with at most "
+                   "this error in the Gauss integral, added to the error bound; e.g. 0.05 "
+                   "(default 0: exact)")
+      ->check(CLI::PositiveNumber);
   linking->add_option("--batch", la->batch,
                       "many pairs from FILE (or - for stdin), one JSON object per line: "
                       "{\"id\": any, \"a\": [[x,y,z],...], \"b\": [[x,y,z],...]}; one JSON result "
@@ -204,6 +212,7 @@ void AddLinkingCommand(CLI::App* root, CommandList* commands) {
          const StopCheck stop(0.0);
          topology::WritheStreamOptions options;
          options.threads = la->threads;
+         options.far_field_tol = la->tol;
          options.progress = PairProgress("linking", stop);
          const topology::LinkingResult r = topology::LinkingNumber(a, b, options);
          EndProgress();

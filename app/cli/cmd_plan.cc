@@ -1,5 +1,5 @@
 // `topoplan plan` (AICO / RRT / BiRRT on a scenario, with trajectory, report and optional frames)
-// and `topoplan bench unwrap` (thesis Fig. 4.5: collision checks vs angle to unwrap).
+// (`topoplan bench unwrap` is in cmd_bench.cc).
 #include <unistd.h>
 
 #include <algorithm>
@@ -13,23 +13,45 @@
 #include <optional>
 #include <sstream>
 
-#include "base/assets.h"
-#include "base/version.h"
 #include "app/cli/command.h"
-#include "visualize/figures.h"
 #include "app/cli/io.h"
 #include "app/cli/robot_flags.h"
-#include "app/present/ompl_log.h"
 #include "app/present/reports.h"
-#include "planning/motion/robot_scene.h"
+#include "base/assets.h"
+#include "base/version.h"
 #include "planning/motion/planner.h"
 #include "planning/motion/replan.h"
+#include "planning/motion/robot_scene.h"
 #include "planning/motion/scenario.h"
-#include "planning/motion/unwrap_benchmark.h"
 #include "render/figure.h"
 #include "render/image.h"
+#include "visualize/figures.h"
 
 namespace app {
+
+// --aico-stop: when AICO stops ("solved": at the first accepted sweep that is a success;
+// "converged": when the sweeps converge). Empty: the scenario's aico.stop_when_solved.
+const char* const kAicoStopHelp =
+    "when AICO stops: 'solved' (the first accepted sweep whose trajectory passes the success "
+    "criteria, status \"solved\"; a success first reached by the last sweep keeps its solver "
+    "status) or 'converged' (run the sweeps to convergence); default: the scenario's "
+    "aico.stop_when_solved";
+
+// The value of --aico-stop (checked by the flag: "solved" or "converged"; "" when not given).
+std::optional<bool> ParseAicoStop(const std::string& text) {
+  if (text.empty()) return std::nullopt;
+  return text == "solved";
+}
+
+// "aico | rrt | birrt ..." from the planner registry of this build.
+std::string PlannerChoices() {
+  std::string out;
+  for (planning::Planner p : planning::AvailablePlanners()) {
+    out += (out.empty() ? "" : " | ") + std::string(planning::PlannerName(p));
+  }
+  return out;
+}
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -42,138 +64,13 @@ struct PlanArgs {
   double timeout = 0.0;
   bool frames = false, json = false;
   bool no_stamp = false;                      // --no-stamp: frames without scenario name and time
-  planning::RobotInputOptions robot_input;              // --package-path, --srdf
+  planning::RobotInputOptions robot_input;    // --package-path, --srdf
   std::vector<render::FigureFormat> formats;  // --formats
   // Re-planning with a moving object (planning/motion/replan.h).
   std::string moving_object, object_path;
   double replan_period = 0.1;
   int replan_sweeps = 3;
 };
-
-struct BenchArgs {
-  std::string angles = "0:900:90", planners, output;  // planners "": all of this build
-  int seeds = 3;
-  long budget = -1;
-  double perturb = 0.0;
-  std::string aico_stop;  // --aico-stop solved|converged ("": the scenario's)
-  double timeout = 0.0;
-  std::string ompl_log;  // --ompl-log FILE: OMPL benchmark logs, one per angle (app/present/ompl_log.h)
-  std::vector<render::FigureFormat> formats;  // --formats
-};
-
-// --aico-stop: when AICO stops ("solved": at the first accepted sweep that is a success;
-// "converged": when the sweeps converge). Empty: the scenario's aico.stop_when_solved.
-constexpr const char* kAicoStopHelp =
-    "when AICO stops: 'solved' (the first accepted sweep whose trajectory passes the success "
-    "criteria, status \"solved\"; a success first reached by the last sweep keeps its solver "
-    "status) or 'converged' (run the sweeps to convergence); default: the scenario's "
-    "aico.stop_when_solved";
-
-// The value of --aico-stop (checked by the flag: "solved" or "converged"; "" when not given).
-std::optional<bool> ParseAicoStop(const std::string& text) {
-  if (text.empty()) return std::nullopt;
-  return text == "solved";
-}
-
-// Largest number of angles in --angles.
-constexpr int kMaxAngles = 10000;
-// Largest number of runs of one `bench unwrap` (angles × planners × seeds).
-constexpr long kMaxBenchRuns = 1000000;
-// Largest --perturb: the pole moved by more than a metre leaves the scene.
-constexpr double kMaxPerturbM = 1.0;
-
-// "a:b:step" → a, a+step, ..., ≤ b.
-std::vector<double> ParseRange(const std::string& text, const std::string& flag) {
-  const std::vector<double> v = [&] {
-    if (std::count(text.begin(), text.end(), ':') != 2 || text.find(',') != std::string::npos) {
-      throw std::invalid_argument(
-          flag + ": expected a:b:step (three numbers separated by ':'), got '" + text + "'");
-    }
-    std::string t = text;
-    std::replace(t.begin(), t.end(), ':', ',');
-    return base::ParseNumberList(t, flag, 3);
-  }();
-  if (!(v[2] > 0.0) || !(v[1] >= v[0]) || !(v[0] >= 0.0) || !(v[1] <= 2000.0)) {
-    throw std::invalid_argument(flag + ": expected a:b:step with 0 <= a <= b <= 2000, step > 0");
-  }
-  // The count is computed (and bounded) first: a tiny step must not loop for ever.
-  const double count = std::floor((v[1] - v[0]) / v[2] + 1e-9) + 1.0;
-  if (count > kMaxAngles) {
-    throw std::invalid_argument(flag + ": more than " + std::to_string(kMaxAngles) +
-                                " angles (use a larger step)");
-  }
-  std::vector<double> out;
-  for (int i = 0; i < static_cast<int>(count); ++i) out.push_back(v[0] + i * v[2]);
-  return out;
-}
-
-// "aico | rrt | birrt ..." from the planner registry of this build.
-std::string PlannerChoices() {
-  std::string out;
-  for (planning::Planner p : planning::AvailablePlanners()) {
-    out += (out.empty() ? "" : " | ") + std::string(planning::PlannerName(p));
-  }
-  return out;
-}
-
-// "aico,birrt" → the planners, each at most once; "" → every planner of this build (with the OMPL
-// peers when it has them).
-std::vector<planning::Planner> ParsePlanners(const std::string& text) {
-  if (text.empty()) return planning::AvailablePlanners();
-  std::vector<planning::Planner> out;
-  std::stringstream ss(text);
-  std::string item;
-  while (std::getline(ss, item, ',')) {
-    const planning::Planner p =
-        ParseFlag("--planners", [&] { return planning::ParsePlanner(item); });
-    if (std::find(out.begin(), out.end(), p) != out.end()) {
-      throw std::invalid_argument("--planners: '" + item + "' is listed twice");
-    }
-    out.push_back(p);
-  }
-  if (out.empty() || text.back() == ',') {
-    throw std::invalid_argument("--planners: empty name in '" + text + "'");
-  }
-  return out;
-}
-
-// The header of the OMPL logs of `bench unwrap`: this host, the start time (UTC) and the options.
-OmplLogInfo BenchLogInfo(const planning::UnwrapBenchmarkOptions& options) {
-  OmplLogInfo info;
-  info.version = base::Version();
-  char host[256] = {};
-  if (gethostname(host, sizeof host - 1) == 0 && host[0] != '\0') info.host = host;
-  for (char& c : info.host) {
-    if (c == ' ') c = '_';
-  }
-  const std::time_t now = std::time(nullptr);
-  char stamp[32];
-  std::tm utc{};
-  gmtime_r(&now, &utc);
-  std::strftime(stamp, sizeof stamp, "%Y-%m-%dT%H:%M:%S", &utc);
-  info.start_time = stamp;
-  std::ostringstream setup;
-  setup << "topoplan bench unwrap: thesis Fig. 4.5, collision checks to unwrap an arm coiled "
-           "around a pole\nscenario "
-        << options.scenario_path << "\nplanners";
-  for (planning::Planner p : options.planners) setup << " " << planning::PlannerName(p);
-  setup << "\nseeds 0.." << options.seeds - 1 << "\nrrt collision-check budget "
-        << (options.rrt_budget > 0 ? std::to_string(options.rrt_budget) : "of the scenario")
-        << "\npole perturbation " << options.perturb_m
-        << " m\nno time or memory limit per run (the RRTs stop at their budget)\n";
-  info.setup = setup.str();
-  info.rrt_budget = options.rrt_budget;
-  info.perturb_m = options.perturb_m;
-  return info;
-}
-
-void ProgressBar(int done, int total, const std::string& what) {
-  const int width = 30;
-  const int filled = total > 0 ? done * width / total : width;
-  Progress("[%s%s] %d/%d %s", std::string(filled, '#').c_str(),
-           std::string(width - filled, '.').c_str(), done, total, what.c_str());
-  if (done == total) EndProgress();
-}
 
 // "step,time_s,x,y,z": the moving object's position at every executed slice.
 std::string ObjectPositionsCsv(const planning::ReplanResult& r) {
@@ -215,7 +112,7 @@ ExitCode RunMovingObjectPlan(const PlanArgs& pa, const planning::ScenarioOverrid
   if (pa.moving_object.empty() || pa.object_path.empty()) {
     throw std::invalid_argument("--moving-object and --object-path must be given together");
   }
-  if (planner != planning::Planner::kAico) {
+  if (!planning::IsAico(planner)) {
     throw std::invalid_argument("--moving-object: re-planning uses AICO (--planner aico)");
   }
   if (!(pa.replan_period > 0.0) || !std::isfinite(pa.replan_period)) {
@@ -277,7 +174,7 @@ ExitCode RunMovingObjectPlan(const PlanArgs& pa, const planning::ScenarioOverrid
   report["provenance"] = ProvenanceJson();
   const std::string dir = out.staging();
   base::WriteFileAtomic((fs::path(dir) / "trajectory.csv").string(),
-                  planning::TrajectoryCsv(*scenario, r.executed));
+                        planning::TrajectoryCsv(*scenario, r.executed));
   base::WriteFileAtomic((fs::path(dir) / "object_path.csv").string(), ObjectPositionsCsv(r));
   base::WriteFileAtomic((fs::path(dir) / "report.json").string(), report.dump(2) + "\n");
   if (pa.frames) {
@@ -300,7 +197,7 @@ ExitCode RunMovingObjectPlan(const PlanArgs& pa, const planning::ScenarioOverrid
         r.replans.size(), r.period_s, r.rate_hz, r.wall_rate_hz, r.median_cpu_ms, r.max_cpu_ms,
         r.passed_through ? "passed through" : "did not pass through", pa.moving_object.c_str());
     Note("wrote %s/trajectory.csv, %s/object_path.csv, %s/report.json", pa.output.c_str(),
-                pa.output.c_str(), pa.output.c_str());
+         pa.output.c_str(), pa.output.c_str());
   }
   return r.success ? kExitOk : kExitFailed;
 }
@@ -345,7 +242,7 @@ void AddPlanCommands(CLI::App* root, CommandList* commands) {
                    "plan time between re-plans in seconds, rounded to whole time slices "
                    "(default 0.1)");
   IntIn(plan->add_option("--replan-sweeps", pa->replan_sweeps,
-                   "AICO sweep budget of each re-plan (default 3)"),
+                         "AICO sweep budget of each re-plan (default 3)"),
         1, 1000);
   AddFormatsFlag(plan, &pa->formats);
   plan->footer(
@@ -390,15 +287,16 @@ void AddPlanCommands(CLI::App* root, CommandList* commands) {
                },
                [&stop] { stop.Poll(); });
          } catch (const StopRequested& e) {
-           return StoppedPlanExit(e,
-                                  {{"scenario", scenario->name},
-                                   {"planner", planning::PlannerName(planner)},
-                                   {"seed", pa->seed},
-                                   {"attempts", 1},
-                                   {"failure_reason", e.timeout ? "budget_exhausted" : "interrupted"}},
-                                  *pa, &out);
+           return StoppedPlanExit(
+               e,
+               {{"scenario", scenario->name},
+                {"planner", planning::PlannerName(planner)},
+                {"seed", pa->seed},
+                {"attempts", 1},
+                {"failure_reason", e.timeout ? "budget_exhausted" : "interrupted"}},
+               *pa, &out);
          }
-         if (planner == planning::Planner::kAico) EndProgress();
+         if (planning::IsAico(planner)) EndProgress();
          const nlohmann::json report = WritePlanOutputs(*scenario, result, pa->seed, out.staging());
          std::string frames_note;
          if (pa->frames && result.trajectory.num_points() > 0) {
@@ -415,133 +313,13 @@ void AddPlanCommands(CLI::App* root, CommandList* commands) {
            std::printf("%s\n", report.dump(2).c_str());
          } else {
            std::printf("%s\n", planning::PlanSummaryLine(*scenario, result.report).c_str());
-           Note("wrote %s/trajectory.csv, %s/report.json%s", pa->output.c_str(),
-                pa->output.c_str(), frames_note.c_str());
+           Note("wrote %s/trajectory.csv, %s/report.json%s", pa->output.c_str(), pa->output.c_str(),
+                frames_note.c_str());
          }
          return result.report.success ? kExitOk : kExitFailed;
        }});
 
-  // bench unwrap ----------------------------------------------------------------------------------
-  CLI::App* bench = root->add_subcommand("bench", "Benchmarks that reproduce thesis figures");
-  bench->require_subcommand(1);
-  auto ba = std::make_shared<BenchArgs>();
-  CLI::App* unwrap = bench->add_subcommand(
-      "unwrap", "Thesis Fig. 4.5: collision checks vs angle to unwrap, AICO vs RRT vs BiRRT");
-  unwrap->add_option("--angles", ba->angles, "start wraps a:b:step in degrees (default 0:900:90)");
-  IntIn(unwrap->add_option("--seeds", ba->seeds, "runs per angle and planner, seeds 0..N-1 (default 3)"),
-        1, 1000);
-  unwrap->add_option(
-      "--planners", ba->planners,
-      "comma-separated planners, each at most once (default: all of this build: " +
-          [] {
-            std::string c = PlannerChoices();
-            std::replace(c.begin(), c.end(), '|', ',');
-            c.erase(std::remove(c.begin(), c.end(), ' '), c.end());
-            return c;
-          }() +
-          ")");
-  IntIn(unwrap
-      ->add_option("--budget", ba->budget,
-                   "collision-check budget of the RRTs (default: the scenario's, 100000)"),
-        1L, 1000000000L);
-  unwrap->add_option("--pole-offset", ba->perturb,
-                     "move the pole of each seed by a random offset of at most M metres "
-                     "perpendicular to its axis (seeded, reproducible; 0 <= M <= 1, default 0)");
-  AddDeprecatedAlias(unwrap, "--perturb", "--pole-offset", &ba->perturb);
-  unwrap->add_option("--aico-stop", ba->aico_stop, kAicoStopHelp)
-      ->check(CLI::IsMember({"solved", "converged"}));
-  AddTimeoutFlag(unwrap, &ba->timeout);
-  unwrap->add_option("--ompl-log", ba->ompl_log,
-                     "also write OMPL benchmark logs (ompl_benchmark_statistics.py, Planner "
-                     "Arena): FILE_<angle>deg.log, one experiment per angle");
-  unwrap->add_option("-o,--output", ba->output, "output folder")->required();
-  AddFormatsFlag(unwrap, &ba->formats);
-  unwrap->footer(
-      "Writes DIR/unwrap.csv (angle_deg,planner,seed,success,failure_reason,collision_checks,\n"
-      "narrow_phase_calls,time_s,path_length,reach_error_m,pole_offset_m) and\n"
-      "DIR/unwrap.png (three panels over the angle, log scale: collision checks, narrow-phase\n"
-      "calls, wall time; median and interquartile band over the seeds, one colour per planner,\n"
-      "crosses where a run failed; --formats adds unwrap.svg/.pdf). time_s is wall-clock;\n"
-      "everything else is deterministic. Exit 0 when the benchmark ran (failed runs are data, not "
-      "errors).\n"
-      "--ompl-log FILE: FILE with _<angle>deg before its extension per angle, in OMPL's\n"
-      "benchmark log format (one planner per topoplan planner, one run per seed).");
-  commands->push_back(
-      {unwrap, [ba, unwrap]() {
-         planning::UnwrapBenchmarkOptions options;
-         options.angles_deg = ParseRange(ba->angles, "--angles");
-         options.planners = ParsePlanners(ba->planners);
-         options.scenario_path = base::ResolveScenarioPath("unwrap");
-         options.search_roots = {base::AssetRoot()};
-         options.seeds = ba->seeds;
-         options.rrt_budget = ba->budget;
-         if (!(ba->perturb >= 0.0 && ba->perturb <= kMaxPerturbM)) {
-           throw std::invalid_argument("--pole-offset: expected a distance in metres in [0, 1]");
-         }
-         const long runs = static_cast<long>(options.angles_deg.size()) *
-                           static_cast<long>(options.planners.size()) * ba->seeds;
-         if (runs > kMaxBenchRuns) {
-           throw std::invalid_argument("--seeds: " + std::to_string(runs) +
-                                       " runs (angles x planners x seeds), more than " +
-                                       std::to_string(kMaxBenchRuns));
-         }
-         options.perturb_m = ba->perturb;
-         options.aico_stop_when_solved = ParseAicoStop(ba->aico_stop);
-         OutputDir out(ba->output, "-o", "bench unwrap", {options.scenario_path});
-         const bool ompl_log = unwrap->count("--ompl-log") > 0;  // "" is refused, not ignored
-         OmplLogInfo log_info;
-         if (ompl_log) {
-           if (ba->ompl_log.empty()) throw std::invalid_argument("--ompl-log: empty output path");
-           for (double angle : options.angles_deg) {  // each log file, before any work
-             base::CheckOutputFile(OmplLogPath(ba->ompl_log, angle), "--ompl-log",
-                                   {options.scenario_path});
-           }
-           log_info = BenchLogInfo(options);
-         }
-         const StopCheck stop(ba->timeout);
-         planning::UnwrapBenchmarkResult finished;  // the runs completed so far
-         options.progress = [&](int done, int total, const planning::UnwrapRun& run) {
-           char what[96];
-           std::snprintf(what, sizeof(what), "%s @ %.0f deg seed %d",
-                         planning::PlannerName(run.planner), run.angle_deg, run.seed);
-           ProgressBar(done, total, what);
-           finished.runs.push_back(run);
-           if (done < total) stop.Poll();  // after the last run the sweep is complete
-         };
-         const int total = static_cast<int>(runs);
-         ProgressBar(0, total, "");
-         planning::UnwrapBenchmarkResult result;
-         try {
-           result = planning::RunUnwrapBenchmark(options);
-         } catch (const StopRequested& e) {
-           // Keep the finished rows under a name that says so (no figure of a partial sweep);
-           // unwrap.csv and unwrap.png of an earlier complete run in DIR stay as they were.
-           base::WriteFileAtomic((fs::path(out.staging()) / "unwrap.partial.csv").string(),
-                           planning::UnwrapCsv(finished));
-           out.Commit(/*replace_previous=*/false);
-           std::fprintf(stderr, "\n%s: wrote %s/unwrap.partial.csv (%zu of %d runs)\n", e.what(),
-                        ba->output.c_str(), finished.runs.size(), total);
-           return e.timeout ? kExitFailed : kExitInterrupted;
-         }
-         base::WriteFileAtomic((fs::path(out.staging()) / "unwrap.csv").string(), planning::UnwrapCsv(result));
-         if (const auto figure = visualize::UnwrapFigure(result)) {
-           const std::string png = (fs::path(out.staging()) / "unwrap.png").string();
-           render::WriteFigure(png, *figure);
-           visualize::WriteVectorFormats(png, *figure, ba->formats);
-         }
-         out.Commit();
-         if (ompl_log) {  // each log written whole
-           for (size_t a = 0; a < result.angles_deg.size(); ++a) {
-             base::WriteFileAtomic(OmplLogPath(ba->ompl_log, result.angles_deg[a]),
-                                   OmplBenchmarkLog(result, a, log_info));
-           }
-           Note("wrote %zu OMPL benchmark logs %s", result.angles_deg.size(),
-                       OmplLogPath(ba->ompl_log, result.angles_deg.front()).c_str());
-         }
-         Note("wrote %s/unwrap.csv and %s/unwrap.png (%d runs)", ba->output.c_str(),
-                     ba->output.c_str(), total);
-         return kExitOk;
-       }});
+  AddBenchCommands(root, commands);  // bench unwrap (cmd_bench.cc)
 }
 
 }  // namespace app

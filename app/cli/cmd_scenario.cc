@@ -36,6 +36,9 @@ void AddScenarioCommand(CLI::App* root, CommandList* commands) {
   make->add_option("--package-path", a->options.package_paths,
                    "root for package:// URIs (repeatable)");
   make->add_option("--srdf", a->options.srdf, "the robot's SRDF (default: found as `check` does)");
+  make->add_option("--hand", a->options.hand,
+                   "the hand link; the arm is the path from the root to it (default: where the "
+                   "tree branches into fingers, else the SRDF's end_effector)");
   make->add_option("--name", a->options.name, "scenario name (default ROBOT_TASK)");
   IntIn(make->add_option("--seed", a->seed, "seed of the inverse kinematics' random starts"), 0,
         4294967295LL);

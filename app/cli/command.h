@@ -3,6 +3,7 @@
 
 #include <CLI/CLI.hpp>
 #include <functional>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -47,8 +48,15 @@ void AddRobotCommands(CLI::App* root, CommandList* commands);     // fk, check
 void AddRobotsCommand(CLI::App* root, CommandList* commands);     // robots check
 void AddScenarioCommand(CLI::App* root, CommandList* commands);   // scenario new
 void AddIkCommand(CLI::App* root, CommandList* commands);         // ik
-void AddPlanCommands(CLI::App* root, CommandList* commands);      // plan, bench unwrap
-void AddViewCommand(CLI::App* root, CommandList* commands);       // view (app/viewer/cmd_view.cc)
+void AddPlanCommands(CLI::App* root, CommandList* commands);      // plan (then AddBenchCommands)
+void AddBenchCommands(CLI::App* root, CommandList* commands);     // bench unwrap (cmd_bench.cc)
+
+// Shared by `plan` and `bench unwrap` (cmd_plan.cc): the --aico-stop help, its value ("solved" →
+// true, "converged" → false, "" → the scenario's), and "aico | rrt | ..." of this build.
+extern const char* const kAicoStopHelp;
+std::optional<bool> ParseAicoStop(const std::string& text);
+std::string PlannerChoices();
+void AddViewCommand(CLI::App* root, CommandList* commands);  // view (app/viewer/cmd_view.cc)
 
 // Calls parse() and prefixes any std::invalid_argument it throws with the flag's name
 // ("--method: unknown transfer method 'x' (...)"): the library names values, the CLI names flags.

@@ -6,8 +6,8 @@
 #include <filesystem>
 
 #include "base/file_write.h"
-#include "visualize/grasp_scene.h"
 #include "planning/robot/kinematics.h"
+#include "visualize/grasp_scene.h"
 
 namespace app {
 namespace {
@@ -67,7 +67,7 @@ void GraspFrameWriter::Transfer(const std::string& dir, const planning::Transfer
   writer.Finish();
   if (t.trajectory.q.cols() > 0) {
     base::WriteFileAtomic((std::filesystem::path(dir) / "side_by_side.png").string(),
-                                render::EncodePng(SideBySide(human, last, view_)));
+                          render::EncodePng(SideBySide(human, last, view_)));
   }
 }
 
@@ -147,6 +147,14 @@ void GraspFrameWriter::AddStabilityFrame(int phase, const phys::SimState& state)
 phys::StepCallback GraspFrameWriter::Stability(const std::string& dir, const phys::SimHand& hand,
                                                const phys::SimObject& object,
                                                const phys::StabilityOptions& options) {
+  std::function<void(int, const phys::SimState&)> states =
+      StabilityStates(dir, hand, object, options);
+  return [states](int phase, const phys::GraspSimulation& sim) { states(phase, sim.state()); };
+}
+
+std::function<void(int, const phys::SimState&)> GraspFrameWriter::StabilityStates(
+    const std::string& dir, const phys::SimHand& hand, const phys::SimObject& object,
+    const phys::StabilityOptions& options) {
   render::FrameWriterOptions fo;
   fo.prefix = "stability_";
   fo.video = true;
@@ -162,7 +170,7 @@ phys::StepCallback GraspFrameWriter::Stability(const std::string& dir, const phy
   phase_end_label_.assign(7, "");
   phase_outcome_.assign(7, "");
   closure_state_ = phys::SimState{};
-  return [this](int phase, const phys::GraspSimulation& sim) {
+  return [this](int phase, const phys::SimState& state) {
     if (phase != last_phase_) {
       // The previous phase ended: show its last state unless it is already a frame.
       if (last_phase_ >= 0 && last_framed_step_ != last_state_.step) {
@@ -175,9 +183,9 @@ phys::StepCallback GraspFrameWriter::Stability(const std::string& dir, const phy
       last_phase_ = phase;
       last_framed_step_ = -1;
     }
-    last_state_ = sim.state();
+    last_state_ = state;
     const int every = phase == 0 ? 100 : 250;
-    if (sim.state().step % every == 0) AddStabilityFrame(phase, sim.state());
+    if (state.step % every == 0) AddStabilityFrame(phase, state);
   };
 }
 
@@ -216,10 +224,10 @@ planning::physics::GraspTrialHooks GraspTransferHooks(const std::string& out_dir
                                        const planning::TransferResult& t, const phys::SimHand& hand,
                                        const phys::SimObject& object,
                                        const phys::StabilityOptions& options) {
-      const std::string dir = (std::filesystem::path(out_dir) / "frames" /
-                               base::SafeFileName(setup.grasp.name + "_" + planning::ToString(t.method),
-                                                  "grasp name"))
-                                  .string();
+      const std::string dir =
+          (std::filesystem::path(out_dir) / "frames" /
+           base::SafeFileName(setup.grasp.name + "_" + planning::ToString(t.method), "grasp name"))
+              .string();
       frames->Transfer(dir + "/transfer", setup, t);
       return frames->Stability(dir + "/stability", hand, object, options);
     };

@@ -2,16 +2,17 @@
 #pragma once
 
 #include <Eigen/Geometry>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
 
-#include "visualize/scene_builder.h"
 #include "planning/grasp/grasp_transfer.h"
 #include "planning/physics/grasp_trials.h"
 #include "render/frames.h"
 #include "render/offscreen_context.h"
 #include "render/renderer.h"
+#include "visualize/scene_builder.h"
 
 namespace app {
 
@@ -41,6 +42,12 @@ class GraspFrameWriter {
                                             const planning::physics::SimHand& hand,
                                             const planning::physics::SimObject& object,
                                             const planning::physics::StabilityOptions& options);
+  // The same for any engine that reports its state after every step (phase 0 closing, 1..6 the
+  // gravity directions; e.g. planning::physics::TestGraspStabilityMujoco's StateCallback).
+  std::function<void(int phase, const planning::physics::SimState& state)> StabilityStates(
+      const std::string& dir, const planning::physics::SimHand& hand,
+      const planning::physics::SimObject& object,
+      const planning::physics::StabilityOptions& options);
   // Renders the last phase's end, labels the end of every phase with its outcome (closing: no
   // grasp / blew up; each direction: held, object dropped, slipped, rotated, lost contact, blew
   // up; these frames are always on the contact sheet) and writes the contact sheet and video.

@@ -26,15 +26,28 @@ std::string AngleText(double angle_deg) {
 }
 
 // Run properties in the order OMPL writes them (sorted by name).
-constexpr const char* kRunProperties[] = {"collision checks INTEGER", "failure reason ENUM",
-                                          "iterations INTEGER",       "narrow phase calls INTEGER",
-                                          "path length REAL",         "pole offset REAL",
-                                          "reach error REAL",         "seed INTEGER",
-                                          "solved BOOLEAN",           "time REAL"};
+constexpr const char* kRunProperties[] = {"bool pair tests INTEGER",
+                                          "collision checks INTEGER",
+                                          "cpu time REAL",
+                                          "distance pair tests INTEGER",
+                                          "failure reason ENUM",
+                                          "iterations INTEGER",
+                                          "narrow phase calls INTEGER",
+                                          "path length REAL",
+                                          "pole offset REAL",
+                                          "reach error REAL",
+                                          "seed INTEGER",
+                                          "setup time REAL",
+                                          "solved BOOLEAN",
+                                          "state queries INTEGER",
+                                          "time REAL"};
 
 std::string RunLine(const planning::UnwrapRun& run) {
   const planning::PlanReport& r = run.report;
-  const std::string values[] = {std::to_string(r.collision_checks),
+  const std::string values[] = {std::to_string(r.counts.bool_pair_tests),
+                                std::to_string(r.collision_checks),
+                                Num(r.cpu_time_s),
+                                std::to_string(r.counts.distance_pair_tests),
                                 std::to_string(static_cast<int>(r.failure_reason)),
                                 std::to_string(r.iterations),
                                 std::to_string(r.narrow_phase_calls),
@@ -42,7 +55,9 @@ std::string RunLine(const planning::UnwrapRun& run) {
                                 Num(run.pole_offset.norm()),
                                 Num(r.reach_error_m),
                                 std::to_string(run.seed),
+                                Num(r.setup_time_s),
                                 r.success ? "1" : "0",
+                                std::to_string(r.counts.state_queries),
                                 Num(r.time_s)};
   static_assert(std::size(values) == std::size(kRunProperties));
   std::string line;
@@ -97,12 +112,14 @@ std::string OmplBenchmarkLog(const planning::UnwrapBenchmarkResult& result, size
   for (size_t p = 0; p < planners; ++p) {
     const planning::Planner planner = result.planners[p];
     out << planning::PlannerName(planner) << "\n";
-    if (planner == planning::Planner::kAico) {
+    if (planning::IsAico(planner)) {
       out << "0 common properties\n";
     } else {
       out << "1 common properties\n"
           << "collision check budget = "
-          << (info.rrt_budget > 0 ? std::to_string(info.rrt_budget) : std::string("scenario"))
+          << (!info.budget.empty()  ? info.budget
+              : info.rrt_budget > 0 ? std::to_string(info.rrt_budget)
+                                    : std::string("scenario"))
           << "\n";
     }
     out << std::size(kRunProperties) << " properties for each run\n";

@@ -5,7 +5,10 @@
 // That script reads exactly one experiment per log file, so the sweep becomes one experiment per
 // angle to unwrap, each in its own file (OmplLogPath). In each experiment every topoplan planner is
 // one OMPL "planner" and every seed one run with the properties (name, SQL type, value):
+//   bool pair tests INTEGER     PlanReport::counts.bool_pair_tests
 //   collision checks INTEGER    PlanReport::collision_checks
+//   cpu time REAL               PlanReport::cpu_time_s [s, process CPU time of the solve]
+//   distance pair tests INTEGER PlanReport::counts.distance_pair_tests
 //   failure reason ENUM         planning::FailureReason as an integer (the log's one enum type,
 //                               "failure_reason", lists the names in enum order)
 //   iterations INTEGER          PlanReport::iterations
@@ -14,7 +17,9 @@
 //   pole offset REAL            |UnwrapRun::pole_offset| [m]
 //   reach error REAL            PlanReport::reach_error_m [m]
 //   seed INTEGER                UnwrapRun::seed
+//   setup time REAL             PlanReport::setup_time_s [s, wall time of the scenario set-up]
 //   solved BOOLEAN              PlanReport::success (1/0)
+//   state queries INTEGER       PlanReport::counts.state_queries
 //   time REAL                   PlanReport::time_s [s, wall clock]
 // (sorted by name, as OMPL writes them). Non-finite numbers are written "nan", which the script
 // stores as NULL.
@@ -34,6 +39,7 @@ struct OmplLogInfo {
   std::string start_time;        // "Starting at <start_time>", e.g. 2026-12-01T00:40:00
   std::string setup;             // free text between <<<| and |>>> (no line may start with |>>>)
   long rrt_budget = -1;          // RRT collision-check budget (<= 0: the scenario's own)
+  std::string budget;            // --budget as given (planner.h BudgetText; "" none)
   double perturb_m = 0.0;        // pole perturbation [m]
 };
 

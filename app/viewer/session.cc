@@ -1,5 +1,4 @@
 #include "app/viewer/session.h"
-#include "app/viewer/internal/session_outputs.h"
 
 #include <algorithm>
 #include <cmath>
@@ -14,15 +13,16 @@
 #include <stdexcept>
 #include <utility>
 
+#include "app/viewer/internal/session_outputs.h"
 #include "base/assets.h"
+#include "base/file_read.h"
+#include "base/numbers.h"
 #include "planning/grasp/grasp_inputs.h"
 #include "planning/grasp/grasp_object.h"
 #include "planning/grasp/grasp_transfer.h"
+#include "planning/motion/replan.h"
 #include "planning/physics/hand_builder.h"
 #include "planning/physics/ode_runtime.h"
-#include "planning/motion/replan.h"
-#include "base/file_read.h"
-#include "base/numbers.h"
 
 namespace app {
 namespace {
@@ -87,7 +87,6 @@ void Session::Load(const std::string& arg, const Settings& settings) {
     status_ = "loaded " + path;
   }
 }
-
 
 void Session::Poll(Settings* settings) {
   worker_.Collect();
@@ -312,7 +311,7 @@ void Session::Apply(const SessionCommand& c, Settings* settings) {
         throw std::invalid_argument("step: a plan is running (cancel it, or wait for it first)");
       }
       if (plan_out_ && worker_.parked() && worker_.job_name() != "step") DropJob();
-      if (planning::ParsePlanner(settings->planner.planner) != planning::Planner::kAico) {
+      if (!planning::IsAico(planning::ParsePlanner(settings->planner.planner))) {
         throw std::invalid_argument("step: steps AICO sweeps; the planner is '" +
                                     settings->planner.planner +
                                     "' (valid: aico; rrt_step grows "

@@ -1,6 +1,3 @@
-#include "app/viewer/session.h"
-#include "app/viewer/internal/session_outputs.h"
-
 #include <algorithm>
 #include <cmath>
 #include <deque>
@@ -14,15 +11,17 @@
 #include <stdexcept>
 #include <utility>
 
+#include "app/viewer/internal/session_outputs.h"
+#include "app/viewer/session.h"
 #include "base/assets.h"
+#include "base/file_read.h"
+#include "base/numbers.h"
 #include "planning/grasp/grasp_inputs.h"
 #include "planning/grasp/grasp_object.h"
 #include "planning/grasp/grasp_transfer.h"
+#include "planning/motion/replan.h"
 #include "planning/physics/hand_builder.h"
 #include "planning/physics/ode_runtime.h"
-#include "planning/motion/replan.h"
-#include "base/file_read.h"
-#include "base/numbers.h"
 namespace app {
 
 std::shared_ptr<Session::PlanOutput> Session::NewPlanJob(long budget, const char* stepped_name,
@@ -81,7 +80,7 @@ void Session::StartPlan(Settings* settings, long budget) {
     RunRecordingEnd(out.get(), [&] {
       // AICO: one real sweep per worker checkpoint (step N runs N, then holds the solver).
       request.state = world.get();
-      if (request.planner == planning::Planner::kAico) {
+      if (planning::IsAico(request.planner)) {
         request.callback = [&](int sweep, double cost, bool accepted,
                                const planning::Trajectory& q) {
           {
@@ -151,8 +150,8 @@ void Session::StartRrt(Settings* settings, long budget) {
         worker.Checkpoint();
       }
       // Reported and judged as RunPlanner reports every sampling planner.
-      planning::PlanResult r = planning::SamplingPlanResult(
-          s, *world, planner, solver.result(), coll.queries, coll.narrow_phase_calls);
+      planning::PlanResult r =
+          planning::SamplingPlanResult(s, *world, planner, solver.result(), coll);
       std::lock_guard<std::mutex> lock(out->mutex);
       out->result = std::move(r);
     });
@@ -185,7 +184,7 @@ void Session::StartMove(const SessionCommand& c, Settings* settings) {
   std::optional<planning::RecedingPlan> plan;
   const int elapsed = std::clamp(settings->frame, 0, T);
   if (num_frames(*settings) == T + 1 &&
-      planning::ParsePlanner(settings->planner.planner) == planning::Planner::kAico) {
+      planning::IsAico(planning::ParsePlanner(settings->planner.planner))) {
     const bool shows_result =
         settings->sweep < 0 || settings->sweep >= static_cast<int>(sweeps_.size());
     const planning::Trajectory shown{
@@ -250,8 +249,8 @@ void Session::StartGrasp(Settings* settings, long budget, bool phases) {
   namespace phys = planning::physics;
   const std::string name = settings->grasp.grasp;
   const planning::TransferMethod method = planning::ParseTransferMethod(settings->grasp.method);
-  auto in =
-      std::make_shared<const planning::GraspInputs>(planning::LoadGraspInputs({base::AssetPath("grasps/" + name + ".json")}));
+  auto in = std::make_shared<const planning::GraspInputs>(
+      planning::LoadGraspInputs({base::AssetPath("grasps/" + name + ".json")}));
   DropJob();
   auto out = std::make_shared<GraspOutput>();
   out->replay.grasp = name;

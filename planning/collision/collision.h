@@ -107,9 +107,51 @@ struct CollisionData {
   std::int64_t narrow_phase_calls = 0;
   // Configuration-level queries: one per InCollision / ComputeProximity / MinDistance call.
   std::int64_t queries = 0;
+  // narrow_phase_calls split by kind (their sum): yes/no FCL collide() calls of InCollision and
+  // CheckCollisions (mesh confirmations included), and distance evaluations (FCL distance(), the
+  // closed-form capsule distance, the contact collide() of a penetrating pair) of ComputeProximity
+  // and MinDistance.
+  std::int64_t bool_pair_tests = 0;
+  std::int64_t distance_pair_tests = 0;
 
   std::unique_ptr<internal::FclScene> scene;
 };
+
+// The cost units every planner is measured in (one set of counters, filled the same way by AICO,
+// the RRTs and the OMPL peers; docs/results/unwrap.md):
+//   state_queries        validity or clearance evaluations of one configuration (a boolean
+//                        InCollision, a ComputeProximity, a line-clearance or winding evaluation);
+//   bool_pair_tests      yes/no narrow-phase pair tests (stop at the first hit);
+//   distance_pair_tests  distance evaluations of one pair (FCL distance or penetration, closed-form
+//                        capsule distance, segment-to-line distance).
+struct QueryCounts {
+  std::int64_t state_queries = 0;
+  std::int64_t bool_pair_tests = 0;
+  std::int64_t distance_pair_tests = 0;
+  std::int64_t pair_tests() const { return bool_pair_tests + distance_pair_tests; }
+  QueryCounts& operator+=(const QueryCounts& o) {
+    state_queries += o.state_queries;
+    bool_pair_tests += o.bool_pair_tests;
+    distance_pair_tests += o.distance_pair_tests;
+    return *this;
+  }
+  friend QueryCounts operator+(QueryCounts a, const QueryCounts& b) { return a += b; }
+  friend QueryCounts operator-(QueryCounts a, const QueryCounts& b) {
+    a.state_queries -= b.state_queries;
+    a.bool_pair_tests -= b.bool_pair_tests;
+    a.distance_pair_tests -= b.distance_pair_tests;
+    return a;
+  }
+  friend bool operator==(const QueryCounts& a, const QueryCounts& b) {
+    return a.state_queries == b.state_queries && a.bool_pair_tests == b.bool_pair_tests &&
+           a.distance_pair_tests == b.distance_pair_tests;
+  }
+};
+
+// The counters of `coll` in these units: state_queries = queries.
+inline QueryCounts Counts(const CollisionData& coll) {
+  return {coll.queries, coll.bool_pair_tests, coll.distance_pair_tests};
+}
 
 // A colliding or near pair. Self pairs have object == −1 and link_b ≥ 0; environment pairs have
 // link_b == −1 and object = index into Environment::objects.

@@ -127,6 +127,7 @@ PairVerdict CollidePair(const FclScene& s, const FclShape& a, const FclShape& b,
                         CollisionData* coll) {
   const auto collide = [coll](const fcl::CollisionObjectd* x, const fcl::CollisionObjectd* y) {
     ++coll->narrow_phase_calls;
+    ++coll->bool_pair_tests;
     try {
       fcl::CollisionRequestd request;
       fcl::CollisionResultd result;
@@ -224,6 +225,7 @@ void CapsuleDistance(const FclShape& a, const FclShape& b, ProximityPair* out) {
 // Signed distance between two shapes with witness points and the normal from b to a.
 void ShapeDistance(const FclShape& a, const FclShape& b, CollisionData* coll, ProximityPair* out) {
   ++coll->narrow_phase_calls;
+  ++coll->distance_pair_tests;
   if (ClosedFormPair(a, b)) {
     CapsuleDistance(a, b, out);
     return;
@@ -257,6 +259,7 @@ void ShapeDistance(const FclShape& a, const FclShape& b, CollisionData* coll, Pr
   }
   // In contact (or the distance solver failed): penetration depth and normal from the contact.
   ++coll->narrow_phase_calls;
+  ++coll->distance_pair_tests;
   fcl::CollisionRequestd creq(1, true);
   fcl::CollisionResultd cres;
   bool contact = false;

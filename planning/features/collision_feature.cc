@@ -37,6 +37,11 @@ long CollisionFeature::narrow_phase_calls(const FeatureData* data) const {
                    static_cast<const CollisionFeatureData*>(data)->coll.narrow_phase_calls);
 }
 
+QueryCounts CollisionFeature::query_counts(const FeatureData* data) const {
+  return data == nullptr ? QueryCounts{}
+                         : Counts(static_cast<const CollisionFeatureData*>(data)->coll);
+}
+
 void CollisionFeature::Eval(const Robot& robot, const KinematicsData& kin, FeatureData* data,
                             Eigen::Ref<Eigen::VectorXd> y, Eigen::MatrixXd* J) const {
   auto* d = static_cast<CollisionFeatureData*>(data);

@@ -31,6 +31,8 @@ class CollisionFeature : public Feature {
   std::unique_ptr<FeatureData> CreateData(const Robot& robot) const override;
   long collision_queries(const FeatureData* data) const override;
   long narrow_phase_calls(const FeatureData* data) const override;
+  bool queries_world() const override { return true; }
+  QueryCounts query_counts(const FeatureData* data) const override;  // Counts(its CollisionData)
   void Eval(const Robot& robot, const KinematicsData& kin, FeatureData* data,
             Eigen::Ref<Eigen::VectorXd> y, Eigen::MatrixXd* J) const override;
 

@@ -7,5 +7,7 @@ namespace planning {
 std::unique_ptr<FeatureData> Feature::CreateData(const Robot&) const { return nullptr; }
 long Feature::collision_queries(const FeatureData*) const { return 0; }
 long Feature::narrow_phase_calls(const FeatureData*) const { return 0; }
+bool Feature::queries_world() const { return false; }
+QueryCounts Feature::query_counts(const FeatureData*) const { return {}; }
 
 }  // namespace planning

@@ -43,6 +43,14 @@ class Feature {
   virtual long collision_queries(const FeatureData* data) const;
   // Narrow-phase (shape-pair) FCL calls made through `data` so far (0 for non-collision features).
   virtual long narrow_phase_calls(const FeatureData* data) const;
+  // True for features that query the world at a configuration (collision, line clearance,
+  // winding): an evaluation pass that evaluates one of them is one state query (QueryCounts).
+  virtual bool queries_world() const;
+  // This feature's evaluations through `data` so far in the common cost units (collision.h
+  // QueryCounts): state_queries = its own evaluations of a configuration, pair tests as made
+  // (collision: the CollisionData's; line clearance and winding: one distance pair test per chain
+  // segment and evaluation). All zero for features that do not query the world.
+  virtual QueryCounts query_counts(const FeatureData* data) const;
 };
 
 // --- Factories (throw std::invalid_argument for out-of-range links/chains or bad sizes) --------

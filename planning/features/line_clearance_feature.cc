@@ -18,6 +18,7 @@ std::unique_ptr<FeatureData> LineClearanceFeature::CreateData(const Robot& robot
 void LineClearanceFeature::Eval(const Robot& robot, const KinematicsData& kin, FeatureData* data,
                                 Eigen::Ref<Eigen::VectorXd> y, Eigen::MatrixXd* J) const {
   auto* d = static_cast<ChainData*>(data);
+  ++d->evaluations;
   ChainPoints(robot, kin, chain_, &d->P);
   y.setZero();
   if (J != nullptr) {
@@ -52,6 +53,12 @@ std::unique_ptr<Feature> MakeLineClearanceFeature(const Robot& robot, int chain,
   }
   if (!(margin > 0.0)) throw std::invalid_argument("line_clearance feature: margin must be > 0");
   return std::make_unique<LineClearanceFeature>(robot, chain, line, margin);
+}
+
+QueryCounts LineClearanceFeature::query_counts(const FeatureData* data) const {
+  if (data == nullptr) return {};
+  const long evals = static_cast<const ChainData*>(data)->evaluations;
+  return {evals, 0, evals * (points_ - 1)};
 }
 
 }  // namespace planning

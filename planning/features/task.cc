@@ -85,12 +85,15 @@ void EvaluateTasks(const MotionProblem& problem, int t, const Eigen::VectorXd& q
                    TaskWorkspace* ws) {
   ForwardKinematics(*problem.robot, q, &ws->kin);
   ++ws->evaluations;
+  bool world = false;
   for (size_t i = 0; i < problem.tasks.size(); ++i) {
     const Task& task = problem.tasks[i];
     if (t >= 0 && task.precision[t] <= 0.0) continue;
     task.feature->Eval(*problem.robot, ws->kin, ws->data[i].get(), ws->y[i],
                        jacobians ? &ws->J[i] : nullptr);
+    world |= task.feature->queries_world();
   }
+  if (world) ++ws->state_queries;
 }
 
 void EvaluateTask(const MotionProblem& problem, int i, const Eigen::VectorXd& q, bool jacobians,
@@ -100,6 +103,7 @@ void EvaluateTask(const MotionProblem& problem, int i, const Eigen::VectorXd& q,
   const Task& task = problem.tasks[static_cast<size_t>(i)];
   task.feature->Eval(*problem.robot, ws->kin, ws->data[i].get(), ws->y[i],
                      jacobians ? &ws->J[i] : nullptr);
+  if (task.feature->queries_world()) ++ws->state_queries;
 }
 
 bool EvaluateBetweenTasks(const MotionProblem& problem, int t, int between,
@@ -110,12 +114,15 @@ bool EvaluateBetweenTasks(const MotionProblem& problem, int t, int between,
   if (std::none_of(problem.tasks.begin(), problem.tasks.end(), active)) return false;
   ForwardKinematics(*problem.robot, q, &ws->kin);
   ++ws->evaluations;
+  bool world = false;
   for (size_t i = 0; i < problem.tasks.size(); ++i) {
     const Task& task = problem.tasks[i];
     if (!active(task)) continue;
     task.feature->Eval(*problem.robot, ws->kin, ws->data[i].get(), ws->y[i],
                        jacobians ? &ws->J[i] : nullptr);
+    world |= task.feature->queries_world();
   }
+  if (world) ++ws->state_queries;
   return true;
 }
 
@@ -186,6 +193,15 @@ double TaskCost(const MotionProblem& problem, int t, const Eigen::VectorXd& qdot
     }
   }
   return cost;
+}
+
+QueryCounts TaskQueryCounts(const MotionProblem& problem, const TaskWorkspace& ws) {
+  QueryCounts total;
+  for (size_t i = 0; i < problem.tasks.size(); ++i) {
+    total += problem.tasks[i].feature->query_counts(ws.data[i].get());
+  }
+  total.state_queries = ws.state_queries;
+  return total;
 }
 
 long CollisionQueries(const MotionProblem& problem, const TaskWorkspace& ws) {

@@ -77,6 +77,10 @@ struct TaskWorkspace {
   std::vector<Eigen::VectorXd> y;                  // per task, φ_i(q)
   std::vector<Eigen::MatrixXd> J;                  // per task, dim_i × n
   long evaluations = 0;                            // number of EvaluateTasks calls
+  // Evaluation passes (EvaluateTasks, EvaluateTask, EvaluateBetweenTasks calls) that evaluated at
+  // least one feature that queries the world (Feature::queries_world): one state query per
+  // configuration, however many collision/clearance features it evaluates.
+  long state_queries = 0;
 };
 
 // ForwardKinematics at q, then every task i that is active at step t (ρ_{i,t} > 0; t < 0: all
@@ -113,6 +117,10 @@ int CountJumps(const MotionProblem& problem, const Eigen::MatrixXd& q, TaskWorks
 // Σ ρ||y* − φ||² over order-0 tasks + Σ ν||y* − J q̇||² over order-1 tasks (q̇ may be empty: 0).
 double TaskCost(const MotionProblem& problem, int t, const Eigen::VectorXd& qdot,
                 const TaskWorkspace& ws);
+
+// The cost units (collision.h QueryCounts) spent so far through `ws`: state_queries =
+// ws.state_queries (per configuration), pair tests summed over the features' query_counts.
+QueryCounts TaskQueryCounts(const MotionProblem& problem, const TaskWorkspace& ws);
 
 // Narrow-phase collision queries made so far by all features through `ws`.
 long CollisionQueries(const MotionProblem& problem, const TaskWorkspace& ws);

@@ -18,6 +18,7 @@ std::unique_ptr<FeatureData> WindingFeature::CreateData(const Robot& robot) cons
 void WindingFeature::Eval(const Robot& robot, const KinematicsData& kin, FeatureData* data,
                           Eigen::Ref<Eigen::VectorXd> y, Eigen::MatrixXd* J) const {
   auto* d = static_cast<ChainData*>(data);
+  ++d->evaluations;
   ChainPoints(robot, kin, chain_, &d->P);
   y[0] = topology::WindingNumber(d->P, axis_, {}, J != nullptr ? &d->grad : nullptr);
   if (J != nullptr) {
@@ -33,6 +34,12 @@ std::unique_ptr<Feature> MakeWindingFeature(const Robot& robot, int chain,
     throw std::invalid_argument("winding feature: zero axis direction");
   }
   return std::make_unique<WindingFeature>(robot, chain, axis);
+}
+
+QueryCounts WindingFeature::query_counts(const FeatureData* data) const {
+  if (data == nullptr) return {};
+  const long evals = static_cast<const ChainData*>(data)->evaluations;
+  return {evals, 0, evals * (points_ - 1)};
 }
 
 }  // namespace planning

@@ -22,6 +22,9 @@ class WindingFeature : public Feature {
   std::unique_ptr<FeatureData> CreateData(const Robot& robot) const override;
   void Eval(const Robot& robot, const KinematicsData& kin, FeatureData* data,
             Eigen::Ref<Eigen::VectorXd> y, Eigen::MatrixXd* J) const override;
+  bool queries_world() const override { return true; }
+  // state_queries = Evals, distance_pair_tests = Evals × (ChainSize − 1) segments.
+  QueryCounts query_counts(const FeatureData* data) const override;
 
  private:
   int chain_;

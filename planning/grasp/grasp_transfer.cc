@@ -195,11 +195,11 @@ void CopySubtree(const Robot& source, int root, const std::vector<char>& in, Rob
 
 }  // namespace
 
-Eigen::VectorXd WindingTarget(const TransferSetup& s) {
+Eigen::VectorXd WindingTarget(const TransferSetup& s, bool main_only) {
   KinematicsData hkin(s.human);
   ForwardKinematics(s.human, s.human_q, &hkin);
-  const int ne = static_cast<int>(s.extra_references.size());
-  const int nm = s.object.main_reference_in_target ? 3 : 0;
+  const int ne = main_only ? 0 : static_cast<int>(s.extra_references.size());
+  const int nm = main_only || s.object.main_reference_in_target ? 3 : 0;
   Eigen::VectorXd y(nm + 2 * ne);
   if (nm > 0) {
     y.head(3) =
@@ -244,7 +244,8 @@ Robot MakeFloatingHand(const Robot& source, const std::string& root_link,
 }
 
 TransferSetup MakeTransferSetup(const Robot& human_hand, const Robot& sdh_source,
-                                const GraspObject& object, const HumanGrasp& grasp) {
+                                const GraspObject& object, const HumanGrasp& grasp,
+                                PlacementRule rule) {
   TransferSetup s;
   s.human = human_hand;
   s.human_chains = AddGraspChains(true, &s.human);
@@ -267,6 +268,16 @@ TransferSetup MakeTransferSetup(const Robot& human_hand, const Robot& sdh_source
   // centroid; the SDH palm is placed on the line through it along z_SDH, far enough back that
   // the knuckles clear the object by 5 mm.
   const Eigen::Vector3d palm_centre = palm * Eigen::Vector3d(0, -0.014, 0.045);
+  s.sdh = MakeFloatingHand(sdh_source, "sdh_palm", r);
+  s.sdh_chains = AddGraspChains(false, &s.sdh);
+  s.sdh_placement = Eigen::Isometry3d::Identity();
+  s.sdh_placement.linear() = r;
+  if (rule == PlacementRule::kHumanPalm) {
+    s.sdh_placement.translation() =
+        palm * Eigen::Vector3d(kHumanGraspPoint[0], kHumanGraspPoint[1], kHumanGraspPoint[2]) -
+        kSdhGraspDepth * r.col(2);
+    return s;
+  }
   Eigen::Vector3d centre;
   if (s.reference.kind == ReferenceCurve::Kind::kAxis) {
     const Eigen::Vector3d d = s.reference.axis.direction.normalized();
@@ -279,8 +290,6 @@ TransferSetup MakeTransferSetup(const Robot& human_hand, const Robot& sdh_source
   for (double t = 0.0; t < 0.3; t += 0.0005) {
     if (SignedDistance(object, object_from_world * (centre - t * r.col(2))) < 0) depth = t;
   }
-  s.sdh_placement = Eigen::Isometry3d::Identity();
-  s.sdh_placement.linear() = r;
   Eigen::Vector3d finger_offset = Eigen::Vector3d::Zero();
   double standoff = std::max(0.12, 0.095 + depth);
   if (s.reference.kind == ReferenceCurve::Kind::kLoop) {
@@ -297,8 +306,6 @@ TransferSetup MakeTransferSetup(const Robot& human_hand, const Robot& sdh_source
     standoff = 0.16;
   }
   s.sdh_placement.translation() = centre - finger_offset - standoff * r.col(2);
-  s.sdh = MakeFloatingHand(sdh_source, "sdh_palm", r);
-  s.sdh_chains = AddGraspChains(false, &s.sdh);
   return s;
 }
 
@@ -379,17 +386,25 @@ MotionProblem MakeTransferProblem(const TransferSetup& s, TransferMethod method,
   bool contact = true;
   if (method == TransferMethod::kJointMapping) {
     problem.q0 = JointMapping(s, problem.q0);
-    contact = false;
+    contact = o.equal_baselines;
   } else {
     // Approach from a retracted hand.
     problem.q0.head<3>() -= o.retreat * s.sdh_placement.linear().col(2);
   }
   if (method == TransferMethod::kWinding || method == TransferMethod::kWindingOnly) {
-    target.push_back(FinalTask(
-        "winding",
-        std::make_unique<GraspWindingFeature>(s.sdh_chains, s.reference, s.extra_references,
-                                              s.object.main_reference_in_target),
-        WindingTarget(s), o.winding_precision, T));
+    if (o.equal_baselines) {
+      // One target rule for every object: M · y_human about the main reference only.
+      const std::vector<ReferenceCurve> none;
+      target.push_back(FinalTask(
+          "winding", std::make_unique<GraspWindingFeature>(s.sdh_chains, s.reference, none, true),
+          WindingTarget(s, true), o.winding_precision, T));
+    } else {
+      target.push_back(FinalTask(
+          "winding",
+          std::make_unique<GraspWindingFeature>(s.sdh_chains, s.reference, s.extra_references,
+                                                s.object.main_reference_in_target),
+          WindingTarget(s), o.winding_precision, T));
+    }
     contact = method == TransferMethod::kWinding;
   } else if (method == TransferMethod::kFingertip) {
     // Fingertip mapping: SDH tips to the human tips of the corresponding fingers.
@@ -435,15 +450,21 @@ TransferResult TransferGrasp(const TransferSetup& s, TransferMethod method,
   AicoWorkspace ws(problem);
   const Eigen::VectorXd q0 = problem.q0;
   const bool mapped = method == TransferMethod::kJointMapping;
-  const std::vector<double> flexions = mapped ? std::vector<double>{0.0} : o.initial_flexions;
+  const std::vector<double> flexions =
+      mapped && !o.equal_baselines ? std::vector<double>{0.0} : o.initial_flexions;
   double best_cost = std::numeric_limits<double>::infinity();
   for (double flex : flexions) {
     problem.q0 = q0;
-    for (int f = 0; f < 3 && !mapped; ++f) {
-      problem.q0[Dof(sdh, std::string(kSdhFingers[f]) + "_proximal_joint")] = flex;
-      problem.q0[Dof(sdh, std::string(kSdhFingers[f]) + "_distal_joint")] = flex;
+    for (int f = 0; f < 3; ++f) {
+      for (const char* joint : {"_proximal_joint", "_distal_joint"}) {
+        const int k = Dof(sdh, std::string(kSdhFingers[f]) + joint);
+        // Joint mapping: the start is offset from the mapped posture; the others start at flex.
+        problem.q0[k] = mapped ? Clamp(sdh, k, q0[k] + flex) : flex;
+      }
     }
     const AicoResult r = SolveAico(problem, o.aico, &ws);
+    ++res.starts;
+    res.task_evaluations += r.task_evaluations;
     if (r.cost < best_cost) {
       best_cost = r.cost;
       res.trajectory = r.trajectory;

@@ -22,13 +22,13 @@
 #include <string>
 #include <vector>
 
-#include "planning/motion/aico.h"
 #include "base/enum_names.h"
+#include "planning/features/task.h"
 #include "planning/grasp/grasp.h"
 #include "planning/grasp/grasp_object.h"
-#include "planning/robot/robot.h"
-#include "planning/features/task.h"
+#include "planning/motion/aico.h"
 #include "planning/motion/trajectory.h"
+#include "planning/robot/robot.h"
 
 namespace planning {
 
@@ -88,6 +88,14 @@ struct TransferOptions {
   // Start postures of the SDH flexion joints [rad]; AICO runs from each, the lowest cost wins.
   std::vector<double> initial_flexions = {0.0, 0.2};
   double retreat = 0.03;  // start pose: palm retracted along −z_SDH [m], fingers open
+  // Equal baselines (`bench grasp`, issue 36): the joint method also gets the contact term and
+  // one AICO run per initial flexion (added to its mapped flexion joints, clamped), so that every
+  // SDH method runs the same optimiser with the same starts, the same iteration cap
+  // (aico.max_iterations) and the same shared terms; only the target term differs; and the
+  // winding target follows one rule for every object (WindingTarget(setup, true): the main
+  // reference only, no per-object extra curves or main_reference_in_target). Off: the
+  // joint method runs once from its mapped posture with non-penetration only (`grasp transfer`).
+  bool equal_baselines = false;
 };
 
 // Result of one transfer.
@@ -107,7 +115,9 @@ struct TransferResult {
   double min_clearance = 0.0;  // hand vs object at q [m] (negative = penetration)
   std::string solver;          // "aico" ("demonstration" for the human reference)
   SolveStatus status = SolveStatus::kConverged;
-  int iterations = 0;
+  int iterations = 0;         // AICO sweeps of the winning start
+  int starts = 0;             // AICO runs (multi-start)
+  long task_evaluations = 0;  // task evaluations (kinematics + features) summed over the starts
 };
 
 // Everything a transfer needs, built once per grasp.
@@ -124,10 +134,36 @@ struct TransferSetup {
   Eigen::Isometry3d sdh_placement;  // nominal SDH palm pose (world)
 };
 
+// How the nominal SDH palm pose is found (the shared stage every SDH method starts from):
+//   kObjectCentre  the file comment's rule: the line through the grasp centre on the object's
+//                  reference curve, the standoff from the object's depth, and for a loop the SDH
+//                  finger with the largest *target winding* through the loop's centre — it
+//                  reads the object's reference and the winding encoding (`grasp transfer`);
+//   kHumanPalm     from the human palm pose alone (no object, no encoding): the SDH point
+//                  kSdhGraspDepth along z_SDH from its palm origin is put on the human hand's
+//                  grasp point kHumanGraspPoint (hand_palm frame: 4 cm out of the palm surface,
+//                  2.65 cm distal of the palm centre (0, −0.014, 0.045)). One rule for every
+//                  grasp and method (issue 36); its two constants are the medians, over the 8
+//                  nominal grasps, of where the kObjectCentre rule puts the SDH relative to the
+//                  human palm, so it is the best single hand-to-hand mapping of that rule.
+enum class PlacementRule { kObjectCentre, kHumanPalm };
+inline constexpr base::EnumName<PlacementRule> kPlacementRuleNames[] = {
+    {PlacementRule::kObjectCentre, "object_centre"},
+    {PlacementRule::kHumanPalm, "human_palm"},
+};
+constexpr std::span<const base::EnumName<PlacementRule>> EnumNames(PlacementRule) {
+  return kPlacementRuleNames;
+}
+inline const char* ToString(PlacementRule rule) { return base::ToName(rule); }
+inline constexpr double kHumanGraspPoint[3] = {0.0, -0.054, 0.0715};  // hand_palm frame [m]
+inline constexpr double kSdhGraspDepth = 0.14;                        // [m]
+
 // Builds the setup from the human hand model, the LWR4+SDH model (its SDH subtree is used), the
-// object and the grasp. Throws std::invalid_argument for inconsistent inputs.
+// object and the grasp, with the placement `rule`. Throws std::invalid_argument for inconsistent
+// inputs.
 TransferSetup MakeTransferSetup(const Robot& human_hand, const Robot& sdh_source,
-                                const GraspObject& object, const HumanGrasp& grasp);
+                                const GraspObject& object, const HumanGrasp& grasp,
+                                PlacementRule rule = PlacementRule::kObjectCentre);
 
 // Correspondence matrix M (3 × 5), see the file comment.
 Eigen::MatrixXd FingerCorrespondence();
@@ -135,7 +171,9 @@ Eigen::MatrixXd FingerCorrespondence();
 // Target of the winding term (docs/methods.md §9.1): M · w_human about setup.reference (3; left
 // out when setup.object.main_reference_in_target is false), then per extra reference curve r the
 // opposition pair OppositionPair(w_human^(r)) = (max, min) over the five human fingers (2 each).
-Eigen::VectorXd WindingTarget(const TransferSetup& setup);
+// main_only: M · w_human about setup.reference alone, for every object (the one target rule of
+// TransferOptions::equal_baselines).
+Eigen::VectorXd WindingTarget(const TransferSetup& setup, bool main_only = false);
 
 // SDH palm at the placement (6 floating dofs = (placement translation, 0, 0, 0)), the spread
 // joint at grasp.sdh_spread (clamped), every other joint 0. Size = num_dofs(setup.sdh).
@@ -161,7 +199,8 @@ std::vector<Task> SharedTransferTasks(const TransferSetup& setup, const Transfer
 //   winding_only: "winding", no contact; contact_only: no target + contact;
 //   fingertip: "tip_sdh_thumb", "tip_sdh_finger_1", "tip_sdh_finger_2" (final slice,
 //     tip_precision, the mean human fingertip of the corresponding fingers) + contact;
-//   joint: no target, no contact (non-penetration projection of the mapped posture).
+//   joint: no target, no contact (non-penetration projection of the mapped posture); with
+//     options.equal_baselines the contact term too.
 // q0: the joint method starts at the linear joint mapping of the human angles (palm at the
 // placement); the others at the placement retracted by options.retreat along −z_SDH (their
 // finger flexions are then set per start in options.initial_flexions). Throws
@@ -171,7 +210,8 @@ MotionProblem MakeTransferProblem(const TransferSetup& setup, TransferMethod met
 
 // Runs one SDH method: MakeTransferProblem, then AICO (winding, winding_only, contact_only,
 // fingertip: one run per initial flexion, the lowest cost wins; joint: one run from the mapped
-// posture). Deterministic. Throws std::invalid_argument for kHuman (see physics::RunHumanTrial).
+// posture, or with options.equal_baselines one per initial flexion added to the mapped flexions).
+// Deterministic. Throws std::invalid_argument for kHuman (see physics::RunHumanTrial).
 TransferResult TransferGrasp(const TransferSetup& setup, TransferMethod method,
                              const TransferOptions& options = {});
 

@@ -3,8 +3,6 @@
 // AicoSolver, SolveAico, TrajectoryCost. The messages of one sweep are in aico_messages.cc.
 #include "planning/motion/aico.h"
 
-#include "base/numbers.h"
-
 #include <algorithm>
 #include <cassert>
 #include <cmath>
@@ -13,6 +11,7 @@
 #include <string>
 #include <utility>
 
+#include "base/numbers.h"
 #include "planning/motion/internal/aico_solver.h"
 
 namespace planning {
@@ -221,6 +220,7 @@ void Aico::Start(const Trajectory* init) {
   evals0_ = ws_->tasks.evaluations;
   coll0_ = CollisionQueries(p_, ws_->tasks);
   narrow0_ = NarrowPhaseCalls(p_, ws_->tasks);
+  counts0_ = TaskQueryCounts(p_, ws_->tasks);
   err_.clear();
   Eigen::Index rows_q = 1, rows_v = 1;
   for (const Task& task : p_.tasks) {
@@ -268,6 +268,7 @@ void Aico::Count() {
   result_.task_evaluations = ws_->tasks.evaluations - evals0_;
   result_.collision_queries = CollisionQueries(p_, ws_->tasks) - coll0_;
   result_.narrow_phase_calls = NarrowPhaseCalls(p_, ws_->tasks) - narrow0_;
+  result_.counts = TaskQueryCounts(p_, ws_->tasks) - counts0_;
 }
 
 AicoStep Aico::Step() {

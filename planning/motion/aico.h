@@ -107,6 +107,9 @@ struct AicoResult {
   long task_evaluations = 0;    // EvaluateTasks calls (one kinematics + features pass each)
   long collision_queries = 0;   // narrow-phase queries made by collision features
   long narrow_phase_calls = 0;  // FCL narrow-phase calls inside those queries
+  // The common cost units (collision.h QueryCounts) spent by this solve: state queries (task
+  // evaluation passes that queried the world, one per configuration) and pair tests.
+  QueryCounts counts;
 };
 
 // Called after every sweep: sweep index (0-based), its cost, whether it was accepted, and the

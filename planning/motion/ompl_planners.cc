@@ -40,7 +40,7 @@ void CheckOmplProblem(const RrtProblem& p) {
 }  // namespace
 
 RrtResult PlanOmpl(OmplPlanner planner, const RrtProblem& problem, const RrtOptions& options,
-                   const ValidityFn& valid, unsigned seed) {
+                   const ValidityFn& valid, unsigned seed, const std::function<bool()>& stop) {
   CheckOmplProblem(problem);
   const unsigned n = static_cast<unsigned>(problem.start.size());
   const double diag = (problem.upper - problem.lower).norm();
@@ -99,7 +99,7 @@ RrtResult PlanOmpl(OmplPlanner planner, const RrtProblem& problem, const RrtOpti
 
   const ob::PlannerTerminationCondition ptc([&] {
     ++evaluations;
-    return checks >= options.max_checks || evaluations > options.max_iterations;
+    return checks >= options.max_checks || evaluations > options.max_iterations || (stop && stop());
   });
   const ob::PlannerStatus status = p->solve(ptc);
 

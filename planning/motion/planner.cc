@@ -3,14 +3,16 @@
 #include <cassert>
 #include <chrono>
 #include <cmath>
+#include <ctime>
 #include <random>
 #include <stdexcept>
 
-#include "planning/collision/collision.h"
 #include "base/enum_names.h"
+#include "base/numbers.h"
+#include "planning/collision/collision.h"
 #include "planning/motion/internal/ompl_planners.h"
-#include "planning/robot/kinematics.h"
 #include "planning/motion/rrt.h"
+#include "planning/robot/kinematics.h"
 #include "topology/winding.h"
 
 namespace planning {
@@ -21,6 +23,7 @@ inline constexpr base::EnumName<Planner> kPlannerNames[] = {
     {Planner::kBiRrt, "birrt"},
     {Planner::kOmplRrt, "ompl-rrt"},
     {Planner::kOmplRrtConnect, "ompl-rrtconnect"},
+    {Planner::kAicoGoal, "aico-goal"},
 };
 constexpr std::span<const base::EnumName<Planner>> EnumNames(Planner) { return kPlannerNames; }
 
@@ -32,6 +35,35 @@ constexpr std::int64_t kRrtPollIterations = 16;
 bool NeedsOmpl(Planner p) { return p == Planner::kOmplRrt || p == Planner::kOmplRrtConnect; }
 
 }  // namespace
+
+bool IsAico(Planner planner) { return planner == Planner::kAico || planner == Planner::kAicoGoal; }
+
+void DisableTasks(const std::vector<std::string>& names, MotionProblem* problem) {
+  for (const std::string& name : names) {
+    bool found = false;
+    for (Task& task : problem->tasks) {
+      if (task.name != name) continue;
+      task.precision.setZero();
+      task.max_jump = 0.0;
+      found = true;
+    }
+    if (!found) {
+      std::string known;
+      for (const Task& task : problem->tasks)
+        known.append(known.empty() ? "" : ", ").append(task.name);
+      throw std::invalid_argument("no task '" + name + "' to switch off (tasks: " + known + ")");
+    }
+  }
+}
+
+std::vector<std::string> WritheTaskNames(const MotionProblem& problem) {
+  std::vector<std::string> out;
+  for (const Task& task : problem.tasks) {
+    // "writhe" (the matrix) or "writhe_total" (its sum).
+    if (task.feature && task.feature->name().rfind("writhe", 0) == 0) out.push_back(task.name);
+  }
+  return out;
+}
 
 ValidityFn ValidityChecker(const Scenario& s, CollisionData* coll, KinematicsData* kin) {
   const Eigen::VectorXd lo = LowerLimits(s.robot), hi = UpperLimits(s.robot);
@@ -85,6 +117,74 @@ bool OmplAvailable() {
 
 const char* PlannerName(Planner planner) { return base::ToName(planner); }
 
+double CpuSeconds() {
+  timespec ts{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
+
+Budget ParseBudget(const std::string& text, const std::string& flag) {
+  const auto bad = [&] {
+    return std::invalid_argument(flag +
+                                 ": expected time=SECONDS (CPU, > 0), queries=N (N >= 1 "
+                                 "state queries) or pairs=N (N >= 1 pair tests), got '" +
+                                 text + "'");
+  };
+  const size_t eq = text.find('=');
+  const std::string key = eq == std::string::npos ? "queries" : text.substr(0, eq);
+  const std::string value = eq == std::string::npos ? text : text.substr(eq + 1);
+  Budget b;
+  if (key == "queries") {
+    b.unit = Budget::Unit::kQueries;
+  } else if (key == "time") {
+    b.unit = Budget::Unit::kCpuTime;
+  } else if (key == "pairs") {
+    b.unit = Budget::Unit::kPairTests;
+  } else {
+    throw bad();
+  }
+  char* end = nullptr;
+  b.value = std::strtod(value.c_str(), &end);
+  if (value.empty() || end != value.c_str() + value.size() || !std::isfinite(b.value) ||
+      !(b.value > 0.0)) {
+    throw bad();
+  }
+  if (b.unit != Budget::Unit::kCpuTime &&
+      (b.value != std::floor(b.value) || b.value < 1.0 || b.value > 1e12)) {
+    throw bad();
+  }
+  return b;
+}
+
+std::string BudgetText(const Budget& budget) {
+  switch (budget.unit) {
+    case Budget::Unit::kQueries:
+      return std::string("queries=").append(std::to_string(static_cast<long long>(budget.value)));
+    case Budget::Unit::kCpuTime:
+      return std::string("time=").append(base::FormatShortest(budget.value));
+    case Budget::Unit::kPairTests:
+      return std::string("pairs=").append(std::to_string(static_cast<long long>(budget.value)));
+    case Budget::Unit::kNone:
+      break;
+  }
+  return "";
+}
+
+bool SolvedWithin(const PlanReport& report, const Budget& budget) {
+  if (!report.success) return false;
+  switch (budget.unit) {
+    case Budget::Unit::kQueries:
+      return static_cast<double>(report.counts.state_queries) <= budget.value;
+    case Budget::Unit::kCpuTime:
+      return report.cpu_time_s <= budget.value;
+    case Budget::Unit::kPairTests:
+      return static_cast<double>(report.counts.pair_tests()) <= budget.value;
+    case Budget::Unit::kNone:
+      break;
+  }
+  return true;
+}
+
 PlanResult RunPlanner(const Scenario& s, Planner planner, unsigned seed,
                       const AicoCallback& callback, const PollFn& poll) {
   PlanRequest request;
@@ -101,28 +201,57 @@ PlanResult RunPlanner(const Scenario& s, const PlanRequest& request) {
   const unsigned seed = request.seed;
   const PollFn& poll = request.poll;
   const auto t0 = std::chrono::steady_clock::now();
+  const double cpu0 = CpuSeconds();
   const auto elapsed = [&t0] {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   };
-  if (planner == Planner::kAico) {
-    PlanResult out = RunAicoAttempts(s, w, request.aico ? *request.aico : s.aico, request.callback);
+  if (IsAico(planner)) {
+    std::vector<std::string> off = request.disabled_tasks;
+    if (planner == Planner::kAicoGoal) {
+      for (const std::string& name : WritheTaskNames(w.problem)) off.push_back(name);
+    }
+    PlanResult out = RunAicoAttempts(s, w, request.aico ? *request.aico : s.aico, request.callback,
+                                     request.budget, off);
     out.report.time_s = elapsed();
+    out.report.cpu_time_s = CpuSeconds() - cpu0;
     FinishReport(s, w, out.trajectory.num_points() > 0, /*judged=*/true, &out);
+    out.report.planner = PlannerName(planner);
     return out;
   }
   CollisionData coll(s.robot, w.env, s.collision);
   KinematicsData kin(s.robot);
   const ValidityFn valid = ValidityChecker(s, &coll, &kin);
   const RrtProblem rp = ScenarioRrtProblem(s);
+  RrtOptions options = s.rrt;
+  if (request.budget.unit == Budget::Unit::kQueries) {
+    options.max_checks = static_cast<std::int64_t>(request.budget.value);
+  }
+  // Time and pair-test budgets are polled (queries: max_checks above).
+  const auto out_of_time = [&] {
+    switch (request.budget.unit) {
+      case Budget::Unit::kCpuTime:
+        return CpuSeconds() - cpu0 >= request.budget.value;
+      case Budget::Unit::kPairTests:
+        return static_cast<double>(Counts(coll).pair_tests()) >= request.budget.value;
+      case Budget::Unit::kQueries:
+      case Budget::Unit::kNone:
+        break;
+    }
+    return false;
+  };
   RrtResult r;
   switch (planner) {
     case Planner::kRrt:
     case Planner::kBiRrt: {
       // In chunks of iterations, polling between them (same result as one PlanRrt call).
-      RrtSolver solver(rp, s.rrt, valid, std::mt19937(seed), planner == Planner::kBiRrt);
+      RrtSolver solver(rp, options, valid, std::mt19937(seed), planner == Planner::kBiRrt);
+      // A polled budget is tested after every iteration (Step(1) repeated = one Step(max)).
+      const bool polled = request.budget.unit == Budget::Unit::kCpuTime ||
+                          request.budget.unit == Budget::Unit::kPairTests;
       while (!solver.done()) {
-        solver.Step(kRrtPollIterations);
+        solver.Step(polled ? 1 : kRrtPollIterations);
         if (poll) poll();
+        if (!solver.done() && out_of_time()) solver.RequestStop();
       }
       r = solver.result();
       break;
@@ -132,30 +261,34 @@ PlanResult RunPlanner(const Scenario& s, const PlanRequest& request) {
 #ifdef TOPOPLAN_HAVE_OMPL
       r = internal::PlanOmpl(planner == Planner::kOmplRrt ? internal::OmplPlanner::kRrt
                                                           : internal::OmplPlanner::kRrtConnect,
-                             rp, s.rrt, valid, seed);
+                             rp, options, valid, seed, out_of_time);
       break;
 #else
       throw std::invalid_argument(std::string("planner '") + PlannerName(planner) +
                                   "': topoplan was built without OMPL");
 #endif
     case Planner::kAico:
+    case Planner::kAicoGoal:
       break;
   }
   const double time_s = elapsed();
-  PlanResult out = SamplingPlanResult(s, w, planner, r, coll.queries, coll.narrow_phase_calls);
+  const double cpu_s = CpuSeconds() - cpu0;
+  PlanResult out = SamplingPlanResult(s, w, planner, r, coll);
   out.report.time_s = time_s;
+  out.report.cpu_time_s = cpu_s;
   return out;
 }
 
 PlanResult SamplingPlanResult(const Scenario& s, const ScenarioState& w, Planner planner,
-                              const RrtResult& r, long queries, long narrow_phase_calls) {
+                              const RrtResult& r, const CollisionData& coll) {
   PlanResult out;
   PlanReport& rep = out.report;
   rep.planner = PlannerName(planner);
   rep.status = r.status;
   rep.iterations = r.iterations;
-  rep.collision_checks = queries;
-  rep.narrow_phase_calls = narrow_phase_calls;
+  rep.collision_checks = coll.queries;
+  rep.narrow_phase_calls = coll.narrow_phase_calls;
+  rep.counts = Counts(coll);
   out.trajectory = r.path;
   const bool found = r.status == SolveStatus::kConverged;
   // RRT paths are checked edge by edge while planning; re-check at the scenario's resolution
@@ -220,12 +353,12 @@ struct AicoPathCheck {
   bool judged = false;
   PlanVerdict verdict;
   long queries = 0, narrow_phase_calls = 0;
+  QueryCounts counts;
   bool success() const { return valid && judged && verdict.reason == FailureReason::kNone; }
 };
 
 AicoPathCheck CheckAicoPath(const Scenario& s, const ScenarioState& w, const Trajectory& path,
-                            bool invalid_input,
-                            bool judge_invalid) {
+                            bool invalid_input, bool judge_invalid) {
   AicoPathCheck c;
   CollisionData coll(s.robot, w.env, s.collision);
   KinematicsData kin(s.robot);
@@ -233,6 +366,7 @@ AicoPathCheck CheckAicoPath(const Scenario& s, const ScenarioState& w, const Tra
       !invalid_input && PathIsValid(path, s.check_resolution, ValidityChecker(s, &coll, &kin));
   c.queries = coll.queries;
   c.narrow_phase_calls = coll.narrow_phase_calls;
+  c.counts = Counts(coll);
   if (c.valid || judge_invalid) {
     c.verdict = JudgePlan(s, w, path);
     c.judged = true;
@@ -249,6 +383,7 @@ bool FoldAicoAttempt(const AicoResult& r, const AicoPathCheck& check, PlanResult
   rep.cost_history = r.cost_history;
   rep.collision_checks += r.collision_queries + check.queries;
   rep.narrow_phase_calls += r.narrow_phase_calls + check.narrow_phase_calls;
+  rep.counts += r.counts + check.counts;
   out->trajectory = r.trajectory;
   rep.path_collision_free = check.valid;
   ApplyVerdict(check.verdict, &rep);
@@ -274,39 +409,80 @@ PlanResult RunAicoAttempts(const Scenario& s, const AicoCallback& callback) {
 }
 
 PlanResult RunAicoAttempts(const Scenario& s, const ScenarioState& w, const AicoOptions& aico,
-                           const AicoCallback& callback) {
+                           const AicoCallback& callback, const Budget& budget,
+                           const std::vector<std::string>& disabled_tasks) {
   PlanResult out;
   PlanReport& rep = out.report;
   rep.planner = PlannerName(Planner::kAico);
   rep.attempts = 0;
-  for (int k = 0; k < static_cast<int>(s.aico_attempts.size()); ++k) {
-    const MotionProblem later = k > 0 ? AttemptProblem(s, w, k) : MotionProblem{};
+  const double cpu0 = CpuSeconds();
+  bool budget_spent = false;
+  for (int k = 0; k < static_cast<int>(s.aico_attempts.size()) && !budget_spent; ++k) {
+    // Attempt 0 is the state's own problem unless terms are switched off.
+    const bool own = k == 0 && disabled_tasks.empty();
+    MotionProblem later = own ? MotionProblem{} : AttemptProblem(s, w, k);
+    if (!own) DisableTasks(disabled_tasks, &later);
     ++rep.attempts;
     AicoOptions options = aico;
     options.max_iterations = s.aico_attempts[k].max_iterations;
-    AicoSolver solver(k > 0 ? later : w.problem, options);
+    AicoSolver solver(own ? w.problem : later, options);
     long probe_queries = 0, probe_narrow = 0;  // validations of trajectories that were no success
+    QueryCounts probe_counts;
+    // The budget spent after a sweep: this attempt's counts so far, earlier attempts' and probes'.
+    const auto spent = [&] {
+      switch (budget.unit) {
+        case Budget::Unit::kQueries: {
+          const QueryCounts c = rep.counts + probe_counts + solver.result().counts;
+          return static_cast<double>(c.state_queries) >= budget.value;
+        }
+        case Budget::Unit::kCpuTime:
+          return CpuSeconds() - cpu0 >= budget.value;
+        case Budget::Unit::kPairTests: {
+          const QueryCounts c = rep.counts + probe_counts + solver.result().counts;
+          return static_cast<double>(c.pair_tests()) >= budget.value;
+        }
+        case Budget::Unit::kNone:
+          break;
+      }
+      return false;
+    };
     bool solved = false;
     while (!solver.done()) {
       const AicoStep step = solver.Step();
       if (callback) callback(step.sweep, step.cost, step.accepted, solver.trajectory());
-      if (!s.stop_when_solved || !step.accepted || solver.done()) continue;
-      const Trajectory& path = solver.trajectory();
-      if (!CheckEndState(s, w, path.q.col(path.num_points() - 1), false).ok()) continue;
-      const AicoPathCheck check = CheckAicoPath(s, w, path, false, false);
-      if (!check.success()) {
-        probe_queries += check.queries;
-        probe_narrow += check.narrow_phase_calls;
-        continue;
+      if (solver.done()) break;
+      if (s.stop_when_solved && step.accepted) {
+        const Trajectory& path = solver.trajectory();
+        if (CheckEndState(s, w, path.q.col(path.num_points() - 1), false).ok()) {
+          const AicoPathCheck check = CheckAicoPath(s, w, path, false, false);
+          if (check.success()) {
+            AicoResult r = solver.result();
+            r.status = SolveStatus::kSolved;
+            solved = FoldAicoAttempt(r, check, &out);
+            break;
+          }
+          probe_queries += check.queries;
+          probe_narrow += check.narrow_phase_calls;
+          probe_counts += check.counts;
+        }
       }
-      AicoResult r = solver.result();
-      r.status = SolveStatus::kSolved;
-      solved = FoldAicoAttempt(r, check, &out);
-      break;
+      if (spent()) {  // after the success test: a sweep that solves is kept
+        budget_spent = true;
+        break;
+      }
     }
-    if (!solved) solved = AddAicoAttempt(s, w, solver.result(), &out);
+    if (!solved) {
+      AicoResult r = solver.result();
+      if (budget_spent) r.status = SolveStatus::kBudgetExhausted;
+      solved = AddAicoAttempt(s, w, r, &out);
+      if (budget_spent) {  // a budget is a limit: what the last sweep left is no success
+        rep.failure_reason = FailureReason::kBudgetExhausted;
+        rep.success = solved = false;
+      }
+    }
     rep.collision_checks += probe_queries;
     rep.narrow_phase_calls += probe_narrow;
+    rep.counts += probe_counts;
     if (solved) break;
   }
   return out;

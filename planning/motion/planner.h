@@ -7,23 +7,28 @@
 #include <string>
 #include <vector>
 
-#include "planning/motion/aico.h"
 #include "planning/collision/collision.h"
-#include "planning/robot/kinematics.h"
+#include "planning/motion/aico.h"
 #include "planning/motion/rrt.h"
 #include "planning/motion/scenario.h"
 #include "planning/motion/success.h"
 #include "planning/motion/trajectory.h"
+#include "planning/robot/kinematics.h"
 
 namespace planning {
 
 // kOmplRrt / kOmplRrtConnect: OMPL's geometric RRT (goal bias from the scenario, 0.1) and
 // RRTConnect as a peer check of the project's RRTs, on the same checker, counter, budget, goal and
 // edge resolution (only when built with OMPL, see OmplAvailable).
-enum class Planner { kAico, kRrt, kBiRrt, kOmplRrt, kOmplRrtConnect };
+// kAicoGoal ("aico-goal"): AICO on the same problem without its writhe terms (every task whose
+// feature is a writhe matrix or total, WritheTaskNames), the baseline that has the reach,
+// collision and guard terms but no topology target (docs/results/unwrap.md).
+enum class Planner { kAico, kRrt, kBiRrt, kOmplRrt, kOmplRrtConnect, kAicoGoal };
+// kAico or kAicoGoal.
+bool IsAico(Planner planner);
 
-// The registry: every planner of this build, in order ("aico", "rrt", "birrt", and
-// "ompl-rrt", "ompl-rrtconnect" when built with OMPL).
+// The registry: every planner of this build, in order ("aico", "rrt", "birrt", "ompl-rrt",
+// "ompl-rrtconnect" when built with OMPL, "aico-goal").
 std::vector<Planner> AvailablePlanners();
 // "aico" | "rrt" | "birrt" | "ompl-rrt" | "ompl-rrtconnect"; throws std::invalid_argument for an
 // unknown name (listing the valid ones), and for the OMPL names when built without OMPL
@@ -44,6 +49,13 @@ struct PlanReport {
   double cost = 0.0;            // AICO: final total cost; RRT: joint-space path length
   double path_length = 0.0;     // joint-space path length (rad)
   double time_s = 0.0;          // wall-clock planning time (the only non-deterministic field)
+  // The common cost units (collision.h QueryCounts), counted the same way for every planner:
+  // AICO's feature evaluations (collision, line clearance, winding guard; rollout included) plus
+  // its validations at check_resolution; a sampling planner's validity checks. Deterministic.
+  QueryCounts counts;
+  double cpu_time_s = 0.0;    // process CPU time of the solve [s] (not deterministic)
+  double setup_time_s = 0.0;  // wall time of the scenario set-up before the solve [s] (callers
+                              // that set the scenario up fill it; RunPlanner leaves it 0)
   double start_writhe_total = 0.0;
   double final_writhe_total = 0.0;
   double min_clearance_m = 0.0;  // minimum signed distance along the path at check_resolution
@@ -90,6 +102,28 @@ RrtProblem ScenarioRrtProblem(const Scenario& s);
 // every few RRT/BiRRT iterations; it may throw to abort the run (the CLI's interrupt/--timeout
 // check).
 using PollFn = std::function<void()>;
+
+// A run's budget in one cost unit: the run ends with status kBudgetExhausted once it has spent it.
+// kQueries: state queries (QueryCounts::state_queries; the RRTs' max_checks, exact); kCpuTime:
+// process CPU seconds of the solve; kPairTests: pair tests of both kinds (QueryCounts::pair_tests).
+// AICO tests it after every sweep, RRT/BiRRT after every iteration, OMPL at every poll of its
+// termination condition, so a run may overshoot by one sweep or iteration; whether a run solved
+// within budget b is read off its counts (SolvedWithin).
+struct Budget {
+  enum class Unit { kNone, kQueries, kCpuTime, kPairTests };
+  Unit unit = Unit::kNone;  // kNone: the scenario's own limits
+  double value = 0.0;       // state queries, CPU seconds or pair tests
+};
+// "queries=N" | "pairs=N" (N a positive integer) | "time=S" (S > 0 seconds, CPU) | "N" (=
+// queries=N). Throws std::invalid_argument naming `flag` for anything else.
+Budget ParseBudget(const std::string& text, const std::string& flag);
+// "queries=100000" / "pairs=100000" / "time=2.5" (ParseBudget's syntax); "" for kNone.
+std::string BudgetText(const Budget& budget);
+// Whether `report` is a success that spent at most `budget` (its counts or cpu_time_s); every
+// success for kNone.
+bool SolvedWithin(const PlanReport& report, const Budget& budget);
+// Process CPU time [s] (CLOCK_PROCESS_CPUTIME_ID).
+double CpuSeconds();
 PlanResult RunPlanner(const Scenario& scenario, Planner planner, unsigned seed,
                       const AicoCallback& callback = {}, const PollFn& poll = {});
 
@@ -104,17 +138,21 @@ struct PlanRequest {
   std::optional<AicoOptions> aico;
   AicoCallback callback;
   PollFn poll;
+  Budget budget;  // kNone: the scenario's limits (rrt.max_checks, aico iterations)
+  // AICO only: task terms switched off (ablations): the tasks of these names get precision 0 and
+  // max_jump 0 in every attempt's problem (the features stay, for the success judge). Unknown
+  // names throw std::invalid_argument.
+  std::vector<std::string> disabled_tasks;
 };
 // RunPlanner above, as the request says.
 PlanResult RunPlanner(const Scenario& scenario, const PlanRequest& request);
 
-// The result of a sampling planner's run `r` (RRT, BiRRT, the OMPL peers; `queries` and
-// `narrow_phase_calls` counted while it ran), as RunPlanner reports it: the path re-checked at
-// check_resolution on an uncounted collision state, then FinishReport. time_s is left 0. The
-// viewer's stepped RRTs report through it too.
-PlanResult SamplingPlanResult(const Scenario& scenario, const ScenarioState& state,
-                              Planner planner, const RrtResult& r, long queries,
-                              long narrow_phase_calls);
+// The result of a sampling planner's run `r` (RRT, BiRRT, the OMPL peers; `coll` the collision
+// state its checker used: queries, narrow-phase calls and QueryCounts), as RunPlanner reports it:
+// the path re-checked at check_resolution on an uncounted collision state, then FinishReport.
+// time_s is left 0. The viewer's stepped RRTs report through it too.
+PlanResult SamplingPlanResult(const Scenario& scenario, const ScenarioState& state, Planner planner,
+                              const RrtResult& r, const CollisionData& coll);
 
 // The judged part of every run's report: start writhe, the verdict of JudgePlan on the path (when
 // not `judged` already, as RunAicoAttempts does), path length, success = `found` (a path was
@@ -138,8 +176,19 @@ void FinishReport(const Scenario& scenario, const ScenarioState& state, bool fou
 // not call NameFailure.
 PlanResult RunAicoAttempts(const Scenario& scenario, const AicoCallback& callback = {});
 // The same in the world `state` with `aico` instead of scenario.aico.
+// With a budget (not kNone): after every sweep the counts (or CPU time) spent so far, earlier
+// attempts included, are compared with it; once spent after a sweep that was no success (with
+// stop_when_solved), the run ends as a failure: status and failure reason kBudgetExhausted.
 PlanResult RunAicoAttempts(const Scenario& scenario, const ScenarioState& state,
-                           const AicoOptions& aico, const AicoCallback& callback = {});
+                           const AicoOptions& aico, const AicoCallback& callback = {},
+                           const Budget& budget = {},
+                           const std::vector<std::string>& disabled_tasks = {});
+
+// `problem` (one task per scenario task) with the tasks named in `names` switched off (precision
+// 0, max_jump 0). Throws std::invalid_argument for a name that is no task of the scenario.
+void DisableTasks(const std::vector<std::string>& names, MotionProblem* problem);
+// The names of the tasks of `problem` whose feature is a writhe (what aico-goal switches off).
+std::vector<std::string> WritheTaskNames(const MotionProblem& problem);
 
 // Folds one AICO solve `r` of the scenario (or of one of its attempts' problems) into `out`, as
 // RunAicoAttempts does for every attempt: trajectory, status, cost and its history are replaced;

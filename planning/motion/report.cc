@@ -1,18 +1,16 @@
 #include "planning/motion/report.h"
 
-#include "base/numbers.h"
-
 #include <cmath>
 #include <cstdio>
 #include <locale>
 #include <sstream>
 
+#include "base/numbers.h"
 #include "planning/robot/kinematics.h"
 
 namespace planning {
 
-nlohmann::json PlanReportJson(const Scenario& s, const PlanReport& r,
-                              unsigned seed) {
+nlohmann::json PlanReportJson(const Scenario& s, const PlanReport& r, unsigned seed) {
   nlohmann::json j;
   j["scenario"] = s.name;
   j["planner"] = r.planner;
@@ -21,6 +19,10 @@ nlohmann::json PlanReportJson(const Scenario& s, const PlanReport& r,
   j["status"] = StatusName(r.status);
   j["collision_checks"] = r.collision_checks;
   j["narrow_phase_calls"] = r.narrow_phase_calls;
+  j["state_queries"] = r.counts.state_queries;  // the common cost units (collision.h)
+  j["bool_pair_tests"] = r.counts.bool_pair_tests;
+  j["distance_pair_tests"] = r.counts.distance_pair_tests;
+  j["cpu_time_s"] = r.cpu_time_s;
   j["iterations"] = r.iterations;
   j["attempts"] = r.attempts;
   j["cost"] = r.cost;
@@ -49,9 +51,9 @@ nlohmann::json PlanReportJson(const Scenario& s, const PlanReport& r,
         {"row", r.writhe_peak_row}, {"col", r.writhe_peak_col}, {"value", r.writhe_peak_value}};
   }
   if (r.loop_checked) {
-    j["through_loop"] = {{"passed", r.passed_through},
-                         {"segment", r.through_segment >= 0 ? nlohmann::json(r.through_segment)
-                                                           : nlohmann::json()}};
+    j["through_loop"] = {
+        {"passed", r.passed_through},
+        {"segment", r.through_segment >= 0 ? nlohmann::json(r.through_segment) : nlohmann::json()}};
   }
   return j;
 }
@@ -84,23 +86,26 @@ std::string PlanSummaryLine(const Scenario& s, const PlanReport& r) {
   };
   return r.planner + " on " + s.name + wrap + ": " + (r.success ? "success" : "FAILED") + " [" +
          StatusName(r.status) + ", " + FailureReasonName(r.failure_reason) + "], " +
-         std::to_string(r.collision_checks) + " collision checks, " +
-         std::to_string(r.iterations) + " iterations, " + base::FormatFixed(r.time_s, 3) +
-         " s, writhe " + sign(r.start_writhe_total) + " -> " + sign(r.final_writhe_total) +
-         ", min clearance " + base::FormatFixed(r.min_clearance_m, 3) + " m";
+         std::to_string(r.collision_checks) + " collision checks, " + std::to_string(r.iterations) +
+         " iterations, " + base::FormatFixed(r.time_s, 3) + " s, writhe " +
+         sign(r.start_writhe_total) + " -> " + sign(r.final_writhe_total) + ", min clearance " +
+         base::FormatFixed(r.min_clearance_m, 3) + " m";
 }
 
 std::string UnwrapCsv(const UnwrapBenchmarkResult& result) {
   std::ostringstream csv;
   csv.imbue(std::locale::classic());  // "0.5" whatever the global locale
   csv << "angle_deg,planner,seed,success,failure_reason,collision_checks,narrow_phase_calls,"
-         "time_s,path_length,reach_error_m,pole_offset_m\n";
+         "time_s,path_length,reach_error_m,pole_offset_m,state_queries,bool_pair_tests,"
+         "distance_pair_tests,cpu_time_s,setup_time_s\n";
   for (const UnwrapRun& r : result.runs) {
     const PlanReport& p = r.report;
     csv << r.angle_deg << "," << p.planner << "," << r.seed << "," << (p.success ? 1 : 0) << ","
         << FailureReasonName(p.failure_reason) << "," << p.collision_checks << ","
         << p.narrow_phase_calls << "," << p.time_s << "," << p.path_length << "," << p.reach_error_m
-        << "," << r.pole_offset.norm() << "\n";
+        << "," << r.pole_offset.norm() << "," << p.counts.state_queries << ","
+        << p.counts.bool_pair_tests << "," << p.counts.distance_pair_tests << "," << p.cpu_time_s
+        << "," << p.setup_time_s << "\n";
   }
   return csv.str();
 }

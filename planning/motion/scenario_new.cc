@@ -2,13 +2,16 @@
 #include "planning/motion/scenario_new.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <filesystem>
+#include <optional>
 #include <stdexcept>
 
 #include "base/assets.h"
 #include "base/numbers.h"
 #include "planning/collision/collision.h"
+#include "planning/motion/internal/scenario_arm.h"
 #include "planning/motion/robot_scene.h"
 #include "planning/motion/success.h"
 #include "planning/robot/ik.h"
@@ -19,6 +22,10 @@ namespace planning {
 namespace {
 
 namespace fs = std::filesystem;
+using internal::Arm;
+using internal::ChooseArm;
+using internal::Origin;
+using internal::Subtree;
 using Json = nlohmann::ordered_json;
 
 Json Vec(const Eigen::Vector3d& v) {
@@ -42,76 +49,6 @@ Json RpyJson(const Eigen::Matrix3d& r) {
   }
   const auto q = [](double x) { return std::round(x * 1e9) / 1e9; };
   return Json::array({q(roll), q(pitch), q(yaw)});
-}
-
-// The arm: links root → hand, and the hand (see the header).
-struct Arm {
-  std::vector<int> path;  // link indices, root first, hand last
-  int hand = 0;
-  std::vector<int> arm_dofs, other_dofs;
-};
-
-Arm FindArm(const Robot& robot) {
-  const int nl = static_cast<int>(robot.links.size());
-  std::vector<std::vector<int>> children(nl);
-  for (const Joint& j : robot.joints) children[j.parent_link].push_back(j.child_link);
-  // Movable joints in each subtree (children come after parents: links are in topological order).
-  std::vector<int> movable(nl, 0);
-  for (int l = nl - 1; l >= 0; --l) {
-    for (int c : children[l]) {
-      movable[l] += movable[c] + (robot.joints[robot.links[c].parent_joint].dof >= 0 ? 1 : 0);
-    }
-  }
-  Arm arm;
-  int l = 0;
-  arm.path.push_back(0);
-  for (;;) {
-    std::vector<int> moving;
-    for (int c : children[l]) {
-      if (movable[c] > 0 || robot.joints[robot.links[c].parent_joint].dof >= 0) moving.push_back(c);
-    }
-    if (moving.size() != 1) break;
-    l = moving[0];
-    arm.path.push_back(l);
-  }
-  arm.hand = l;
-  std::vector<bool> on_arm(robot.dof_joints.size(), false);
-  for (int p : arm.path) {
-    const int j = robot.links[p].parent_joint;
-    if (j >= 0 && robot.joints[j].dof >= 0) on_arm[robot.joints[j].dof] = true;
-  }
-  for (size_t k = 0; k < on_arm.size(); ++k) {
-    (on_arm[k] ? arm.arm_dofs : arm.other_dofs).push_back(static_cast<int>(k));
-  }
-  if (arm.arm_dofs.size() < 2) {
-    throw std::invalid_argument(robot.source + ": no arm found (walking down from '" +
-                                robot.links[0].name + "', the tree branches at '" +
-                                robot.links[l].name + "' after " +
-                                std::to_string(arm.arm_dofs.size()) +
-                                " movable joint(s); scenario new needs a serial arm of 2 or more)");
-  }
-  return arm;
-}
-
-// The links of the subtree below `link` (itself excluded).
-std::vector<int> Subtree(const Robot& robot, int link) {
-  std::vector<int> out;
-  for (size_t l = link + 1; l < robot.links.size(); ++l) {
-    for (int p = static_cast<int>(l); p > 0;) {
-      const int parent = robot.joints[robot.links[p].parent_joint].parent_link;
-      if (parent == link) {
-        out.push_back(static_cast<int>(l));
-        break;
-      }
-      if (parent < link) break;
-      p = parent;
-    }
-  }
-  return out;
-}
-
-Eigen::Vector3d Origin(const KinematicsData& kin, int link) {
-  return kin.world_from_link[link].translation();
 }
 
 }  // namespace
@@ -138,7 +75,7 @@ NewScenario MakeNewScenario(const std::string& urdf, const NewScenarioOptions& o
         "moved into them (written as start.q)");
     q0 = clamped;
   }
-  const Arm arm = FindArm(robot);
+  const Arm arm = ChooseArm(scene, o.hand, &out.notes);
   out.hand_link = robot.links[arm.hand].name;
   KinematicsData kin(robot);
   ForwardKinematics(robot, q0, &kin);
@@ -266,6 +203,9 @@ NewScenario MakeNewScenario(const std::string& urdf, const NewScenarioOptions& o
   }
   std::string tried;
   bool found = false;
+  NewScenario fallback;  // the chosen placement's goal, target, centre, start and notes
+  Eigen::Vector3d fallback_axis = Eigen::Vector3d::UnitX();
+  Eigen::Matrix3d fallback_rot = Eigen::Matrix3d::Identity();
   Eigen::Vector3d d = Eigen::Vector3d::UnitX();
   Eigen::Matrix3d ring_rot = Eigen::Matrix3d::Identity();
   for (const Placement& placement : placements) {
@@ -311,11 +251,11 @@ NewScenario MakeNewScenario(const std::string& urdf, const NewScenarioOptions& o
         tried.append(": IK ").append(IkStatusName(r.status));
         continue;
       }
-      out.goal_q = r.q;
-      out.tool_target = target;
-      out.ring_center = center;
-      out.notes.push_back("ring placed " + placement.what);
-      found = true;
+      NewScenario cand;
+      cand.goal_q = r.q;
+      cand.tool_target = target;
+      cand.ring_center = center;
+      cand.notes.push_back("ring placed " + placement.what);
       // The start: the hand in front of the ring on its axis (tool 0.1 m + its length before the
       // ring's plane, same approach), reached from the goal by IK; a planner then moves the hand
       // on along its axis through the ring. Kept only if collision-free and not yet through.
@@ -331,14 +271,43 @@ NewScenario MakeNewScenario(const std::string& urdf, const NewScenarioOptions& o
         };
         const IkResult pre = SolveIk(robot, before, ik_options, &ik_data);
         if (pre.status != IkStatus::kSolved) continue;
-        out.start_q = pre.q;
-        out.notes.push_back("start: the tool " +
-                            base::FormatShortest(std::round(standoff * 1e3) / 1e3) +
-                            " m in front of the ring (inverse kinematics)");
+        cand.start_q = pre.q;
+        cand.notes.push_back("start: the tool " +
+                             base::FormatShortest(std::round(standoff * 1e3) / 1e3) +
+                             " m in front of the ring (inverse kinematics)");
         break;
       }
+      // A placement with a goal but no start in front of the ring is kept as a fallback; the
+      // search goes on for one with both (a plan from the default pose must first go around).
+      if (cand.start_q.size() == 0 && o.task == "ring") {
+        tried.append(": goal found, no start in front of the ring");
+        if (!found) {
+          fallback = std::move(cand);
+          fallback_axis = d;
+          fallback_rot = ring_rot;
+        }
+        found = true;
+        continue;
+      }
+      fallback = std::move(cand);
+      fallback_axis = d;
+      fallback_rot = ring_rot;
+      found = true;
       break;
     }
+  }
+  if (found) {
+    out.goal_q = fallback.goal_q;
+    out.tool_target = fallback.tool_target;
+    out.ring_center = fallback.ring_center;
+    out.start_q = fallback.start_q;
+    out.notes.insert(out.notes.end(), fallback.notes.begin(), fallback.notes.end());
+    if (o.task == "ring" && out.start_q.size() == 0) {
+      out.notes.push_back("no start in front of the ring found (tried " + tried +
+                          "); the start is the default pose");
+    }
+    d = fallback_axis;  // the ring's axis and orientation of the chosen placement
+    ring_rot = fallback_rot;
   }
   if (!found) {
     throw std::invalid_argument(urdf + ": no placement of the " + o.task + " works for hand '" +
@@ -437,7 +406,7 @@ NewScenario MakeNewScenario(const std::string& urdf, const NewScenarioOptions& o
        {"precision", 10},
        {"final_precision", 100}});
   tasks.push_back({{"name", "collision"},
-                   {"feature", {{"type", "collision"}, {"margin", 0.05}}},
+                   {"feature", {{"type", "collision"}, {"margin", 0.02}}},
                    {"precision", 100}});
   tasks.push_back(
       {{"name", "limits"},

@@ -8,8 +8,11 @@
 //
 // How the pieces are chosen (each written into the file with a "//" comment key where a user is
 // expected to edit):
-//   hand     walking down from the root while exactly one child subtree has movable joints: the
-//            link where the tree branches (a palm with fingers) or the leaf at the end (a flange).
+//   hand     --hand LINK; else walking down from the root while exactly one child subtree has
+//            movable joints: the link where the tree branches (a palm with fingers) or the leaf at
+//            the end (a flange); when that finds no arm (the tree branches first: a humanoid, a
+//            mobile manipulator), the parent link of the SRDF's first end_effector that is not a
+//            foot or leg. Joints off the path root → hand (the other arm, legs) are frozen too.
 //            The arm is the path root → hand; the joints below the hand (fingers) are frozen at
 //            the start values ("frozen_joints").
 //   tool     a point on the hand, L ahead of its origin along the approach axis (from the last
@@ -23,7 +26,10 @@
 //   ring     assets/objects/ring.urdf (or --object), its axis along the base's +x, in front of the
 //            first arm joint: candidates at 35–65 % of the arm's reach and three heights, the
 //            first where IK puts the tool through the ring, collision-free, with the hand chain
-//            through the loop (ChainSegmentThroughLoop) and a start that does not touch the ring.
+//            through the loop (ChainSegmentThroughLoop) and a start in front of it (above) that
+//            does not touch the ring; else the first with such a goal (start: the default pose).
+//   tasks    collision margin 0.02 m (wider margins keep the cost of closely packed links of
+//            real arms active everywhere); joint limits 0.05 rad / 0.002 m.
 //   goal     IK (multistart, seeded) of the tool point beyond the ring with the approach axis
 //            along +x; written as final_pose.init.
 //   box      around the goal tool point; success: inside_box and through_loop.
@@ -44,8 +50,10 @@ struct NewScenarioOptions {
   std::string object;                      // ring URDF; empty: assets/objects/ring.urdf
   std::vector<std::string> package_paths;  // package:// roots for the robot
   std::string srdf;                        // empty: FindSrdf
-  std::uint32_t seed = 0;                  // IK random starts
-  std::string name;                        // scenario name; empty: ROBOT_TASK
+  // The hand link (the arm is the path root → hand); empty: found (see the file comment).
+  std::string hand;
+  std::uint32_t seed = 0;  // IK random starts
+  std::string name;        // scenario name; empty: ROBOT_TASK
 };
 
 struct NewScenario {

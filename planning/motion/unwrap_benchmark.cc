@@ -1,9 +1,12 @@
 #include "planning/motion/unwrap_benchmark.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <limits>
+#include <locale>
 #include <random>
+#include <sstream>
 #include <stdexcept>
 
 #include "base/random.h"
@@ -92,67 +95,218 @@ ScenarioSpec PerturbedUnwrapSpec(ScenarioSpec spec, const UnwrapPerturbation& pe
   return spec;
 }
 
-UnwrapBenchmarkResult RunUnwrapBenchmark(const UnwrapBenchmarkOptions& options) {
+namespace {
+
+// One column of a sweep: a planner, or an AICO ablation.
+struct Column {
+  Planner planner = Planner::kAico;
+  const UnwrapAblation* ablation = nullptr;
+};
+
+void CheckOptions(const UnwrapBenchmarkOptions& options) {
   if (options.angles_deg.empty()) throw std::invalid_argument("unwrap benchmark: no angles");
-  if (options.planners.empty()) throw std::invalid_argument("unwrap benchmark: no planners");
   if (options.seeds < 1) throw std::invalid_argument("unwrap benchmark: seeds must be >= 1");
   if (!(options.perturb_m >= 0.0) || !std::isfinite(options.perturb_m)) {
     throw std::invalid_argument("unwrap benchmark: perturb must be a finite number >= 0");
   }
-  UnwrapBenchmarkResult result;
-  result.angles_deg = options.angles_deg;
-  result.planners = options.planners;
-  result.seeds = options.seeds;
-  const int total =
-      static_cast<int>(options.angles_deg.size() * options.planners.size()) * options.seeds;
+}
+
+// The spec with the run's options in it (a set-up scenario is not changed).
+ScenarioSpec BenchmarkSpec(const UnwrapBenchmarkOptions& options) {
   ScenarioSpec spec = ParseScenarioSpec(options.scenario_path, options.search_roots);
-  // The run's options go into the spec: a set-up scenario is not changed.
   if (options.rrt_budget > 0) spec.rrt.max_checks = options.rrt_budget;
   if (options.aico_stop_when_solved) spec.aico_stop_when_solved = *options.aico_stop_when_solved;
+  return spec;
+}
+
+// Runs every (angle, column, seed), ordered angle-major, then column, then seed.
+std::vector<UnwrapRun> RunColumns(const UnwrapBenchmarkOptions& options, const ScenarioSpec& spec,
+                                  const std::vector<Column>& columns) {
+  const int total = static_cast<int>(options.angles_deg.size() * columns.size()) * options.seeds;
   // Seed offsets of the pole (perpendicular to its line), and which object it is.
   const UnwrapPerturbation perturbation =
       MakeUnwrapPerturbation(spec, options.angles_deg.front(), options.seeds, options.perturb_m);
   const std::vector<Eigen::Vector3d>& offsets = perturbation.offsets;
-  for (double angle : options.angles_deg) {
+  const auto set_up = [](const ScenarioSpec& sp, double angle, double* seconds) {
+    const auto t0 = std::chrono::steady_clock::now();
+    std::unique_ptr<const Scenario> s = SetUpScenario(sp, angle);
+    *seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    return s;
+  };
+  std::vector<UnwrapRun> runs;
+  std::vector<size_t> order;  // sort key of each run
+  for (size_t a = 0; a < options.angles_deg.size(); ++a) {
+    const double angle = options.angles_deg[a];
     std::unique_ptr<const Scenario> shared;  // unperturbed: one set-up per angle
+    double shared_s = 0.0;
     for (int seed = 0; seed < options.seeds; ++seed) {
       std::unique_ptr<const Scenario> own;
+      double setup_s = 0.0;
       if (perturbation.object >= 0) {
-        own = SetUpScenario(PerturbedUnwrapSpec(spec, perturbation, seed), angle);
+        own = set_up(PerturbedUnwrapSpec(spec, perturbation, seed), angle, &setup_s);
       } else if (!shared) {
-        shared = SetUpScenario(spec, angle);
+        shared = set_up(spec, angle, &shared_s);
       }
+      if (!own) setup_s = shared_s;
       const Scenario& scenario = own ? *own : *shared;
-      for (Planner planner : options.planners) {
+      for (size_t c = 0; c < columns.size(); ++c) {
         UnwrapRun run;
         run.angle_deg = angle;
-        run.planner = planner;
+        run.planner = columns[c].planner;
         run.seed = seed;
         run.pole_offset = offsets[seed];
-        run.report = RunPlanner(scenario, planner, static_cast<unsigned>(seed)).report;
-        result.runs.push_back(std::move(run));
+        PlanRequest request;
+        request.planner = columns[c].planner;
+        request.seed = static_cast<unsigned>(seed);
+        request.budget = options.budget;
+        if (const UnwrapAblation* ab = columns[c].ablation) {
+          run.variant = ab->name;
+          request.disabled_tasks = ab->disabled_tasks;
+          if (ab->no_rollout) {
+            request.aico = scenario.aico;
+            request.aico->rollout_init = false;
+          }
+        }
+        run.report = RunPlanner(scenario, request).report;
+        run.report.setup_time_s = setup_s;
+        runs.push_back(std::move(run));
+        order.push_back((a * columns.size() + c) * static_cast<size_t>(options.seeds) +
+                        static_cast<size_t>(seed));
         if (options.progress) {
-          options.progress(static_cast<int>(result.runs.size()), total, result.runs.back());
+          options.progress(static_cast<int>(runs.size()), total, runs.back());
         }
       }
     }
   }
-  // Runs are produced seed-major within an angle; order them planner-major (the documented order).
-  std::stable_sort(
-      result.runs.begin(), result.runs.end(), [&](const UnwrapRun& a, const UnwrapRun& b) {
-        const auto idx = [&](const UnwrapRun& r) {
-          const auto a_it =
-              std::find(options.angles_deg.begin(), options.angles_deg.end(), r.angle_deg);
-          const auto p_it = std::find(options.planners.begin(), options.planners.end(), r.planner);
-          return ((a_it - options.angles_deg.begin()) * static_cast<long>(options.planners.size()) +
-                  (p_it - options.planners.begin())) *
-                     options.seeds +
-                 r.seed;
-        };
-        return idx(a) < idx(b);
-      });
+  // Runs are produced seed-major within an angle; order them column-major (the documented order).
+  std::vector<UnwrapRun> sorted(runs.size());
+  for (size_t k = 0; k < runs.size(); ++k) sorted[order[k]] = std::move(runs[k]);
+  return sorted;
+}
+
+}  // namespace
+
+UnwrapBenchmarkResult RunUnwrapBenchmark(const UnwrapBenchmarkOptions& options) {
+  CheckOptions(options);
+  if (options.planners.empty()) throw std::invalid_argument("unwrap benchmark: no planners");
+  UnwrapBenchmarkResult result;
+  result.angles_deg = options.angles_deg;
+  result.planners = options.planners;
+  result.seeds = options.seeds;
+  std::vector<Column> columns;
+  for (Planner p : options.planners) columns.push_back({p, nullptr});
+  result.runs = RunColumns(options, BenchmarkSpec(options), columns);
   result.summary = SummarizeUnwrapRuns(result.runs, result.angles_deg, result.planners);
   return result;
+}
+
+std::vector<double> LogBudgets(double lo, double hi, int points) {
+  if (!(lo > 0.0) || !(hi > lo) || points < 2 || !std::isfinite(hi)) {
+    throw std::invalid_argument("LogBudgets: need 0 < lo < hi and points >= 2");
+  }
+  std::vector<double> out;
+  for (int k = 0; k < points; ++k) {
+    out.push_back(k + 1 == points ? hi
+                                  : lo * std::pow(hi / lo, static_cast<double>(k) / (points - 1)));
+  }
+  return out;
+}
+
+std::vector<UnwrapSurvivalPoint> UnwrapSurvival(const UnwrapBenchmarkResult& result,
+                                                Budget::Unit unit,
+                                                const std::vector<double>& budgets) {
+  std::vector<UnwrapSurvivalPoint> out;
+  for (Planner planner : result.planners) {
+    for (double angle : result.angles_deg) {
+      for (double b : budgets) {
+        UnwrapSurvivalPoint pt;
+        pt.planner = planner;
+        pt.angle_deg = angle;
+        pt.budget.unit = unit;
+        pt.budget.value = b;
+        for (const UnwrapRun& r : result.runs) {
+          if (r.planner != planner || r.angle_deg != angle) continue;
+          ++pt.runs;
+          if (SolvedWithin(r.report, pt.budget)) ++pt.solved;
+          if (r.report.success) continue;
+          const bool budget = r.report.status == SolveStatus::kBudgetExhausted ||
+                              r.report.failure_reason == FailureReason::kBudgetExhausted;
+          ++(budget ? pt.failed_budget : pt.failed_other);
+        }
+        out.push_back(pt);
+      }
+    }
+  }
+  return out;
+}
+
+std::string UnwrapSurvivalCsv(const std::vector<UnwrapSurvivalPoint>& points) {
+  std::ostringstream csv;
+  csv.imbue(std::locale::classic());
+  csv.precision(12);
+  csv << "unit,budget,planner,angle_deg,runs,solved,fraction,failed_budget,failed_other\n";
+  for (const UnwrapSurvivalPoint& p : points) {
+    const char* unit = p.budget.unit == Budget::Unit::kCpuTime     ? "cpu_time_s"
+                       : p.budget.unit == Budget::Unit::kPairTests ? "pair_tests"
+                                                                   : "state_queries";
+    csv << unit << "," << p.budget.value << "," << PlannerName(p.planner) << "," << p.angle_deg
+        << "," << p.runs << "," << p.solved << ","
+        << (p.runs > 0 ? static_cast<double>(p.solved) / p.runs : 0.0) << "," << p.failed_budget
+        << "," << p.failed_other << "\n";
+  }
+  return csv.str();
+}
+
+std::vector<UnwrapAblation> UnwrapAblations(const ScenarioSpec& spec) {
+  std::vector<UnwrapAblation> out{{"full", {}, false}};
+  const auto tasks_where = [&](const std::string& name, auto pred) {
+    UnwrapAblation ab{name, {}, false};
+    for (const TaskSpec& t : spec.tasks) {
+      if (pred(t)) ab.disabled_tasks.push_back(t.name);
+    }
+    if (!ab.disabled_tasks.empty()) out.push_back(ab);
+  };
+  tasks_where("no-writhe",
+              [](const TaskSpec& t) { return t.feature.type == FeatureType::kWrithe; });
+  tasks_where("no-reach", [&](const TaskSpec& t) {
+    return spec.success.position_task && t.name == spec.success.position_task->name;
+  });
+  tasks_where("no-off-pole",
+              [](const TaskSpec& t) { return t.feature.type == FeatureType::kLineClearance; });
+  tasks_where("no-winding-guard", [](const TaskSpec& t) { return t.max_jump > 0.0; });
+  if (spec.aico.rollout_init) out.push_back({"no-rollout", {}, true});
+  return out;
+}
+
+UnwrapBenchmarkResult RunUnwrapAblation(const UnwrapBenchmarkOptions& options,
+                                        std::vector<UnwrapAblation>* ablations) {
+  CheckOptions(options);
+  const ScenarioSpec spec = BenchmarkSpec(options);
+  *ablations = UnwrapAblations(spec);
+  UnwrapBenchmarkResult result;
+  result.angles_deg = options.angles_deg;
+  result.planners = {Planner::kAico};
+  result.seeds = options.seeds;
+  std::vector<Column> columns;
+  for (const UnwrapAblation& ab : *ablations) columns.push_back({Planner::kAico, &ab});
+  result.runs = RunColumns(options, spec, columns);
+  return result;
+}
+
+std::string UnwrapAblationCsv(const UnwrapBenchmarkResult& result) {
+  std::ostringstream csv;
+  csv.imbue(std::locale::classic());
+  csv.precision(12);
+  csv << "angle_deg,ablation,seed,success,failure_reason,final_writhe_total,reach_error_m,"
+         "final_winding_turns,state_queries,cpu_time_s\n";
+  for (const UnwrapRun& r : result.runs) {
+    const PlanReport& p = r.report;
+    csv << r.angle_deg << "," << r.variant << "," << r.seed << "," << (p.success ? 1 : 0) << ","
+        << FailureReasonName(p.failure_reason) << "," << p.final_writhe_total << ","
+        << p.reach_error_m << "," << p.final_winding_turns << "," << p.counts.state_queries << ","
+        << p.cpu_time_s << "\n";
+  }
+  return csv.str();
 }
 
 }  // namespace planning

@@ -19,9 +19,10 @@ struct UnwrapRun {
   Planner planner = Planner::kAico;
   int seed = 0;  // seed of the RRTs' generator and of the pole offset (AICO is deterministic)
   Eigen::Vector3d pole_offset = Eigen::Vector3d::Zero();  // world-frame pole offset [m]
-  PlanReport report;  // success, status, collision_checks (configuration-level queries),
-                      // narrow_phase_calls, iterations, time_s (wall clock, the only
-                      // non-deterministic field), path_length [rad], final_writhe_total, ...
+  PlanReport report;    // success, status, counts (state queries, pair tests), collision_checks,
+                        // narrow_phase_calls, iterations, time_s / cpu_time_s / setup_time_s (the
+                        // non-deterministic fields), path_length [rad], final_writhe_total, ...
+  std::string variant;  // ablation runs: the UnwrapAblation's name; "" otherwise
 };
 
 // Aggregate of the runs of one (angle, planner) pair.
@@ -42,6 +43,9 @@ struct UnwrapBenchmarkOptions {
   std::vector<Planner> planners;   // in output order (kept everywhere, never re-sorted)
   int seeds = 3;                   // seeds 0..seeds-1 per angle and planner
   long rrt_budget = -1;            // RRT collision-check budget; <= 0: the scenario's own
+  // Every planner's budget (planner.h Budget; kNone: the scenario's limits). A queries budget also
+  // replaces the RRTs' max_checks.
+  Budget budget;
   // Pole perturbation [m], >= 0: each seed s moves the writhe-report object (the pole) by
   // UnwrapPoleOffset(s, perturb_m, axis) before the scenario is set up (0: the shipped placement).
   double perturb_m = 0.0;
@@ -88,10 +92,11 @@ ScenarioSpec PerturbedUnwrapSpec(ScenarioSpec spec, const UnwrapPerturbation& pe
                                  int seed);
 
 // Runs every (angle, planner, seed) with LoadScenario(scenario_path, {start_wrap_deg = angle}) and
-// RunPlanner (with perturb_m > 0: the pole of seed s moved by UnwrapPoleOffset about the report
-// line of the unperturbed scenario). Throws std::invalid_argument for bad options (no
-// angles/planners, seeds < 1, perturb_m negative or not finite) and
-// whatever LoadScenario throws for a bad scenario file.
+// RunPlanner (with options.budget; report.setup_time_s = the wall time of the scenario's set-up,
+// which the runs on one set-up share) (with perturb_m > 0: the pole of seed s moved by
+// UnwrapPoleOffset about the report line of the unperturbed scenario). Throws std::invalid_argument
+// for bad options (no angles/planners, seeds < 1, perturb_m negative or not finite) and whatever
+// LoadScenario throws for a bad scenario file.
 UnwrapBenchmarkResult RunUnwrapBenchmark(const UnwrapBenchmarkOptions& options);
 
 // The summary of `runs` (ordered as in UnwrapBenchmarkResult::runs) for the given angles and
@@ -102,5 +107,64 @@ std::vector<UnwrapCell> SummarizeUnwrapRuns(const std::vector<UnwrapRun>& runs,
 
 // summary cell of angle index `a` and planner index `p`.
 const UnwrapCell& UnwrapSummaryCell(const UnwrapBenchmarkResult& result, size_t a, size_t p);
+
+// --- Budget-free verdicts: survival over a budget sweep -----------------------------------------
+
+// Fraction of the runs of one (planner, angle) solved within one budget (SolvedWithin), the
+// cumulative time-to-solve curve of Planner Arena (Moll, Sucan, Kavraki 2015). A budget only
+// truncates a run (RRT/BiRRT/OMPL stop at it, AICO after the sweep that reaches it), so one run
+// at the largest budget gives the verdict at every smaller one.
+struct UnwrapSurvivalPoint {
+  Planner planner = Planner::kAico;
+  double angle_deg = 0.0;
+  Budget budget;  // unit and value of this point
+  int runs = 0;
+  int solved = 0;  // runs that succeeded within the budget
+  // Failures of the sweep's runs (at the largest budget): stopped by the budget (status or reason
+  // kBudgetExhausted: more budget may solve them) or another failure (converged to a failed
+  // trajectory, diverged, invalid: no budget solves them).
+  int failed_budget = 0;
+  int failed_other = 0;
+};
+
+// The budgets of a sweep: `points` values log-spaced from `lo` to `hi` (> lo > 0), both included.
+std::vector<double> LogBudgets(double lo, double hi, int points);
+
+// The survival points of `result` for each planner, angle and budget value of `unit` (kQueries:
+// state queries; kPairTests: pair tests of both kinds; kCpuTime: cpu_time_s), planner-major, then
+// angle, then budget.
+std::vector<UnwrapSurvivalPoint> UnwrapSurvival(const UnwrapBenchmarkResult& result,
+                                                Budget::Unit unit,
+                                                const std::vector<double>& budgets);
+
+// "unit,budget,planner,angle_deg,runs,solved,fraction,failed_budget,failed_other" rows; unit is
+// state_queries, pair_tests or cpu_time_s.
+std::string UnwrapSurvivalCsv(const std::vector<UnwrapSurvivalPoint>& points);
+
+// --- Ablations ----------------------------------------------------------------------------------
+
+// One AICO variant: the full problem ("full") or one task term removed.
+struct UnwrapAblation {
+  std::string name;                         // "full", "no-writhe", "no-reach", ...
+  std::vector<std::string> disabled_tasks;  // PlanRequest::disabled_tasks
+  bool no_rollout = false;                  // aico.rollout_init off (q0 repeated)
+};
+
+// "full", then each task term of the scenario removed in turn: "no-writhe" (tasks with a writhe
+// feature), "no-reach" (the success criterion's position task), "no-off-pole" (line-clearance
+// tasks), "no-winding-guard" (tasks with max_jump > 0), "no-rollout" (when aico.rollout_init is
+// on). A term the scenario does not have is left out.
+std::vector<UnwrapAblation> UnwrapAblations(const ScenarioSpec& spec);
+
+// Every (angle, ablation, seed) of AICO, as RunUnwrapBenchmark (same scenario, perturbation,
+// budget, stop rule): runs in angle, ablation, seed order, UnwrapRun::variant = the ablation's
+// name, planner kAico. `ablations` receives the variants run (in order). Throws as
+// RunUnwrapBenchmark.
+UnwrapBenchmarkResult RunUnwrapAblation(const UnwrapBenchmarkOptions& options,
+                                        std::vector<UnwrapAblation>* ablations);
+
+// "angle_deg,ablation,seed,success,failure_reason,final_writhe_total,reach_error_m,
+// final_winding_turns,state_queries,cpu_time_s" rows of an ablation result.
+std::string UnwrapAblationCsv(const UnwrapBenchmarkResult& result);
 
 }  // namespace planning

@@ -7,6 +7,7 @@
 #include <random>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include "base/random.h"
 
@@ -182,7 +183,20 @@ IkData::IkData(const Robot& robot)
       A(num_dofs(robot), num_dofs(robot)),
       llt(num_dofs(robot)),
       held(num_dofs(robot), 0),
-      frozen(num_dofs(robot), 0) {}
+      frozen(num_dofs(robot), 0) {
+  // A mimic joint's limits bound its master too: value = m·q + offset must stay in [lo, hi].
+  for (const Joint& j : robot.joints) {
+    if (!j.is_mimic || j.dof < 0 || j.mimic_multiplier == 0.0) continue;
+    double lo = (j.limits.lower - j.mimic_offset) / j.mimic_multiplier;
+    double hi = (j.limits.upper - j.mimic_offset) / j.mimic_multiplier;
+    if (lo > hi) std::swap(lo, hi);
+    const double new_lo = std::max(lower[j.dof], lo), new_hi = std::min(upper[j.dof], hi);
+    if (new_lo <= new_hi) {  // contradictory limits (a broken file): the master's own are kept
+      lower[j.dof] = new_lo;
+      upper[j.dof] = new_hi;
+    }
+  }
+}
 
 void IkData::Resize(int num_residuals) {
   if (e.size() == num_residuals) return;

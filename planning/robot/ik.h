@@ -110,7 +110,7 @@ struct IkData {
   void Resize(int num_residuals);
 
   KinematicsData kin;
-  Eigen::VectorXd lower, upper;     // joint limits (n)
+  Eigen::VectorXd lower, upper;     // joint limits (n), narrowed by the limits of mimic joints
   Eigen::VectorXd q, q_try, dq, g;  // n
   Eigen::VectorXd e, e_try;         // residual (m = 3 per position + 3 per axis)
   Eigen::MatrixXd J;                // m × n

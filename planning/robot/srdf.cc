@@ -96,6 +96,11 @@ Srdf ParseSrdf(const std::string& xml, const std::string& source) {
                  "' (expected fixed, floating or planar)");
       }
       s.virtual_joints.push_back(v);
+    } else if (tag == "end_effector") {
+      SrdfEndEffector ee{XmlAttr(e, "name"), XmlAttr(e, "parent_link"), XmlAttr(e, "group"),
+                         e->Row()};
+      if (ee.parent_link.empty()) Fail(source, e->Row(), "<end_effector> without a parent_link");
+      s.end_effectors.push_back(ee);
     }
   }
   return s;

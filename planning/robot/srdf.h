@@ -17,7 +17,9 @@
 // Pinocchio's convention is understood too: group_states giving 7 values to a joint 'root_joint'
 // that neither the URDF nor a virtual_joint declares make the root a floating base.
 // <group> is read (Srdf::groups; GroupDofs, e.g. a scenario's "frozen_joints": ["gripper"]).
-// Ignored: <end_effector>, <disable_default_collisions>, <enable_collisions>,
+// <end_effector name= parent_link= group=> is read (Srdf::end_effectors; `scenario new` takes its
+// hand from one when the robot's tree branches before a serial arm).
+// Ignored: <disable_default_collisions>, <enable_collisions>,
 // <link_sphere_approximations> and any other element.
 //
 // Errors (std::invalid_argument, "FILE:LINE: ..."): unreadable file, XML errors, XML nested
@@ -72,6 +74,11 @@ struct SrdfVirtualJoint {
   int line = 0;
 };
 
+struct SrdfEndEffector {  // an <end_effector>: the link it hangs from and its group
+  std::string name, parent_link, group;
+  int line = 0;
+};
+
 struct Srdf {
   std::string source;      // file name for messages
   std::string robot_name;  // <robot name=>
@@ -80,6 +87,7 @@ struct Srdf {
   std::vector<std::string> passive_joints;  // read, not used (see the file comment)
   std::vector<SrdfVirtualJoint> virtual_joints;
   std::vector<SrdfGroup> groups;
+  std::vector<SrdfEndEffector> end_effectors;  // in file order
 };
 
 // Parses SRDF text; `source` names it in messages.

@@ -12,7 +12,8 @@ import time
 # unwrap.csv, the columns of `bench unwrap` (the default format of read_rows).
 CSV_HEADER = (
     "angle_deg,planner,seed,success,failure_reason,collision_checks,narrow_phase_calls,"
-    "time_s,path_length,reach_error_m,pole_offset_m"
+    "time_s,path_length,reach_error_m,pole_offset_m,state_queries,bool_pair_tests,"
+    "distance_pair_tests,cpu_time_s,setup_time_s"
 )
 
 
@@ -43,6 +44,11 @@ def row_line(row):
             fmt_number(row["path_length"]),
             fmt_number(row["reach_error_m"]),
             fmt_number(row["pole_offset_m"]),
+            str(row["state_queries"]),
+            str(row["bool_pair_tests"]),
+            str(row["distance_pair_tests"]),
+            fmt_number(row["cpu_time_s"]),
+            fmt_number(row["setup_time_s"]),
         ]
     )
 
@@ -87,6 +93,11 @@ def parse_unwrap_row(parts):
         "path_length": float(parts[8]),
         "reach_error_m": float(parts[9]),
         "pole_offset_m": float(parts[10]),
+        "state_queries": int(parts[11]),
+        "bool_pair_tests": int(parts[12]),
+        "distance_pair_tests": int(parts[13]),
+        "cpu_time_s": float(parts[14]),
+        "setup_time_s": float(parts[15]),
     }
 
 

@@ -12,6 +12,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "base/json_reader.h"
+
 namespace base {
 namespace {
 
@@ -82,6 +84,27 @@ TEST(ReadFileLimited, PipeWithoutWriterReadsAsEmpty) {
   EXPECT_EQ(file.status, ReadStatus::kOk);
   EXPECT_TRUE(file.bytes.empty());
   fs::remove(fifo);
+}
+
+// PrefixErrors: the context is added once; a message located at or below the same place by an
+// inner PrefixErrors keeps its one location.
+TEST(PrefixErrors, SaysEachLocationOnce) {
+  const auto inner = [] {
+    base::PrefixErrors("f.json: tasks[0].feature.chain",
+                       [] { throw std::invalid_argument("no chain named 'x'"); });
+  };
+  try {
+    base::PrefixErrors("f.json: tasks[0].feature", inner);
+    FAIL() << "expected an error";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_STREQ(e.what(), "f.json: tasks[0].feature.chain: no chain named 'x'");
+  }
+  try {
+    base::PrefixErrors("--robot", [] { throw std::invalid_argument("cannot open"); });
+    FAIL() << "expected an error";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_STREQ(e.what(), "--robot: cannot open");
+  }
 }
 
 }  // namespace

@@ -1,15 +1,31 @@
 // Writhe matrix and winding throughput. Reports ns per segment pair (the README targets:
-// ≤ 20 ns per pair for values, ≤ 100 ns with the gradient, per core).
+// ≤ 20 ns per pair for values, ≤ 100 ns with the gradient, per core). The writhe benchmarks take
+// a kernel argument: 0 the scalar per-row kernel (the pre-SIMD path), 1 SSE2, 2 automatic (AVX2
+// where the CPU has it); see topology/internal/writhe_tile.h.
 #include <benchmark/benchmark.h>
 
 #include <cmath>
 #include <random>
 
+#include "topology/gauss_far_field.h"
+#include "topology/internal/writhe_tile.h"
 #include "topology/winding.h"
 #include "topology/writhe.h"
 #include "topology/writhe_stream.h"
 
 namespace {
+
+// Selects the kernel for one benchmark run and restores automatic dispatch afterwards.
+class KernelScope {
+ public:
+  explicit KernelScope(int64_t arg) {
+    using topology::internal::SimdLevel;
+    topology::internal::SetSimdLevel(arg == 0   ? SimdLevel::kScalar
+                                     : arg == 1 ? SimdLevel::kSse2
+                                                : SimdLevel::kAuto);
+  }
+  ~KernelScope() { topology::internal::SetSimdLevel(topology::internal::SimdLevel::kAuto); }
+};
 
 topology::Chain Random(int points, unsigned seed, double offset) {
   std::mt19937 rng(seed);
@@ -25,6 +41,7 @@ topology::Chain Random(int points, unsigned seed, double offset) {
 
 void BM_WritheMatrix(benchmark::State& state) {
   const int n = static_cast<int>(state.range(0));
+  const KernelScope kernel(state.range(1));
   const topology::Chain a = Random(n + 1, 1, 0.0), b = Random(n + 1, 2, 0.05);
   Eigen::MatrixXd w;
   topology::WritheWorkspace ws;
@@ -37,10 +54,13 @@ void BM_WritheMatrix(benchmark::State& state) {
   state.counters["s_per_pair"] = benchmark::Counter(
       pairs, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
 }
-BENCHMARK(BM_WritheMatrix)->Arg(20)->Arg(100)->Arg(1000)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_WritheMatrix)
+    ->ArgsProduct({{20, 100, 1000}, {0, 1, 2}})
+    ->Unit(benchmark::kMicrosecond);
 
 void BM_WritheMatrixWithJacobian(benchmark::State& state) {
   const int n = static_cast<int>(state.range(0));
+  const KernelScope kernel(state.range(1));
   const topology::Chain a = Random(n + 1, 1, 0.0), b = Random(n + 1, 2, 0.05);
   Eigen::MatrixXd w;
   topology::WritheJacobian jac;
@@ -54,10 +74,13 @@ void BM_WritheMatrixWithJacobian(benchmark::State& state) {
   state.counters["s_per_pair"] = benchmark::Counter(
       pairs, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
 }
-BENCHMARK(BM_WritheMatrixWithJacobian)->Arg(20)->Arg(100)->Arg(1000)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_WritheMatrixWithJacobian)
+    ->ArgsProduct({{20, 100, 1000}, {0, 1, 2}})
+    ->Unit(benchmark::kMicrosecond);
 
 // The unwrap task's shape: 20 arm links against one pole segment, with the chain rule to 20 dofs.
 void BM_WritheArmPoleChainRule(benchmark::State& state) {
+  const KernelScope kernel(state.range(0));
   const topology::Chain arm = Random(21, 3, 0.0);
   topology::Chain pole(3, 2);
   pole << -0.1, -0.1, -3, 0, 1.85, 1.85;
@@ -74,7 +97,7 @@ void BM_WritheArmPoleChainRule(benchmark::State& state) {
     benchmark::DoNotOptimize(jq.data());
   }
 }
-BENCHMARK(BM_WritheArmPoleChainRule)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_WritheArmPoleChainRule)->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kMicrosecond);
 
 void BM_WindingWithGradient(benchmark::State& state) {
   const topology::Chain c = Random(static_cast<int>(state.range(0)), 5, 0.5);
@@ -88,9 +111,11 @@ void BM_WindingWithGradient(benchmark::State& state) {
 BENCHMARK(BM_WindingWithGradient)->Arg(21)->Arg(1001);
 
 // Streaming total (topology/writhe_stream.h): Σ W and its error bound without the matrix, on
-// range(1) threads. Args: segments per chain, threads. `topoplan writhe --total` and `linking`.
+// range(1) threads. Args: segments per chain, threads, kernel. `topoplan writhe --total` and
+// `linking`.
 void BM_StreamWritheTotal(benchmark::State& state) {
   const int n = static_cast<int>(state.range(0));
+  const KernelScope kernel(state.range(2));
   const topology::Chain a = Random(n + 1, 1, 0.0), b = Random(n + 1, 2, 0.05);
   topology::WritheStreamOptions o;
   o.threads = static_cast<int>(state.range(1));
@@ -100,17 +125,50 @@ void BM_StreamWritheTotal(benchmark::State& state) {
                                                          benchmark::Counter::kInvert);
 }
 BENCHMARK(BM_StreamWritheTotal)
-    ->Args({1000, 1})
-    ->Args({1000, 2})
-    ->Args({8000, 1})
-    ->Args({8000, 2})
+    ->ArgsProduct({{1000, 8000}, {1, 2}, {0, 1, 2}})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 BENCHMARK(BM_StreamWritheTotal)
-    ->Args({100000, 1})
-    ->Args({100000, 2})
+    ->Args({100000, 1, 2})
+    ->Args({100000, 2, 2})
     ->Iterations(1)
     ->Unit(benchmark::kSecond)
+    ->UseRealTime();
+
+// Barnes–Hut Gauss integral (topology/gauss_far_field.h) of the two components of the (2, 6)
+// torus link (linking number 3 in magnitude), n segments each, tol = 10^−range(1), 2 threads;
+// counters: the error bound and the exact pairs as a fraction of n².
+topology::Chain TorusComponent(int k, int j, int n) {
+  topology::Chain c(3, n + 1);
+  for (int s = 0; s < n; ++s) {
+    const double t = 6.283185307179586 * s / n;
+    const double phi = t + 3.141592653589793 * j / k;  // the two components, half a turn apart
+    const double rho = 2.0 + 0.7 * std::cos(k * phi);
+    c.col(s) << rho * std::cos(t), rho * std::sin(t), 0.7 * std::sin(k * phi);
+  }
+  c.col(n) = c.col(0);
+  return c;
+}
+
+void BM_FarFieldTorusLink(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  const topology::Chain a = TorusComponent(3, 0, n), b = TorusComponent(3, 1, n);
+  topology::FarFieldOptions o;
+  o.tol = std::pow(10.0, -static_cast<double>(state.range(1)));
+  o.threads = 2;
+  topology::FarFieldSums s;
+  for (auto _ : state) {
+    s = topology::FarFieldGaussIntegral(a, b, o);
+    benchmark::DoNotOptimize(&s);
+    benchmark::ClobberMemory();
+  }
+  state.counters["T"] = s.total;
+  state.counters["bound"] = s.error_bound;
+  state.counters["exact_fraction"] = static_cast<double>(s.exact_pairs) / (double(n) * n);
+}
+BENCHMARK(BM_FarFieldTorusLink)
+    ->ArgsProduct({{8000, 100000}, {1, 3, 6}})
+    ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 
 }  // namespace

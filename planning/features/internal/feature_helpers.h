@@ -43,6 +43,7 @@ struct JacobianData : FeatureData {
 // and gradients (3 × N; of the object chain for writhe).
 struct ChainData : FeatureData {
   ChainData(int points, int n) : P(3, points), dP(3 * points, n) {}
+  long evaluations = 0;  // Evals through this data (counted by the world-querying features)
   Eigen::Matrix3Xd P;
   Eigen::MatrixXd dP;
   Eigen::MatrixXd W, dW;

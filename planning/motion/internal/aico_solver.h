@@ -78,6 +78,7 @@ class Aico {
   int max_between_ = 0;   // largest Task::between
   Eigen::MatrixXd qguard_;
   long evals0_ = 0, coll0_ = 0, narrow0_ = 0;
+  QueryCounts counts0_;  // TaskQueryCounts when the solve began
   Eigen::VectorXd metric_;
   std::vector<Eigen::VectorXd> err_;  // per task residual buffer, allocated once per run
   // The non-zero rows of the task Jacobians of one message, each scaled by √(its weight), stacked

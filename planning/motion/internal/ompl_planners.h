@@ -3,6 +3,8 @@
 // when OMPL is found (TOPOPLAN_HAVE_OMPL). No OMPL or Boost type appears here.
 #pragma once
 
+#include <functional>
+
 #include "planning/motion/rrt.h"
 
 namespace planning::internal {
@@ -27,7 +29,9 @@ enum class OmplPlanner { kRrt, kRrtConnect };
 //    created, and its console output is switched off: same seed, same result.
 // result.iterations = evaluations of the termination condition (≈ OMPL iterations);
 // result.tree_size is not reported (0). Throws std::invalid_argument like PlanRrt.
+// `stop`, if given, is polled with the termination condition; true ends the run (kBudgetExhausted
+// unless solved), e.g. a CPU-time budget.
 RrtResult PlanOmpl(OmplPlanner planner, const RrtProblem& problem, const RrtOptions& options,
-                   const ValidityFn& valid, unsigned seed);
+                   const ValidityFn& valid, unsigned seed, const std::function<bool()>& stop = {});
 
 }  // namespace planning::internal

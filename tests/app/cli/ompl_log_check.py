@@ -183,7 +183,8 @@ def main():
     assert reasons[0] == "none" and "budget_exhausted" in reasons, reasons
     c.execute("""SELECT e.angle_deg, p.name, r.seed, r.solved, r.failure_reason,
                  r.collision_checks, r.narrow_phase_calls, r.time, r.path_length,
-                 r.reach_error, r.pole_offset
+                 r.reach_error, r.pole_offset, r.state_queries, r.bool_pair_tests,
+                 r.distance_pair_tests, r.cpu_time, r.setup_time
                  FROM runs r JOIN experiments e ON r.experimentid = e.id
                  JOIN plannerConfigs p ON r.plannerid = p.id""")
     got = {(row[0], row[1], row[2]): row[3:] for row in c.fetchall()}
@@ -193,13 +194,20 @@ def main():
     assert len(rows) == len(ANGLES) * len(PLANNERS) * SEEDS == len(got), (len(rows), len(got))
     for row in rows:
         key = (float(row["angle_deg"]), row["planner"], int(row["seed"]))
-        solved, reason, checks, narrow, time, length, reach, pole = got[key]
+        (solved, reason, checks, narrow, time, length, reach, pole, states, bool_tests,
+         distance_tests, cpu, setup) = got[key]
         assert solved == int(row["success"]), (key, solved)
         assert reasons[reason] == row["failure_reason"], (key, reason)
         assert checks == int(row["collision_checks"]), (key, checks)
         assert narrow == int(row["narrow_phase_calls"]), (key, narrow)
+        # The common cost units: the same counts in both files, non-zero for every run.
+        assert states == int(row["state_queries"]) and states > 0, (key, states)
+        assert bool_tests == int(row["bool_pair_tests"]), (key, bool_tests)
+        assert distance_tests == int(row["distance_pair_tests"]), (key, distance_tests)
+        assert bool_tests + distance_tests > 0, key
         for name, value in [("time_s", time), ("path_length", length),
-                            ("reach_error_m", reach), ("pole_offset_m", pole)]:
+                            ("reach_error_m", reach), ("pole_offset_m", pole),
+                            ("cpu_time_s", cpu), ("setup_time_s", setup)]:
             assert close(value, float(row[name])), (key, name, value, row[name])
     print("ok: %d runs in %d OMPL logs match unwrap.csv" % (len(rows), len(logs)))
 

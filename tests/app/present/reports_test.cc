@@ -89,7 +89,8 @@ TEST(ReportsTest, UnwrapTableMatchesCsv) {
   std::getline(in, line);
   EXPECT_EQ(line,
             "angle_deg,planner,seed,success,failure_reason,collision_checks,narrow_phase_calls,"
-            "time_s,path_length,reach_error_m,pole_offset_m");
+            "time_s,path_length,reach_error_m,pole_offset_m,state_queries,bool_pair_tests,"
+            "distance_pair_tests,cpu_time_s,setup_time_s");
   while (std::getline(in, line)) {
     std::stringstream ss(line);
     std::string angle, planner, seed, success, reason, checks;
@@ -236,13 +237,17 @@ TEST(ReportsTest, GraspTableMatchesReportJson) {
   EXPECT_EQ(md.find("perturbed"), std::string::npos) << md;  // no --perturb: no perturbed row
   // The grip travel: in the protocol, and in the figure's title only when not the default.
   result.close_by = phys::HandBuildOptions{}.close_by;
-  EXPECT_EQ(planning::physics::GraspReportJson(result)["protocol"]["close_by_rad"].get<double>(), 0.15);
+  EXPECT_EQ(planning::physics::GraspReportJson(result)["protocol"]["close_by_rad"].get<double>(),
+            0.15);
   EXPECT_EQ(visualize::GraspSummaryDataOf(result).title.find("grip"), std::string::npos);
   result.close_by = 0.05;
-  EXPECT_EQ(planning::physics::GraspReportJson(result)["protocol"]["close_by_rad"].get<double>(), 0.05);
-  EXPECT_NE(visualize::GraspSummaryDataOf(result).title.find("grip \u03b4 = 0.05 rad"), std::string::npos)
+  EXPECT_EQ(planning::physics::GraspReportJson(result)["protocol"]["close_by_rad"].get<double>(),
+            0.05);
+  EXPECT_NE(visualize::GraspSummaryDataOf(result).title.find("grip \u03b4 = 0.05 rad"),
+            std::string::npos)
       << visualize::GraspSummaryDataOf(result).title;
-  EXPECT_NE(planning::physics::GraspSummaryMarkdown(result).find("flexion set-points 0.05 rad past the grasp"),
+  EXPECT_NE(planning::physics::GraspSummaryMarkdown(result).find(
+                "flexion set-points 0.05 rad past the grasp"),
             std::string::npos);
 }
 
@@ -280,7 +285,8 @@ TEST(ReportsTest, GraspReportCarriesTheExtraCurveWindings) {
   EXPECT_TRUE(bottle["robot_extra_winding"].empty());
 }
 
-// --- OMPL benchmark logs (app/present/ompl_log.h) --------------------------------------------------------
+// --- OMPL benchmark logs (app/present/ompl_log.h)
+// --------------------------------------------------------
 
 std::vector<std::string> Lines(const std::string& text) {
   std::vector<std::string> lines;
@@ -319,27 +325,34 @@ TEST(OmplLogTest, OneExperimentPerAngleWithEveryPlannerAndSeed) {
   EXPECT_EQ(std::vector<std::string>(lines.begin(), lines.begin() + 17), header);
   EXPECT_EQ(lines[17].rfind("failure_reason|none|joint_limits|", 0), 0u);
   EXPECT_EQ(lines[18], "3 planners");
-  // Planner blocks in the result's order, each: name, common properties, 10 property names,
-  // "3 runs", 3 run lines of 10 "; "-terminated values, ".".
+  // Planner blocks in the result's order, each: name, common properties, 15 property names,
+  // "3 runs", 3 run lines of 15 "; "-terminated values, ".".
   size_t k = 19;
   for (size_t p = 0; p < result.planners.size(); ++p) {
     EXPECT_EQ(lines[k++], planning::PlannerName(result.planners[p]));
     const int common = std::stoi(lines[k++]);
     k += static_cast<size_t>(common);
-    ASSERT_EQ(lines[k++], "10 properties for each run");
-    EXPECT_EQ(lines[k], "collision checks INTEGER");
-    EXPECT_EQ(lines[k + 8], "solved BOOLEAN");
-    k += 10;
+    ASSERT_EQ(lines[k++], "15 properties for each run");
+    EXPECT_EQ(lines[k], "bool pair tests INTEGER");
+    EXPECT_EQ(lines[k + 1], "collision checks INTEGER");
+    EXPECT_EQ(lines[k + 12], "solved BOOLEAN");
+    EXPECT_EQ(lines[k + 13], "state queries INTEGER");
+    k += 15;
     ASSERT_EQ(lines[k++], "3 runs");
     for (int s = 0; s < 3; ++s) {
       const planning::UnwrapRun& run = result.runs[(1 * 3 + p) * 3 + static_cast<size_t>(s)];
       const std::string& line = lines[k++];
-      EXPECT_EQ(line.rfind(std::to_string(run.report.collision_checks) + "; ", 0), 0u) << line;
-      EXPECT_NE(
-          line.find("; " + std::to_string(s) + "; " + (run.report.success ? "1" : "0") + "; "),
-          std::string::npos)
+      EXPECT_EQ(line.rfind(std::to_string(run.report.counts.bool_pair_tests) + "; " +
+                               std::to_string(run.report.collision_checks) + "; ",
+                           0),
+                0u)
           << line;
-      EXPECT_EQ(std::count(line.begin(), line.end(), ';'), 10) << line;
+      // seed; setup time (0 here); solved; state queries
+      EXPECT_NE(line.find("; " + std::to_string(s) + "; 0; " + (run.report.success ? "1" : "0") +
+                          "; " + std::to_string(run.report.counts.state_queries) + "; "),
+                std::string::npos)
+          << line;
+      EXPECT_EQ(std::count(line.begin(), line.end(), ';'), 15) << line;
     }
     EXPECT_EQ(lines[k++], ".");
   }

@@ -167,5 +167,63 @@ TEST(ScenarioNew, ARobotWithoutAnArmIsRefused) {
   EXPECT_THROW(MakeNewScenario(urdf, bad), std::invalid_argument);
 }
 
+// Two UR-like arms on a torso (the tree branches at the root, as on a humanoid or a mobile
+// manipulator): with an SRDF, the hand is the parent link of its first end_effector that is not a
+// foot; --hand picks the other arm. The other arm's joints are frozen, and the plan succeeds.
+std::string TwoArmRobot() {
+  std::string u = "<robot name=\"twoarm\">\n<link name=\"torso\"/>\n";
+  for (const std::string side : {"left", "right"}) {
+    std::string arm = UrLikeArm(-3.1);
+    arm = arm.substr(arm.find('\n') + 1);
+    arm = arm.substr(0, arm.rfind("</robot>"));
+    const std::string prefix = side + "_";
+    for (const std::string key : {"name=\"", "link=\""}) {
+      for (size_t at = arm.find(key); at != std::string::npos; at = arm.find(key, at + 1)) {
+        arm.insert(at + key.size(), prefix);
+      }
+    }
+    u.append(arm);
+    u.append("<joint name=\"").append(prefix).append("mount\" type=\"fixed\"><parent link=");
+    u.append("\"torso\"/><child link=\"").append(prefix).append("base\"/><origin xyz=\"0 ");
+    u.append(side == "left" ? "0.6" : "-0.6").append(" 0\"/></joint>\n");
+  }
+  return u.append("</robot>\n");
+}
+
+TEST(ScenarioNew, TwoArmRobotTakesItsHandFromTheSrdfOrHand) {
+  const std::string urdf = TempFile("twoarm.urdf", TwoArmRobot());
+  TempFile("twoarm.srdf",
+           "<robot name=\"twoarm\">\n"
+           "  <end_effector name=\"left_foot\" parent_link=\"torso\" group=\"left_leg\"/>\n"
+           "  <end_effector name=\"gripper\" parent_link=\"nowhere\" group=\"arm\"/>\n"
+           "  <end_effector name=\"right_hand\" parent_link=\"right_flange\" group=\"arm\"/>\n"
+           "</robot>\n");
+  const NewScenario made = MakeNewScenario(urdf, {});
+  EXPECT_EQ(made.hand_link, "right_flange");
+  const nlohmann::ordered_json& frozen = made.json["frozen_joints"];
+  EXPECT_EQ(frozen.size(), 6u) << frozen.dump();
+  EXPECT_NE(frozen.dump().find("left_j1"), std::string::npos) << frozen.dump();
+  const auto s = LoadScenario(TempFile("twoarm_ring.json", made.json.dump(2)));
+  for (Planner p : {Planner::kBiRrt, Planner::kAico}) {
+    const PlanResult r = RunPlanner(*s, p, 0);
+    EXPECT_TRUE(r.report.success) << PlannerName(p) << ": "
+                                  << FailureReasonName(r.report.failure_reason) << " "
+                                  << r.report.failure_detail;
+  }
+  NewScenarioOptions left;
+  left.hand = "left_flange";
+  const NewScenario other = MakeNewScenario(urdf, left);
+  EXPECT_EQ(other.hand_link, "left_flange");
+  EXPECT_NE(other.json["frozen_joints"].dump().find("right_j6"), std::string::npos);
+  // Without an SRDF (another robot name, so none is found): the first of the two arms.
+  std::string plain = TwoArmRobot();
+  plain.replace(plain.find("twoarm"), 6, "twoarm_plain");
+  const NewScenario first = MakeNewScenario(TempFile("twoarm_plain.urdf", plain), {});
+  EXPECT_EQ(first.hand_link, "left_l6");  // the last moving link (the flange is fixed)
+  NewScenarioOptions bad;
+  bad.hand = "no_such_link";
+  EXPECT_THROW(MakeNewScenario(urdf, bad), std::invalid_argument);
+}
+
 }  // namespace
 }  // namespace planning

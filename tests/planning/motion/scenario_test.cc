@@ -13,12 +13,12 @@
 #include <vector>
 
 #include "base/json_reader.h"
-#include "planning/robot/kinematics.h"
 #include "planning/motion/planner.h"
 #include "planning/motion/replan.h"
-#include "planning/robot/robot_io.h"
 #include "planning/motion/scenario_spec.h"
 #include "planning/motion/unwrap_benchmark.h"
+#include "planning/robot/kinematics.h"
+#include "planning/robot/robot_io.h"
 #include "scenario_test_util.h"
 
 namespace planning {
@@ -150,7 +150,8 @@ TEST(ScenarioLoader, TargetReachAtAndFinalStepsScheduleTargetAndPrecision) {
                        "target": {"type": "interpolate", "value": 1},
                        "precision": 2, "final_precision": 7})")));
   EXPECT_NEAR(d->initial.problem.tasks[0].target(0, 3), 0.6, 1e-12);
-  EXPECT_EQ(d->initial.problem.tasks[0].precision, (Eigen::VectorXd(6) << 2, 2, 2, 2, 2, 7).finished());
+  EXPECT_EQ(d->initial.problem.tasks[0].precision,
+            (Eigen::VectorXd(6) << 2, 2, 2, 2, 2, 7).finished());
 
   ExpectLoadError("reach_at_value.json",
                   MiniScenario(R"({"name": "x", "feature": {"type": "joint_position"},
@@ -171,7 +172,8 @@ TEST(ScenarioLoader, TargetReachAtAndFinalStepsScheduleTargetAndPrecision) {
 }
 
 TEST(JsonReader, TypedReadsRejectWithoutTruncating) {
-  const nlohmann::json doc = base::ParseJsonText(R"({"big": 4294967297, "neg": -3, "x": 1.5})", "f.json");
+  const nlohmann::json doc =
+      base::ParseJsonText(R"({"big": 4294967297, "neg": -3, "x": 1.5})", "f.json");
   const base::JsonNode root(doc, "f.json");
   EXPECT_THROW(root.At("big").Int(), std::invalid_argument);
   EXPECT_EQ(root.At("big").Integer(0, 1LL << 40), 4294967297LL);
@@ -271,7 +273,7 @@ TEST(Planners, NamesRoundTripAndUnknownNamesListTheValidOnes) {
     FAIL();
   } catch (const std::invalid_argument& e) {
     EXPECT_EQ(std::string(e.what()),
-              "unknown planner 'astar' (aico, rrt, birrt, ompl-rrt, ompl-rrtconnect)");
+              "unknown planner 'astar' (aico, rrt, birrt, ompl-rrt, ompl-rrtconnect, aico-goal)");
   }
   for (const auto& e : kSolveStatusNames) {
     EXPECT_EQ(base::ParseEnum<SolveStatus>(StatusName(e.value), "status"), e.value);
@@ -495,7 +497,8 @@ TEST(SuccessCriteria, InsideBoxIsTheBoxWithoutItsMargin) {
   // Point 0.01 m inside the top face (within the 0.02 m margin).
   const auto inside = LoadScenario(WriteTemp("box_margin_in.json", scenario(1.3485 - 0.04)));
   EXPECT_TRUE(CheckEndState(*inside, zero, true).reached);
-  EXPECT_GT(FeatureValue(inside->robot, *inside->initial.problem.tasks[0].feature, zero).norm(), 0.0);
+  EXPECT_GT(FeatureValue(inside->robot, *inside->initial.problem.tasks[0].feature, zero).norm(),
+            0.0);
   // Point 0.005 m above the top face.
   const auto outside = LoadScenario(WriteTemp("box_margin_out.json", scenario(1.3485 - 0.055)));
   EXPECT_FALSE(CheckEndState(*outside, zero, true).reached);

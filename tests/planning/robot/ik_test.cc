@@ -268,6 +268,33 @@ TEST(Ik, UnreachableTargetReportsBestError) {
   EXPECT_EQ(again.iterations, r.iterations);
 }
 
+// A mimic joint's limits bound its master: j2 = 2·j1 with j2 in [−0.6, 0.6] keeps j1 in
+// [−0.3, 0.3] though j1's own limits are ±1.5; a target that needs j1 = 1 is missed at j1 = 0.3.
+TEST(Ik, MimicLimitsBoundTheMaster) {
+  const Robot robot = ParseRobot(R"(<robot name="mimic2">
+  <link name="base"/><link name="a"/><link name="b"/>
+  <joint name="j1" type="revolute"><parent link="base"/><child link="a"/>
+    <axis xyz="0 0 1"/><limit lower="-1.5" upper="1.5" effort="1" velocity="1"/></joint>
+  <joint name="j2" type="revolute"><parent link="a"/><child link="b"/>
+    <origin xyz="1 0 0"/><axis xyz="0 0 1"/><mimic joint="j1" multiplier="2" offset="0"/>
+    <limit lower="-0.6" upper="0.6" effort="1" velocity="1"/></joint>
+</robot>)",
+                                 "mimic2", ".");
+  ASSERT_EQ(num_dofs(robot), 1);
+  const IkData data(robot);
+  EXPECT_DOUBLE_EQ(data.lower[0], -0.3);
+  EXPECT_DOUBLE_EQ(data.upper[0], 0.3);
+  IkProblem problem;
+  problem.targets.push_back(TargetAt(robot, Eigen::VectorXd::Constant(1, 1.0), FindLink(robot, "b"),
+                                     Eigen::Vector3d(0.5, 0, 0)));
+  IkData work(robot);
+  IkOptions options;
+  options.starts = 4;
+  const IkResult r = SolveIk(robot, problem, options, &work);
+  EXPECT_EQ(r.status, IkStatus::kNotReached);
+  EXPECT_NEAR(r.q[0], 0.3, 1e-6);
+}
+
 // is_valid: a reached q it refuses sends the solver to the next start; refusing all gives
 // kInvalid with the first reached q.
 TEST(Ik, ValidityRejection) {
