@@ -57,7 +57,8 @@ case "$cmd" in
         planning_scenario_test planning_grasp_test grasp_quality_test planning_success_test
         planning_replan_test grasp_simulation_test stability_step_test hand_builder_test
         human_hand_test grasp_trials_test exact_confirm_test freeze_test
-        planning_robot_collection_test)
+        planning_robot_collection_test planning_cost_units_test grasp_study_test
+        grasp_study_physics_test planning_scenario_new_test)
       cmake --build "$ASAN_BUILD_DIR" -j "$JOBS" --target "${sanitized[@]}"
       echo "run.sh: sanitizer build took $((SECONDS - sanitize_start)) s"
       # JOBS programs at a time, each one's output in ASAN_BUILD_DIR/sanitized-logs. Leak checking

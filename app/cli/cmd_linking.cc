@@ -176,8 +176,8 @@ void AddLinkingCommand(CLI::App* root, CommandList* commands) {
       ->add_option("--tol", la->tol,
                    "approximate far segment pairs (Barnes-Hut, Qu & James 2021) with at most "
                    "this error in the Gauss integral, added to the error bound; e.g. 0.05 "
-                   "(default 0: exact)")
-      ->check(CLI::PositiveNumber);
+                   "(default: exact; at most 0.5, beyond which no integer can be certified)")
+      ->check(FiniteIn(1e-12, 0.5));
   linking->add_option("--batch", la->batch,
                       "many pairs from FILE (or - for stdin), one JSON object per line: "
                       "{\"id\": any, \"a\": [[x,y,z],...], \"b\": [[x,y,z],...]}; one JSON result "
