@@ -12,6 +12,7 @@
 #include <thread>
 #include <vector>
 
+#include "topology/internal/compensated_sum.h"
 #include "topology/internal/writhe_rows.h"
 #include "topology/internal/writhe_tile.h"
 
@@ -117,19 +118,11 @@ double FarPair(const Node& a, const Node& b) {
   return sum + 0.5 * second;
 }
 
-struct Neumaier {
-  double sum = 0.0, comp = 0.0;
-  void Add(double x) {
-    const double t = sum + x;
-    comp += std::abs(sum) >= std::abs(x) ? (sum - t) + x : (x - t) + sum;
-    sum = t;
-  }
-  double Value() const { return sum + comp; }
-};
+using internal::CompensatedSum;
 
 // What one task (an A node against the whole of B) accumulates besides the per-row lane sums.
 struct TaskResult {
-  Neumaier far;
+  CompensatedSum far;
   double approximation = 0.0, far_rounding = 0.0;
   long long exact_pairs = 0, far_node_pairs = 0;
 };
@@ -274,7 +267,7 @@ FarFieldSums FarFieldGaussIntegral(const Chain& a, const Chain& b, const FarFiel
   for (std::thread& th : pool) th.join();
   if (error) std::rethrow_exception(error);
 
-  Neumaier total;
+  CompensatedSum total;
   double abs_total = 0.0, kernel_bound = 0.0;
   const double* ls = lanes.data();
   const double* la = ls + 4 * static_cast<size_t>(out.rows);

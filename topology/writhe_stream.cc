@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "topology/gauss_far_field.h"
+#include "topology/internal/compensated_sum.h"
 #include "topology/internal/writhe_rows.h"
 #include "topology/internal/writhe_tile.h"
 
@@ -23,16 +24,7 @@ constexpr double kTwoPi = 6.283185307179586476925286766559;
 constexpr double kUnitRoundoff = std::numeric_limits<double>::epsilon() / 2.0;  // u = 2⁻⁵³
 constexpr long long kParallelMinPairs = 200000;
 
-// Neumaier's compensated sum: |result − exact| ≤ 2u Σ|x_k| + O(n u²) Σ|x_k|.
-struct CompensatedSum {
-  double sum = 0.0, comp = 0.0;
-  void Add(double x) {
-    const double t = sum + x;
-    comp += std::abs(sum) >= std::abs(x) ? (sum - t) + x : (x - t) + sum;
-    sum = t;
-  }
-  double Value() const { return sum + comp; }
-};
+using internal::CompensatedSum;
 
 int ThreadCount(const WritheStreamOptions& o, long long pairs, int tasks) {
   int n = o.threads > 0 ? o.threads : static_cast<int>(std::thread::hardware_concurrency());
