@@ -6,10 +6,16 @@
 
 #include <algorithm>
 #include <cmath>
+#include <condition_variable>
 #include <cstdio>
 #include <cstdlib>
+#include <deque>
+#include <exception>
 #include <filesystem>
+#include <mutex>
 #include <stdexcept>
+#include <thread>
+#include <utility>
 
 #include "render/internal/canvas.h"
 #include "render/internal/text.h"
@@ -123,6 +129,76 @@ void DrawStamp(Image* image, const std::vector<std::string>& lines) {
   }
 }
 
+namespace internal {
+
+// PNGs written by one background thread in the order pushed, at most kMaxPending waiting. The
+// first failure is kept and rethrown by the next Push or by Drain; later frames are dropped.
+class PngQueue {
+ public:
+  PngQueue() : thread_([this] { Run(); }) {}
+  ~PngQueue() {
+    try {
+      Drain();
+    } catch (...) {  // the owner's Finish reports errors; a destructor must not throw
+    }
+  }
+  PngQueue(const PngQueue&) = delete;
+  PngQueue& operator=(const PngQueue&) = delete;
+
+  void Push(std::string path, Image image) {
+    std::unique_lock<std::mutex> lock(mutex_);
+    space_.wait(lock, [&] { return jobs_.size() < kMaxPending || error_; });
+    if (error_) std::rethrow_exception(error_);
+    jobs_.emplace_back(std::move(path), std::move(image));
+    ready_.notify_one();
+  }
+
+  // Waits until every pushed PNG is written and stops the thread; rethrows the first failure.
+  void Drain() {
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      closed_ = true;
+      ready_.notify_one();
+    }
+    if (thread_.joinable()) thread_.join();
+    if (error_) std::rethrow_exception(std::exchange(error_, nullptr));
+  }
+
+ private:
+  static constexpr size_t kMaxPending = 4;
+
+  void Run() {
+    while (true) {
+      std::pair<std::string, Image> job;
+      {
+        std::unique_lock<std::mutex> lock(mutex_);
+        ready_.wait(lock, [&] { return !jobs_.empty() || closed_; });
+        if (jobs_.empty()) return;
+        job = std::move(jobs_.front());
+        jobs_.pop_front();
+        space_.notify_one();
+        if (error_) continue;
+      }
+      try {
+        WritePng(job.first, job.second);
+      } catch (...) {
+        std::lock_guard<std::mutex> lock(mutex_);
+        error_ = std::current_exception();
+        space_.notify_all();
+      }
+    }
+  }
+
+  std::mutex mutex_;
+  std::condition_variable ready_, space_;
+  std::deque<std::pair<std::string, Image>> jobs_;
+  bool closed_ = false;
+  std::exception_ptr error_;
+  std::thread thread_;  // last: started once the members it uses exist
+};
+
+}  // namespace internal
+
 FrameWriter::FrameWriter(const std::string& dir, const FrameWriterOptions& options)
     : dir_(dir), options_(options) {
   std::error_code ec;
@@ -134,7 +210,8 @@ std::string FrameWriter::Add(const Image& frame, const std::string& label, bool 
   char name[64];
   std::snprintf(name, sizeof(name), "%05d.png", size());
   const std::string path = (fs::path(dir_) / (options_.prefix + name)).string();
-  WritePng(path, frame);
+  if (!pngs_) pngs_ = std::make_unique<internal::PngQueue>();
+  pngs_->Push(path, frame);
   sequence_.frames.push_back(path);
   if (options_.contact_sheet) {
     const int w = std::min(options_.thumbnail_width, frame.width);
@@ -155,7 +232,13 @@ void FrameWriter::SetLabel(int index, const std::string& label, bool key) {
   if (key) keys_[static_cast<size_t>(index)] = true;
 }
 
+FrameWriter::~FrameWriter() = default;
+
 FrameSequence FrameWriter::Finish() {
+  if (pngs_) {
+    pngs_->Drain();  // the contact sheet and ffmpeg come after every frame is on disk
+    pngs_.reset();
+  }
   const int n = size();
   if (options_.contact_sheet && n > 0) {
     // Key frames, then evenly sampled ones (always including the first and the last).

@@ -7,6 +7,7 @@
 //   <prefix>video.mp4 (or .gif)                 when ffmpeg exists and video is enabled
 #pragma once
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -30,24 +31,36 @@ struct FrameSequence {
   std::string video;                // empty when skipped (no ffmpeg, disabled, or it failed)
 };
 
-// Writes frames one at a time (each PNG is written immediately, so memory stays bounded) and
-// keeps a thumbnail of each for the contact sheet. Frames may differ in size; the contact sheet
-// uses the first frame's aspect ratio.
+namespace internal {
+class PngQueue;
+}  // namespace internal
+
+// Writes frames one at a time and keeps a thumbnail of each for the contact sheet. The PNGs are
+// encoded and written by one background thread, in order, at most a few frames behind Add (so
+// memory stays bounded and the caller renders the next frame meanwhile); Finish() waits for them.
+// The files do not depend on this (the same bytes as written inline). Frames may differ in size;
+// the contact sheet uses the first frame's aspect ratio.
 class FrameWriter {
  public:
   // Creates `dir` if needed. Throws std::runtime_error when it cannot be created.
   explicit FrameWriter(const std::string& dir, const FrameWriterOptions& options = {});
+  ~FrameWriter();  // waits for the pending PNGs (errors are then dropped: call Finish)
+  FrameWriter(const FrameWriter&) = delete;
+  FrameWriter& operator=(const FrameWriter&) = delete;
 
-  // Writes the next frame; returns its path. `label` captions its contact-sheet thumbnail
-  // (empty: "frame N"; '\n' starts another line). `key` frames are always on the contact sheet,
-  // the others fill the remaining places evenly (the first and the last always included).
+  // Queues the next frame for writing; returns its path. A failed write of an earlier frame is
+  // thrown here or by Finish() (base::WriteError, as render::WritePng). `label` captions its
+  // contact-sheet thumbnail (empty: "frame N"; '\n' starts another line). `key` frames are always
+  // on the contact sheet, the others fill the remaining places evenly (the first and the last
+  // always included).
   std::string Add(const Image& frame, const std::string& label = "", bool key = false);
 
   // Replaces the label of frame `index` (0 <= index < size()); `key` also makes it a key frame,
   // e.g. to say why a sequence ended early. Throws std::out_of_range for a bad index.
   void SetLabel(int index, const std::string& label, bool key = false);
 
-  // Writes the contact sheet and the video; call once at the end.
+  // Waits until every frame is written, then writes the contact sheet and the video; call once
+  // at the end.
   FrameSequence Finish();
 
   int size() const { return static_cast<int>(sequence_.frames.size()); }
@@ -59,6 +72,7 @@ class FrameWriter {
   std::vector<Image> thumbnails_;
   std::vector<std::string> labels_;
   std::vector<bool> keys_;
+  std::unique_ptr<internal::PngQueue> pngs_;  // started by the first Add
 };
 
 // Contact sheet of `thumbnails` in a grid of ceil(sqrt(n)) columns, each labelled with

@@ -14,6 +14,15 @@ Objects are unions of primitives (analytic signed distance); sizes in metres:
   torus_small_hole thick torus: R 36 mm, tube radius 16 mm (hole 40 mm across), 120 g
   carabiner        stadium loop of 5 mm wire: two half rings R 22 mm whose centres are 40 mm
                    apart (y = ±20 mm), joined by two straight 40 mm bars; 40 g
+  shackle          D-shackle of 4 mm-radius (8 mm) round bar: a half-ring bow R 25 mm (centre
+                   line) centred at y = +15 mm, two straight legs 45 mm long at x = ±25 mm down
+                   to y = −30 mm, closed by a pin of radius 5 mm, 70 mm long along x at
+                   y = −30 mm (it sticks out 6 mm past each leg); inside 42 × 61 mm; 90 g
+  handle_bar       a handle bar under a lip: a bar of radius 6 mm, 92 mm long (capsule, along
+                   y) at x = +28 mm, held by two posts of radius 5 mm (along x, at y = ±34 mm)
+                   off the edge of a lip plate 30 × 100 × 16 mm (x from −52 to −22 mm) whose top
+                   is 6 mm above the bar's; the hole between bar, posts and lip edge is
+                   44 × 58 mm; 150 g
 Run from the repository root: python3 scripts/make_grasp_objects.py
 """
 import json
@@ -38,6 +47,24 @@ def stadium(half_length, radius, segments=12):
             pts.append([round(radius * math.cos(a), 6), round(end + radius * math.sin(a), 6), Z])
     pts.append(pts[0])
     return {"type": "loop", "points": pts}
+
+
+def d_loop(radius, bow_y, pin_y, segments=12):
+    """Closed D loop: a half circle of `radius` about (0, bow_y) towards +y, straight legs at
+    x = ±radius down to y = pin_y, and the straight pin between them."""
+    pts = []
+    for i in range(segments + 1):
+        a = math.pi * i / segments
+        pts.append([round(radius * math.cos(a), 6), round(bow_y + radius * math.sin(a), 6), Z])
+    pts += [[-radius, pin_y, Z], [radius, pin_y, Z], pts[0]]
+    return {"type": "loop", "points": pts}
+
+
+def rectangle(x_plus, x_minus, half_y):
+    """Closed rectangle in the hole plane, counter-clockwise about +z like the other loops."""
+    pts = [[x_plus, -half_y, Z], [x_plus, half_y, Z], [x_minus, half_y, Z],
+           [x_minus, -half_y, Z]]
+    return {"type": "loop", "points": pts + [pts[0]]}
 
 
 def objects():
@@ -72,6 +99,34 @@ def objects():
              {"type": "capsule", "size": [wire, 0.04, 0], "xyz": [-0.022, 0, Z],
               "rpy": [half_pi, 0, 0]}],
          "reference": stadium(0.02, 0.022)},
+        {"name": "shackle", "mass": 0.09,
+         "description": "D-shackle of 8 mm round bar: bow R 25 mm, legs 45 mm at x = +-25 mm, "
+                        "pin r 5 mm x 70 mm across at y = -30 mm (inside 42 x 61 mm), lying "
+                        "flat; reference = core loop",
+         "primitives": [
+             {"type": "torus", "size": [0.025, 0.004, half_pi], "xyz": [0, 0.015, Z],
+              "rpy": [0, 0, half_pi]},
+             {"type": "capsule", "size": [0.004, 0.045, 0], "xyz": [0.025, -0.0075, Z],
+              "rpy": [half_pi, 0, 0]},
+             {"type": "capsule", "size": [0.004, 0.045, 0], "xyz": [-0.025, -0.0075, Z],
+              "rpy": [half_pi, 0, 0]},
+             {"type": "cylinder", "size": [0.005, 0.07, 0], "xyz": [0, -0.03, Z],
+              "rpy": [0, half_pi, 0]}],
+         "reference": d_loop(0.025, 0.015, -0.03)},
+        {"name": "handle_bar", "mass": 0.15,
+         "description": "handle bar under a lip: bar r 6 mm x 92 mm along y at x = +28 mm, two "
+                        "posts r 5 mm at y = +-34 mm off the edge of a 30 x 100 x 16 mm lip "
+                        "plate (x from -52 to -22 mm, top 6 mm above the bar's); hole "
+                        "44 x 58 mm, lying flat; reference = loop through bar, posts and lip",
+         "primitives": [
+             {"type": "capsule", "size": [0.006, 0.08, 0], "xyz": [0.028, 0, Z],
+              "rpy": [half_pi, 0, 0]},
+             {"type": "capsule", "size": [0.005, 0.058, 0], "xyz": [-0.001, 0.034, Z],
+              "rpy": [0, half_pi, 0]},
+             {"type": "capsule", "size": [0.005, 0.058, 0], "xyz": [-0.001, -0.034, Z],
+              "rpy": [0, half_pi, 0]},
+             {"type": "box", "size": [0.03, 0.1, 0.016], "xyz": [-0.037, 0, Z + 0.004]}],
+         "reference": rectangle(0.028, -0.03, 0.034)},
     ]
 
 

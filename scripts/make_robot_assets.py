@@ -5,7 +5,7 @@ Every number comes from public data (the KUKA LWR 4 and Schunk SDH joint tables 
 URDF models, Schunk's SDH constants, Buchholz et al. 1992 hand proportions, the unwrapping scene of
 the thesis, section 4.3.1) or is a stated choice; nothing is copied from third-party model files.
 Outputs:
-  assets/robots/{lwr4_sdh,arm20_sdh,human_hand}.urdf (+ .chains.json sidecars)
+  assets/robots/{lwr4_sdh,arm20_sdh,arm12_sdh,arm30_sdh,human_hand}.urdf (+ .chains.json sidecars)
   assets/objects/{pole,ring,torus,cylinder,bottle,ball,box,mug}.urdf (+ .chains.json)
   assets/meshes/{torus_ring,torus_small,mug,sdh_palm}.obj
   tests/planning/data/fake_pkg/... (a URDF with STL/DAE meshes and package:// URIs, for tests)
@@ -257,11 +257,14 @@ def make_lwr4_sdh():
     write_chains(os.path.join(ROOT, "assets/robots/lwr4_sdh.chains.json"), chains + sdh_chains())
 
 
-# ---- The 20-link unwrapping arm (thesis section 4.3.1) --------------------------------------------
-def make_arm20_sdh():
-    u = Urdf("arm20_sdh", "Hyper-redundant unwrapping arm of the thesis (section 4.3.1): a stem "
-             "capsule (2 m, r 0.1) and 20 capsule links (0.2 m, r 0.05) with hinges about local x; "
-             "each joint frame is twisted 45 deg about (1,0,1), so q = 0 is a coil. SDH at the tip.")
+# ---- The 20-link unwrapping arm (thesis section 4.3.1), and its 12- and 30-link variants ---------
+def make_arm_sdh(n=20):
+    """The unwrapping arm with n capsule links (n = 20: the thesis' arm; 12 and 30: the arms of the
+    unwrap generalisation test set, docs/results/unwrap.md), assets/robots/arm<n>_sdh.*."""
+    name = "arm%d_sdh" % n
+    u = Urdf(name, "Hyper-redundant unwrapping arm of the thesis (section 4.3.1): a stem "
+             "capsule (2 m, r 0.1) and %d capsule links (0.2 m, r 0.05) with hinges about local x; "
+             "each joint frame is twisted 45 deg about (1,0,1), so q = 0 is a coil. SDH at the tip." % n)
     u.material("stem_grey", (0.5, 0.5, 0.52, 1))
     u.material("arm_blue", (0.2, 0.45, 0.85, 1))
     u.material("arm_light", (0.45, 0.7, 0.95, 1))
@@ -272,7 +275,7 @@ def make_arm20_sdh():
            comment="stem: capsule, cap centres at z = 0 and 2 (length 2 m), radius 0.1")
     first = matmul(rot_axis((1, 0, 0), PI / 2), rot_axis((0, 1, 0), -PI / 4))
     twist = rot_axis((1, 0, 1), PI / 4)
-    for i in range(1, 21):
+    for i in range(1, n + 1):
         parent = "stem" if i == 1 else "arm_link_%d" % (i - 1)
         if i == 1:
             xyz, rpy = (0, 0, 2.0), rpy_of(first)
@@ -283,10 +286,10 @@ def make_arm20_sdh():
         mat = "arm_blue" if i % 2 else "arm_light"
         u.link("arm_link_%d" % i, [cap(0.05, 0.2, (0, 0, 0.1), material=mat)],
                [cap(0.05, 0.2, (0, 0, 0.1))])
-    add_sdh(u, "arm_link_20", (0, 0, 0.2))
-    u.write(os.path.join(ROOT, "assets/robots/arm20_sdh.urdf"))
-    pts = [("arm_link_1", (0, 0, 0))] + [("arm_link_%d" % i, (0, 0, 0.2)) for i in range(1, 21)]
-    write_chains(os.path.join(ROOT, "assets/robots/arm20_sdh.chains.json"),
+    add_sdh(u, "arm_link_%d" % n, (0, 0, 0.2))
+    u.write(os.path.join(ROOT, "assets/robots/%s.urdf" % name))
+    pts = [("arm_link_1", (0, 0, 0))] + [("arm_link_%d" % i, (0, 0, 0.2)) for i in range(1, n + 1)]
+    write_chains(os.path.join(ROOT, "assets/robots/%s.chains.json" % name),
                  [chain("arm", pts)] + sdh_chains())
 
 
@@ -581,7 +584,8 @@ if __name__ == "__main__":
     for d in ("assets/robots", "assets/objects", "assets/meshes"):
         os.makedirs(os.path.join(ROOT, d), exist_ok=True)
     make_lwr4_sdh()
-    make_arm20_sdh()
+    for links in (20, 12, 30):
+        make_arm_sdh(links)
     make_human_hand()
     make_objects()
     make_test_package()

@@ -27,8 +27,10 @@ constexpr long long kParallelMinPairs = 200000;
 using internal::CompensatedSum;
 
 int ThreadCount(const WritheStreamOptions& o, long long pairs, int tasks) {
-  int n = o.threads > 0 ? o.threads : static_cast<int>(std::thread::hardware_concurrency());
-  if (pairs < kParallelMinPairs) n = 1;
+  // Small sums first: hardware_concurrency() reads /sys on every call (~10 µs, more than a
+  // 32×32 Gauss integral; linking --batch calls this once per pair).
+  if (pairs < kParallelMinPairs) return 1;
+  const int n = o.threads > 0 ? o.threads : static_cast<int>(std::thread::hardware_concurrency());
   return std::max(1, std::min(n, tasks));
 }
 

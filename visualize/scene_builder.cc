@@ -345,7 +345,9 @@ SceneDocument RobotSceneDocument(const std::string& path, const std::string& q_t
   doc.scene = BuildRobotScene(rs.robot, kin, rs.env, options, &cache);
   // A planning scenario: its "box" tasks, as plan frames and the viewer draw them.
   if (rs.document.is_object() && rs.document.contains("tasks")) {
-    AddTaskBoxes(planning::ParseScenarioSpec(path, {base::AssetRoot()}), &doc.scene);
+    planning::ScenarioSpec spec = planning::ParseScenarioSpec(path, {base::AssetRoot()});
+    planning::ResolveSpecFrames(&spec);  // box centres given in an object's frame
+    AddTaskBoxes(spec, &doc.scene);
   }
   doc.camera = FrameSceneCamera(doc.scene);
   if (rs.document.is_object() && rs.document.contains("camera")) {

@@ -37,6 +37,7 @@ struct BenchArgs {
   bool survival = false;  // --survival: budget sweep verdicts (survival.csv, survival.png)
   bool ablation = false;  // --ablation: AICO with each task term removed (ablation.csv/.png)
   double perturb = 0.0;
+  std::string geometry;   // --geometry FILE ("": the shipped scene)
   std::string aico_stop;  // --aico-stop solved|converged ("": the scenario's)
   double timeout = 0.0;
   std::string
@@ -251,6 +252,10 @@ void AddBenchCommands(CLI::App* root, CommandList* commands) {
                      "move the pole of each seed by a random offset of at most M metres "
                      "perpendicular to its axis (seeded, reproducible; 0 <= M <= 1, default 0)");
   AddDeprecatedAlias(unwrap, "--perturb", "--pole-offset", &ba->perturb);
+  unwrap->add_option("--geometry", ba->geometry,
+                     "run on the geometry of FILE (pole tilt, radius, translation, target offset, "
+                     "arm; planning/motion/unwrap_geometry.h) with the scenario's parameters "
+                     "unchanged; also writes DIR/geometry.csv");
   unwrap->add_option("--aico-stop", ba->aico_stop, kAicoStopHelp)
       ->check(CLI::IsMember({"solved", "converged"}));
   AddTimeoutFlag(unwrap, &ba->timeout);
@@ -278,7 +283,15 @@ void AddBenchCommands(CLI::App* root, CommandList* commands) {
       "final_writhe_total,reach_error_m,final_winding_turns,state_queries,cpu_time_s) and\n"
       "DIR/ablation.png (success, |final writhe| and reach error per angle and ablation).\n"
       "--ompl-log FILE: FILE with _<angle>deg before its extension per angle, in OMPL's\n"
-      "benchmark log format (one planner per topoplan planner, one run per seed).");
+      "benchmark log format (one planner per topoplan planner, one run per seed).\n"
+      "--geometry FILE: DIR/geometry.csv (geometry,split,angle_deg,planner,seed,start_wrap_deg,\n"
+      "success,failure_reason,final_writhe_total,reach_error_m,final_winding_turns,\n"
+      "unwound_winding_turns,goal_meets_end_conditions,state_queries,cpu_time_s,setup_time_s):\n"
+      "start_wrap_deg is the coil the start reached; unwound_winding_turns the winding of the\n"
+      "segment base -> target about the pole's line (about where an arm that does not wrap the\n"
+      "pole ends); goal_meets_end_conditions whether the set-up's goal (the RRTs') meets the\n"
+      "criterion's end conditions.\n"
+      "Shipped geometries: assets/scenarios/unwrap_geometries/ (README.md there).");
   commands->push_back(
       {unwrap, [ba, unwrap]() {
          planning::UnwrapBenchmarkOptions options;
@@ -315,7 +328,13 @@ void AddBenchCommands(CLI::App* root, CommandList* commands) {
          }
          options.perturb_m = ba->perturb;
          options.aico_stop_when_solved = ParseAicoStop(ba->aico_stop);
-         OutputDir out(ba->output, "-o", "bench unwrap", {options.scenario_path});
+         std::vector<std::string> inputs = {options.scenario_path};
+         if (unwrap->count("--geometry") > 0) {
+           if (ba->geometry.empty()) throw std::invalid_argument("--geometry: empty path");
+           options.geometry = planning::ReadUnwrapGeometry(ba->geometry, {base::AssetRoot()});
+           inputs.push_back(ba->geometry);
+         }
+         OutputDir out(ba->output, "-o", "bench unwrap", inputs);
          const bool ompl_log = unwrap->count("--ompl-log") > 0;  // "" is refused, not ignored
          OmplLogInfo log_info;
          if (ompl_log) {
@@ -354,6 +373,10 @@ void AddBenchCommands(CLI::App* root, CommandList* commands) {
          }
          base::WriteFileAtomic((fs::path(out.staging()) / "unwrap.csv").string(),
                                planning::UnwrapCsv(result));
+         if (options.geometry) {
+           base::WriteFileAtomic((fs::path(out.staging()) / "geometry.csv").string(),
+                                 planning::UnwrapGeometryCsv(*options.geometry, result));
+         }
          if (const auto figure = visualize::UnwrapFigure(result)) {
            const std::string png = (fs::path(out.staging()) / "unwrap.png").string();
            render::WriteFigure(png, *figure);

@@ -1,11 +1,9 @@
 // `topoplan demo`: the main job. Runs every result the project produces — the same library calls
 // and output formatters as the commands — and writes them with an index.html into one folder.
-#include <sys/utsname.h>
-
 #include <algorithm>
 #include <chrono>
-#include <ctime>
 #include <cstdio>
+#include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -14,24 +12,27 @@
 #include <sstream>
 #include <thread>
 
-#include "base/assets.h"
-#include "base/numbers.h"
-#include "base/version.h"
 #include "app/cli/cli.h"
 #include "app/cli/command.h"
-#include "visualize/figures.h"
-#include "app/present/grasp_frames.h"
-#include "planning/grasp/grasp_inputs.h"
+#include "app/cli/demo_page.h"
+#include "app/cli/forked_jobs.h"
 #include "app/cli/io.h"
+#include "app/present/grasp_frames.h"
 #include "app/present/reports.h"
-#include "planning/physics/grasp_trials.h"
+#include "base/assets.h"
+#include "base/numbers.h"
+#include "base/str_cat.h"
+#include "base/version.h"
+#include "planning/grasp/grasp_inputs.h"
 #include "planning/motion/planner.h"
 #include "planning/motion/unwrap_benchmark.h"
+#include "planning/physics/grasp_trials.h"
 #include "render/figure.h"
 #include "render/frames.h"
 #include "render/image.h"
 #include "topology/polyline.h"
 #include "topology/writhe.h"
+#include "visualize/figures.h"
 
 namespace app {
 namespace {
@@ -40,9 +41,11 @@ namespace fs = std::filesystem;
 
 struct DemoArgs {
   std::string out_dir = "demo-out";
-  bool full = false;      // the whole Figure 4.5 sweep (0..1080 deg every 15, 3 seeds)
-  bool no_grasp = false;  // skip the grasp-transfer stage
-  double timeout = 0.0;   // --timeout: seconds, 0 = none
+  bool full = false;              // the whole Figure 4.5 sweep (0..1080 deg every 15, 3 seeds)
+  bool no_grasp = false;          // skip the grasp-transfer stage
+  double timeout = 0.0;           // --timeout: seconds, 0 = none
+  int jobs = 0;                   // --jobs: stages at the same time (0: the number of cores)
+  std::vector<std::string> only;  // --only: these stages (writhe, unwrap, ...); empty: all
   std::vector<render::FigureFormat> formats;  // --formats: figures also as SVG/PDF
 };
 
@@ -61,33 +64,6 @@ constexpr ChainPair kPairs[] = {
     {"ring_arm", "ring.csv", "arm_through_ring.csv", "about -0.9 (open arm through a ring)"},
 };
 
-std::vector<fs::path> SortedPngs(const fs::path& dir, const std::string& prefix) {
-  std::vector<fs::path> out;
-  std::error_code ec;
-  for (const auto& e : fs::directory_iterator(dir, ec)) {
-    const std::string n = e.path().filename().string();
-    if (e.path().extension() == ".png" && n.rfind(prefix, 0) == 0) out.push_back(e.path());
-  }
-  std::sort(out.begin(), out.end());
-  return out;
-}
-
-// Pastes `b` to the right of `a` on a white canvas (heights may differ; both top-aligned and
-// vertically centred).
-render::Image SideBySide(const render::Image& a, const render::Image& b) {
-  const int h = std::max(a.height, b.height);
-  render::Image out(a.width + b.width, h, 255, 255, 255);
-  auto paste = [&](const render::Image& img, int x0) {
-    const int y0 = (h - img.height) / 2;
-    for (int y = 0; y < img.height; ++y) {
-      std::copy_n(img.at(0, y), 4 * img.width, out.at(x0, y0 + y));
-    }
-  };
-  paste(a, 0);
-  paste(b, a.width);
-  return out;
-}
-
 class Demo {
  public:
   explicit Demo(const DemoArgs& args) : args_(args), out_(args.out_dir) {}
@@ -100,16 +76,14 @@ class Demo {
     const StopCheck stop(args_.timeout);  // the commands of each stage see the same deadline
     stop_ = &stop;
     std::printf("topoplan demo -> %s\n", fs::absolute(args_.out_dir).c_str());
-    Stage("writhe matrices of the example chains", [&] { return Writhe(); });
-    Stage("unwrap: AICO with a writhe target (arm coiled 720 deg around a pole)",
-          [&] { return Unwrap(); });
-    Stage("reach through a ring (thesis Fig. 4.4)", [&] { return Ring(); });
-    Stage(args_.full ? "Fig. 4.5 benchmark, full sweep" : "Fig. 4.5 benchmark, reduced sweep",
-          [&] { return Bench(); });
-    if (!args_.no_grasp) {
-      Stage("grasp transfer human hand -> SDH, ODE stability", [&] { return Grasp(); });
+    const std::vector<Part> parts = Parts();
+    const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+    const int jobs = std::min(static_cast<int>(parts.size()), args_.jobs > 0 ? args_.jobs : cores);
+    if (jobs <= 1) {
+      for (const Part& p : parts) Stage(p.title, p.body);
+    } else {
+      RunParallel(parts, jobs);
     }
-    Stage("interactive viewer, headless screenshot", [&] { return Viewer(); });
     WriteIndex();
     output.Commit();
     Note("wrote %s", (fs::path(args_.out_dir) / "index.html").c_str());
@@ -121,6 +95,125 @@ class Demo {
   }
 
  private:
+  // One stage of the page: its name (--only), its title and what it runs; `cost` orders the
+  // parallel schedule (the longest first, so that it does not start last).
+  struct Part {
+    std::string name, title;
+    std::function<int()> body;
+    int cost = 0;
+  };
+
+  std::vector<Part> Parts() {
+    std::vector<Part> all;
+    all.push_back(
+        {"writhe", "writhe matrices of the example chains", [this] { return Writhe(); }, 0});
+    all.push_back({"unwrap", "unwrap: AICO with a writhe target (arm coiled 720 deg around a pole)",
+                   [this] { return Unwrap(); }, 3});
+    all.push_back({"ring", "reach through a ring (thesis Fig. 4.4)", [this] { return Ring(); }, 1});
+    all.push_back(
+        {"bench",
+         args_.full ? "Fig. 4.5 benchmark, full sweep" : "Fig. 4.5 benchmark, reduced sweep",
+         [this] { return Bench(); }, 4});
+    if (!args_.no_grasp) {
+      all.push_back({"grasp", "grasp transfer human hand -> SDH, ODE stability",
+                     [this] { return Grasp(); }, 5});
+    }
+    all.push_back(
+        {"viewer", "interactive viewer, headless screenshot", [this] { return Viewer(); }, 2});
+    if (args_.only.empty()) return all;
+    std::vector<Part> some;
+    for (Part& p : all) {
+      if (std::find(args_.only.begin(), args_.only.end(), p.name) != args_.only.end()) {
+        some.push_back(std::move(p));
+      }
+    }
+    return some;
+  }
+
+  // Every part in its own forked process, `workers` at a time, the longest first. Each child
+  // writes its files into the staging folder (the parts' files are disjoint) and its section of
+  // the page into .demo-parts/NAME.html; its output goes to .demo-parts/NAME.log, printed as one
+  // block when the part ends. The page is assembled in the parts' order, so nothing written
+  // depends on the schedule.
+  void RunParallel(const std::vector<Part>& parts, int workers) {
+    const fs::path dir = out_ / ".demo-parts";
+    fs::create_directories(dir);
+    std::vector<size_t> order(parts.size());
+    for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::stable_sort(order.begin(), order.end(),
+                     [&](size_t a, size_t b) { return parts[a].cost > parts[b].cost; });
+    std::vector<ForkedJob> jobs;
+    for (size_t i : order) {
+      const Part& p = parts[i];
+      jobs.push_back({p.name,
+                      [this, &p, dir] {
+                        // Progress lines would only clutter the part's log.
+                        if (GetVerbosity() == Verbosity::kNormal) SetVerbosity(Verbosity::kQuiet);
+                        html_.str("");
+                        const int rc = RunGuarded(base::StrCat("demo: ", p.title), p.body);
+                        base::WriteFileAtomic((dir / (p.name + ".html")).string(), html_.str());
+                        return rc;
+                      },
+                      (dir / (p.name + ".log")).string()});
+    }
+    const auto t0 = std::chrono::steady_clock::now();
+    ForkedJobsOptions options;
+    options.workers = workers;
+    options.on_start = [&](size_t k) {
+      std::printf("[%zu] %s: started\n", order[k] + 1, parts[order[k]].title.c_str());
+    };
+    options.on_done = [&](size_t k, const ForkedJobResult& r) {
+      const size_t i = order[k];
+      std::printf("\n[%zu] %s\n", i + 1, parts[i].title.c_str());
+      std::ifstream log(dir / (parts[i].name + ".log"));
+      for (std::string line; std::getline(log, line);) std::printf("%s\n", line.c_str());
+      std::printf("[%zu] %s (%.1f s, %.1f s CPU)\n", i + 1, r.exit_code == 0 ? "done" : "FAILED",
+                  r.wall_s, r.cpu_s);
+      std::fflush(stdout);
+    };
+    options.should_stop = [this] {
+      try {
+        stop_->Poll();
+        return false;
+      } catch (const StopRequested& e) {
+        if (!stopped_) stopped_timeout_ = e.timeout;
+        stopped_ = true;
+        return true;
+      }
+    };
+    const std::vector<ForkedJobResult> results = RunForkedJobs(jobs, options);
+    double cpu = 0.0;
+    std::vector<const ForkedJobResult*> by_part(parts.size());
+    for (size_t k = 0; k < order.size(); ++k) by_part[order[k]] = &results[k];
+    for (size_t i = 0; i < parts.size(); ++i) {
+      const ForkedJobResult& r = *by_part[i];
+      if (!r.started) {
+        stage_status_.push_back(
+            {parts[i].title +
+                 " (skipped: " + (stopped_timeout_ ? "time limit reached" : "interrupted") + ")",
+             stopped_timeout_ ? 1 : 130});
+        continue;
+      }
+      cpu += r.cpu_s;
+      int rc = r.exit_code > 128 ? kExitInterrupted : r.exit_code;
+      // Stopped by the time limit: the SIGTERM that ended the stage is the limit's (exit 1).
+      if (rc == kExitInterrupted && stopped_ && stopped_timeout_) rc = kExitFailed;
+      stage_status_.push_back({parts[i].title, rc});
+      if (rc > worst_) worst_ = rc;
+      std::ifstream fragment(dir / (parts[i].name + ".html"));
+      if (fragment) {
+        html_ << fragment.rdbuf();
+      } else {
+        html_ << "<h2>" << HtmlEscape(parts[i].title) << "</h2>\n<p>failed (exit " << rc
+              << ")</p>\n";
+      }
+    }
+    std::printf("\n%zu stages in %.1f s (%.1f s CPU, %d at a time)\n", parts.size(),
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), cpu,
+                workers);
+    fs::remove_all(dir);
+  }
+
   // Runs one stage with a progress line; keeps the worst exit code (2/3 beat 1).
   template <typename F>
   void Stage(const std::string& title, F body) {
@@ -144,15 +237,18 @@ class Demo {
     stage_status_.push_back({title, rc});
   }
 
+  // `path` as the user will find it: inside the output folder, never its staging area.
+  std::string Shown(const std::string& path) const {
+    const std::string staging = out_.string();
+    if (path.rfind(staging, 0) != 0) return path;
+    return args_.out_dir + path.substr(staging.size());
+  }
+
   // Runs `topoplan ARGS` in-process (quietly: the demo says what it writes) and shows the
   // command as a user would type it, with the output folder's name (never its staging area).
   int Sub(const std::vector<std::string>& args) {
-    const std::string staging = out_.string();
     std::string line = "  $ topoplan";
-    for (std::string a : args) {
-      if (a.rfind(staging, 0) == 0) a = args_.out_dir + a.substr(staging.size());
-      line += " " + a;
-    }
+    for (const std::string& a : args) line += " " + Shown(a);
     std::printf("%s\n", line.c_str());
     std::fflush(stdout);
     std::vector<std::string> quiet{"-q"};
@@ -180,7 +276,7 @@ class Demo {
       }
       j["matrix"] = std::move(m);
       base::WriteFileAtomic((out_ / "writhe" / (std::string(p.name) + ".json")).string(),
-                      j.dump() + "\n");
+                            j.dump() + "\n");
       const std::string png = "writhe/" + std::string(p.name) + ".png";
       for (render::FigureFormat f : args_.formats) {  // PNG always (the page shows it)
         if (f == render::FigureFormat::kPng) continue;
@@ -214,7 +310,7 @@ class Demo {
   int PlanAico(
       const std::string& name, const fs::path& dir, nlohmann::json* report, PlanFrames* frames,
       const std::function<void(const render::Image&, const render::Image*)>& on_frame = {}) {
-    std::printf("  plan %s with aico -> %s\n", name.c_str(), dir.string().c_str());
+    std::printf("  plan %s with aico -> %s\n", name.c_str(), Shown(dir.string()).c_str());
     std::fflush(stdout);
     const auto scenario = planning::LoadScenarioArg(name);
     const planning::PlanResult result =
@@ -239,7 +335,7 @@ class Demo {
     PlanFrames frames;
     const int rc = PlanAico("unwrap", dir, &report, &frames,
                             [&](const render::Image& frame, const render::Image* heatmap) {
-                              if (heatmap) writer.Add(SideBySide(frame, *heatmap));
+                              if (heatmap) writer.Add(SideBySideImages(frame, *heatmap));
                             });
     // The movie's contact sheet gives each frame's time, as the frames themselves do.
     if (writer.size() == static_cast<int>(frames.labels.size())) {
@@ -247,7 +343,7 @@ class Demo {
     }
     const render::FrameSequence seq = writer.Finish();
     std::printf("  movie: %zu frames%s\n", seq.frames.size(),
-                seq.video.empty() ? " (no ffmpeg: no video)" : (", " + seq.video).c_str());
+                seq.video.empty() ? " (no ffmpeg: no video)" : (", " + Shown(seq.video)).c_str());
     html_ << "<h2>2. Unwrapping an arm coiled around a pole</h2>\n"
              "<p>The 20-link arm starts wrapped about 720&deg; around the pole; AICO's task is a "
              "total writhe of 0 (linearly interpolated over T = 50 steps) plus reaching the "
@@ -259,9 +355,11 @@ class Demo {
             << fs::path(seq.video).filename().string() << "\"></video></p>\n";
     }
     if (!seq.contact_sheet.empty()) {
-      html_ << "<p><a href=\"unwrap/movie/contact_sheet.png\"><img src=\"unwrap/movie/contact_sheet.png\" width=\"960\"></a></p>\n";
+      html_ << "<p><a href=\"unwrap/movie/contact_sheet.png\"><img "
+               "src=\"unwrap/movie/contact_sheet.png\" width=\"960\"></a></p>\n";
     }
-    html_ << "<p><a href=\"unwrap/writhe_cost.png\"><img src=\"unwrap/writhe_cost.png\" width=\"640\"></a></p>\n";
+    html_ << "<p><a href=\"unwrap/writhe_cost.png\"><img src=\"unwrap/writhe_cost.png\" "
+             "width=\"640\"></a></p>\n";
     return rc;
   }
 
@@ -284,10 +382,10 @@ class Demo {
       const std::string h =
           "ring/heatmaps/" + fs::path(frames.heatmaps.frames.back()).filename().string();
       html_ << "<p><a href=\"" << f << "\"><img src=\"" << f << "\" width=\"560\"></a> "
-            << "<a href=\"" << h << "\"><img src=\"" << h
-            << "\" width=\"420\"></a></p>\n";
+            << "<a href=\"" << h << "\"><img src=\"" << h << "\" width=\"420\"></a></p>\n";
     }
-    html_ << "<p><a href=\"ring/writhe_cost.png\"><img src=\"ring/writhe_cost.png\" width=\"640\"></a></p>\n";
+    html_ << "<p><a href=\"ring/writhe_cost.png\"><img src=\"ring/writhe_cost.png\" "
+             "width=\"640\"></a></p>\n";
     return rc;
   }
 
@@ -324,7 +422,8 @@ class Demo {
           << (args_.full ? "Full sweep."
                          : "Reduced sweep; <code>topoplan demo --full</code> runs "
                            "0&ndash;1080&deg; every 15&deg; with 3 seeds.")
-          << "</p>\n<p><a href=\"bench/unwrap.png\"><img src=\"bench/unwrap.png\" width=\"960\"></a></p>\n"
+          << "</p>\n<p><a href=\"bench/unwrap.png\"><img src=\"bench/unwrap.png\" "
+             "width=\"960\"></a></p>\n"
           << UnwrapHtmlTable(result) << "<p><a href=\"bench/unwrap.csv\">unwrap.csv</a></p>\n";
     return kExitOk;
   }
@@ -352,7 +451,8 @@ class Demo {
              "same non-penetration projection); human is the demonstration itself under the same "
              "protocol. Stability: gravity along &plusmn;x, &plusmn;y, &plusmn;z for 2 s each at "
              "1 kHz; cells are gravity directions held out of 6.</p>\n"
-             "<p><a href=\"grasp/summary.png\"><img src=\"grasp/summary.png\" width=\"640\"></a></p>\n"
+             "<p><a href=\"grasp/summary.png\"><img src=\"grasp/summary.png\" "
+             "width=\"640\"></a></p>\n"
           << GraspHtmlTable(result)
           << "<p><a href=\"grasp/report.json\">report.json</a></p>\n"
              "<h3>Human grasps and the transferred SDH grasps (winding method), with their "
@@ -395,47 +495,6 @@ class Demo {
     return rc;
   }
 
-  // Where the page came from: the build, the command, the date, the machine.
-  std::string ProvenanceHtml() const {
-    std::string cpu = "unknown CPU", memory;
-    {
-      std::ifstream info("/proc/cpuinfo");
-      for (std::string line; std::getline(info, line);) {
-        if (line.rfind("model name", 0) == 0 && line.find(':') != std::string::npos) {
-          cpu = line.substr(line.find(':') + 2);
-          break;
-        }
-      }
-      std::ifstream mem("/proc/meminfo");
-      for (std::string line; std::getline(mem, line);) {
-        if (line.rfind("MemTotal:", 0) != 0) continue;
-        const size_t first = line.find_first_of("0123456789");
-        const size_t last = line.find_first_not_of("0123456789", first);
-        const std::optional<long long> kb =
-            first == std::string::npos ? std::nullopt
-                                       : base::ParseInteger(line.substr(first, last - first));
-        if (kb) {
-          memory = ", " + base::FormatFixed(static_cast<double>(*kb) / 1048576.0, 1) + " GiB";
-        }
-        break;
-      }
-    }
-    struct utsname u {};
-    const std::string system = ::uname(&u) == 0 ? std::string(u.sysname) + " " + u.release + " " +
-                                                     u.machine
-                                                : "unknown system";
-    const std::time_t now = std::time(nullptr);
-    char date[32] = "";
-    std::strftime(date, sizeof date, "%Y-%m-%d %H:%M UTC", std::gmtime(&now));
-    return "<table class=\"provenance\"><tr><th>made by</th><td>topoplan " +
-           std::string(base::Version()) + " (commit " + base::Commit() +
-           ")</td></tr><tr><th>command</th><td><code>" + HtmlEscape(CommandLine()) +
-           "</code></td></tr><tr><th>date</th><td>" + date +
-           "</td></tr><tr><th>machine</th><td>" + HtmlEscape(system) + ", " + HtmlEscape(cpu) +
-           ", " + std::to_string(std::thread::hardware_concurrency()) + " cores" + memory +
-           "</td></tr></table>\n";
-  }
-
   void WriteIndex() {
     std::ostringstream page;
     page << "<!doctype html><html><head><meta charset=\"utf-8\"><title>topoplan demo</title>"
@@ -445,7 +504,7 @@ class Demo {
             "</head><body><h1>topoplan demo</h1>\n<p>Topology-based motion planning and grasp "
             "transfer after Zarubin's thesis. Every figure below was produced by "
             "<code>topoplan demo</code>; click a figure for the full image.</p>\n"
-         << ProvenanceHtml() << "<ul>";
+         << DemoProvenanceHtml() << "<ul>";
     for (const auto& [title, rc] : stage_status_) {
       page << "<li>" << HtmlEscape(title) << ": "
            << (rc == 0   ? "ok"
@@ -478,6 +537,16 @@ void AddDemoCommand(CLI::App* root, CommandList* commands) {
   demo->add_flag("--full", args->full,
                  "the whole Fig. 4.5 sweep (0..1080 deg every 15 deg, 3 seeds)");
   demo->add_flag("--no-grasp", args->no_grasp, "skip the grasp-transfer stage");
+  IntIn(demo->add_option("--jobs", args->jobs,
+                         "stages run at the same time, each in its own process (default 0: the "
+                         "number of cores; 1: one after the other in this process); the "
+                         "outputs do not depend on it"),
+        0, 64);
+  demo->add_option("--only", args->only,
+                   "run only these stages (comma-separated): writhe, unwrap, ring, bench, grasp, "
+                   "viewer")
+      ->delimiter(',')
+      ->check(CLI::IsMember({"writhe", "unwrap", "ring", "bench", "grasp", "viewer"}));
   AddTimeoutFlag(demo, &args->timeout);
   AddFormatsFlag(demo, &args->formats);
   commands->push_back({demo, [args]() { return Demo(*args).Run(); }});

@@ -1,6 +1,7 @@
 // `topoplan bench grasp`: the grasp-transfer study (planning/physics/grasp_study.h) over noisy
 // demonstrations, every method on every demonstration, ODE and MuJoCo verdicts, paired
-// statistics; grasp.csv is resumable (rows of an interrupted run are kept and skipped on rerun).
+// statistics; grasp.csv is resumable: every finished trial is journalled (fsynced) as it finishes,
+// so a run stopped in any way, even SIGKILL or a power loss, continues where it stopped.
 #include "app/cli/cmd_grasp_bench.h"
 
 #include <algorithm>
@@ -22,6 +23,8 @@
 #include "app/present/grasp_frames.h"
 #include "base/assets.h"
 #include "base/file_write.h"
+#include "base/line_journal.h"
+#include "base/str_cat.h"
 #include "planning/grasp/grasp_inputs.h"
 #include "planning/physics/grasp_study.h"
 #include "planning/physics/grasp_study_report.h"
@@ -101,6 +104,41 @@ std::vector<phys::StudyRow> ReadEarlierRows(const std::string& dir, const std::s
     if (!line.empty()) rows.push_back(phys::ParseStudyCsvRow(line));
   }
   return rows;
+}
+
+// The configuration a journal of finished trials belongs to: the protocol (seed, noise, placement,
+// engines: every row carries the verdict of each engine of the run) and the row format.
+std::string JournalConfiguration(const std::string& protocol) {
+  return base::StrCat("bench grasp; ", protocol, "; columns=", phys::StudyCsvHeader());
+}
+
+// The identity of a trial: (object, grasp, demonstration, method); the engines are part of the
+// configuration.
+using TrialKey = std::tuple<std::string, std::string, int, int>;
+TrialKey KeyOf(const phys::StudyRow& r) {
+  return {r.object, r.grasp, r.demo, static_cast<int>(r.method)};
+}
+
+// Adds the trials of the journal that `rows` does not hold yet; returns how many. Throws
+// std::invalid_argument "<journal>: record N: ..." for a record that is not a grasp.csv row.
+int AddJournalRows(const base::LineJournal& journal, std::vector<phys::StudyRow>* rows) {
+  std::set<TrialKey> have;
+  for (const phys::StudyRow& r : *rows) have.insert(KeyOf(r));
+  int added = 0;
+  for (size_t i = 0; i < journal.records().size(); ++i) {
+    phys::StudyRow r;
+    try {
+      r = phys::ParseStudyCsvRow(journal.records()[i]);
+    } catch (const std::exception& e) {
+      throw std::invalid_argument(base::StrCat(journal.path(), ": record ", std::to_string(i + 1),
+                                               ": ", e.what(), "; remove the journal"));
+    }
+    if (have.insert(KeyOf(r)).second) {
+      rows->push_back(r);
+      ++added;
+    }
+  }
+  return added;
 }
 
 std::string CsvText(const std::string& protocol, std::vector<phys::StudyRow> rows) {
@@ -241,15 +279,22 @@ int RunGraspBench(const GraspBenchArgs& a) {
   });
 
   // Units still to run (rows already in grasp.csv are kept and skipped).
-  std::set<std::tuple<std::string, int, int>> have;
-  for (const phys::StudyRow& r : rows) have.insert({r.grasp, r.demo, static_cast<int>(r.method)});
+  // Trials finished by an earlier run that was killed (SIGKILL, power loss) are in the journal.
+  base::LineJournal journal(out.JournalPath("bench-grasp"), JournalConfiguration(protocol));
+  const int journalled = AddJournalRows(journal, &rows);
+  if (journal.dropped_torn_line()) {
+    Note("bench grasp: dropped a torn last line of %s (a write cut short)", journal.path().c_str());
+  }
+  std::set<TrialKey> have;
+  for (const phys::StudyRow& r : rows) have.insert(KeyOf(r));
   std::vector<Unit> todo;
   int total_trials = 0;
   for (size_t g = 0; g < in.grasps.size(); ++g) {
     for (int d = 0; d < demos; ++d) {
       Unit u{static_cast<int>(g), d, {}};
       for (planning::TransferMethod m : methods) {
-        if (!have.count({in.grasps[g].name, d, static_cast<int>(m)})) u.methods.push_back(m);
+        const TrialKey key{in.grasps[g].object, in.grasps[g].name, d, static_cast<int>(m)};
+        if (!have.count(key)) u.methods.push_back(m);
       }
       total_trials += static_cast<int>(methods.size());
       if (!u.methods.empty()) todo.push_back(u);
@@ -258,8 +303,8 @@ int RunGraspBench(const GraspBenchArgs& a) {
   int done_trials = total_trials;
   for (const Unit& u : todo) done_trials -= static_cast<int>(u.methods.size());
   if (done_trials > 0) {
-    Note("bench grasp: resuming, %d of %d trials already in %s/grasp.csv", done_trials,
-         total_trials, a.output.c_str());
+    Note("bench grasp: resuming, %d of %d trials already in %s (grasp.csv, journal: %d)",
+         done_trials, total_trials, a.output.c_str(), journalled);
   }
 
   auto prepare = [&](size_t i) {
@@ -330,8 +375,13 @@ int RunGraspBench(const GraspBenchArgs& a) {
         p.consumed = i + 1;
         p.changed.notify_all();
       }
-      phys::FinishStudyUnit(ode, options, unit.get());
-      for (const phys::StudyRow& r : unit->rows) rows.push_back(r);
+      // Each trial is durable as soon as its verdicts are in. Rows go through their CSV text, so
+      // that a resumed run's rows (read back from text) are exactly those of an unbroken run.
+      phys::FinishStudyUnit(ode, options, unit.get(), [&](const phys::StudyRow& r) {
+        const std::string line = phys::StudyCsvRow(phys::ParseStudyCsvRow(phys::StudyCsvRow(r)));
+        journal.Append(line);
+        rows.push_back(phys::ParseStudyCsvRow(line));
+      });
       run_trials += static_cast<int>(unit->rows.size());
       const double elapsed =
           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -351,6 +401,7 @@ int RunGraspBench(const GraspBenchArgs& a) {
     base::WriteFileAtomic((fs::path(out.staging()) / "grasp.csv").string(),
                           CsvText(protocol, rows));
     out.Commit(false);
+    journal.Remove();  // its rows are in grasp.csv now
     std::fprintf(stderr, "%s: kept %zu of %d trials in %s/grasp.csv; rerun to resume\n", e.what(),
                  rows.size(), total_trials, a.output.c_str());
     return e.timeout ? kExitFailed : kExitInterrupted;
@@ -371,6 +422,7 @@ int RunGraspBench(const GraspBenchArgs& a) {
   base::WriteFileAtomic((fs::path(out.staging()) / "grasp.md").string(), md);
   WriteDisagreementFrames(Disagreements(rows, a.frames), in, options, ode, out.staging());
   out.Commit();
+  journal.Remove();
   std::printf("%s", md.c_str());
   Note(
       "bench grasp: %d trials run in %.0f s (%d from an earlier run); wrote %s/grasp.csv, "
@@ -436,8 +488,10 @@ void AddGraspBenchCommand(CLI::App* root, CommandList* commands) {
       "Writes DIR/grasp.csv (one row per grasp x demonstration x method; first line the "
       "protocol) and DIR/grasp.md (per method stable/trials with Wilson 95 % intervals for all,\n"
       "threading and control objects per engine; McNemar's exact p per method pair; engine\n"
-      "agreement). An interrupted run (Ctrl-C, --timeout) keeps its rows; rerunning with the same\n"
-      "protocol skips them. Exit 0 when the study ran.");
+      "agreement). Every finished trial is journalled at once (DIR/.topoplan-journal-bench-grasp,\n"
+      "fsynced), so a run stopped in any way (Ctrl-C, --timeout, SIGKILL, power loss) keeps its\n"
+      "trials; rerunning the same command skips them (another protocol is refused). Exit 0 when\n"
+      "the study ran.");
   commands->push_back({cmd, [a] { return RunGraspBench(*a); }});
 }
 

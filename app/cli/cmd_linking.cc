@@ -1,11 +1,16 @@
 // `topoplan linking`: the Gauss linking number of two closed chains, streamed (O(N) memory, both
 // cores), rounded only when the error bound certifies it; and a batch mode for many small pairs.
+#include <algorithm>
+#include <charconv>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <string_view>
+#include <system_error>
+#include <vector>
 
 #include "app/cli/command.h"
 #include "app/cli/io.h"
@@ -78,9 +83,134 @@ std::string Reason(const topology::LinkingResult& r) {
   return buf;
 }
 
+// The fast path of ParseBatchLine for the common, plain form of a line: an object with the keys
+// "id", "a", "b" (each at most once, any order, JSON whitespace anywhere), "a" and "b" arrays of
+// [x,y,z] number triples (strict JSON number syntax, read by std::from_chars, which rounds
+// correctly as nlohmann's strtod does: the same doubles). The id's value (anything but an object
+// or array, and strings without escapes) is parsed by nlohmann from its own text. Returns false,
+// having read nothing for sure, whenever the line is anything else (escapes, nesting, errors,
+// out-of-range numbers): the general parser then decides and words the error.
+class FastBatchLine {
+ public:
+  explicit FastBatchLine(const std::string& line) : p_(line.data()), end_(p_ + line.size()) {}
+
+  bool Parse(nlohmann::json* id, topology::Chain* a, topology::Chain* b) {
+    bool seen[3] = {false, false, false};
+    *id = nlohmann::json();
+    if (!Eat('{')) return false;
+    if (Eat('}')) return false;  // no "a", "b": the general parser words the error
+    do {
+      std::string_view key;
+      if (!String(&key) || !Eat(':')) return false;
+      const int k = key == "id" ? 0 : key == "a" ? 1 : key == "b" ? 2 : -1;
+      if (k < 0 || seen[k]) return false;
+      seen[k] = true;
+      if (k == 0 ? !Id(id) : !Points(k == 1 ? a : b)) return false;
+    } while (Eat(','));
+    if (!Eat('}')) return false;
+    Space();
+    return p_ == end_ && seen[1] && seen[2];
+  }
+
+ private:
+  void Space() {
+    while (p_ < end_ && (*p_ == ' ' || *p_ == '\t' || *p_ == '\n' || *p_ == '\r')) ++p_;
+  }
+  bool Eat(char c) {
+    Space();
+    if (p_ < end_ && *p_ == c) {
+      ++p_;
+      return true;
+    }
+    return false;
+  }
+  // A string without escapes or control characters.
+  bool String(std::string_view* out) {
+    if (!Eat('"')) return false;
+    const char* start = p_;
+    while (p_ < end_ && *p_ != '"') {
+      if (*p_ == '\\' || static_cast<unsigned char>(*p_) < 0x20) return false;
+      ++p_;
+    }
+    if (p_ == end_) return false;
+    *out = std::string_view(start, static_cast<size_t>(p_ - start));
+    ++p_;
+    return true;
+  }
+  bool Id(nlohmann::json* id) {
+    Space();
+    const char* start = p_;
+    if (p_ < end_ && *p_ == '"') {
+      std::string_view text;
+      if (!String(&text)) return false;
+    } else {
+      while (p_ < end_ && *p_ != ',' && *p_ != '}' && *p_ != '{' && *p_ != '[' && *p_ != '"') ++p_;
+    }
+    *id = nlohmann::json::parse(start, p_, nullptr, /*allow_exceptions=*/false);
+    return !id->is_discarded();
+  }
+  // Strict JSON number syntax: -?(0|[1-9][0-9]*)(.[0-9]+)?([eE][+-]?[0-9]+)?
+  bool Number(double* value) {
+    Space();
+    const char* start = p_;
+    auto digits = [&] {
+      const char* d = p_;
+      while (p_ < end_ && *p_ >= '0' && *p_ <= '9') ++p_;
+      return p_ > d;
+    };
+    if (p_ < end_ && *p_ == '-') ++p_;
+    if (p_ < end_ && *p_ == '0') {
+      ++p_;
+    } else if (!digits()) {
+      return false;
+    }
+    bool integer = true;
+    if (p_ < end_ && *p_ == '.') {
+      ++p_;
+      integer = false;
+      if (!digits()) return false;
+    }
+    if (p_ < end_ && (*p_ == 'e' || *p_ == 'E')) {
+      ++p_;
+      integer = false;
+      if (p_ < end_ && (*p_ == '+' || *p_ == '-')) ++p_;
+      if (!digits()) return false;
+    }
+    const auto [ptr, ec] = std::from_chars(start, p_, *value);
+    // nlohmann reads an integer literal as an integer: "-0" is +0.0 there.
+    if (integer && *value == 0.0) *value = 0.0;
+    return ec == std::errc() && ptr == p_;
+  }
+  bool Points(topology::Chain* chain) {
+    if (!Eat('[')) return false;
+    coords_.clear();
+    if (!Eat(']')) {
+      do {
+        double x, y, z;
+        if (!Eat('[') || !Number(&x) || !Eat(',') || !Number(&y) || !Eat(',') || !Number(&z) ||
+            !Eat(']')) {
+          return false;
+        }
+        coords_.insert(coords_.end(), {x, y, z});
+        if (coords_.size() > 3 * static_cast<size_t>(topology::kMaxChainPoints)) return false;
+      } while (Eat(','));
+      if (!Eat(']')) return false;
+    }
+    const Eigen::Index n = static_cast<Eigen::Index>(coords_.size() / 3);
+    chain->resize(3, n);
+    std::copy(coords_.begin(), coords_.end(), chain->data());
+    return true;
+  }
+
+  const char* p_;
+  const char* const end_;
+  std::vector<double> coords_;
+};
+
 // One JSON line: {"id": ..., "a": [[x,y,z], ...], "b": [[x,y,z], ...]} → *id, *a, *b.
 void ParseBatchLine(const std::string& line, nlohmann::json* id, topology::Chain* a,
                     topology::Chain* b) {
+  if (FastBatchLine(line).Parse(id, a, b)) return;
   const nlohmann::json j = nlohmann::json::parse(line, nullptr, /*allow_exceptions=*/false);
   if (j.is_discarded()) throw std::invalid_argument("invalid JSON");
   if (!j.is_object()) throw std::invalid_argument("expected an object {\"a\": ..., \"b\": ...}");

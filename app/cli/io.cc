@@ -17,6 +17,7 @@
 #include <nlohmann/json.hpp>
 
 #include "base/file_read.h"
+#include "base/str_cat.h"
 #include "base/version.h"
 
 namespace app {
@@ -193,6 +194,7 @@ namespace fs = std::filesystem;
 
 constexpr const char* kManifest = ".topoplan-outputs.json";
 constexpr const char* kStagingPrefix = ".topoplan-staging-";
+constexpr const char* kJournalPrefix = ".topoplan-journal-";
 
 // The manifest of an output folder: per command, the entries its last run wrote.
 nlohmann::json ReadManifest(const fs::path& dir) {
@@ -255,7 +257,7 @@ OutputDir::OutputDir(const std::string& dir, const std::string& flag, const std:
     if (ReadManifest(dir).is_null()) {
       for (const fs::directory_entry& e : fs::directory_iterator(dir, ec)) {
         const std::string name = e.path().filename().string();
-        if (name.rfind(kStagingPrefix, 0) == 0) continue;
+        if (name.rfind(kStagingPrefix, 0) == 0 || name.rfind(kJournalPrefix, 0) == 0) continue;
         throw std::invalid_argument(flag + ": '" + dir + "' holds files topoplan did not write ('" +
                                     name + "', ...); give a new or an empty folder");
       }
@@ -279,6 +281,10 @@ OutputDir::~OutputDir() {
   std::error_code ignored;
   fs::remove_all(staging_, ignored);
   if (created_ && fs::is_empty(dir_, ignored)) fs::remove(dir_, ignored);
+}
+
+std::string OutputDir::JournalPath(const std::string& name) const {
+  return (fs::path(dir_) / base::StrCat(kJournalPrefix, name)).string();
 }
 
 void OutputDir::Commit(bool replace_previous) {

@@ -88,6 +88,11 @@ class OutputDir {
   const std::string& dir() const { return dir_; }
   const std::string& staging() const { return staging_; }
   void Commit(bool replace_previous = true);
+  // DIR/.topoplan-journal-<name>: where a run keeps the journal of its finished work
+  // (base::LineJournal) so that a hard-killed run can resume. It lives in `dir` itself (not in
+  // staging, which a later run removes), is never moved by Commit, and the constructor accepts a
+  // folder holding one; the run deletes it once its outputs are committed.
+  std::string JournalPath(const std::string& name) const;
 
  private:
   std::string dir_, staging_, command_;

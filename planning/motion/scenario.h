@@ -93,7 +93,9 @@ struct Scenario {
   Scenario(const Scenario&) = delete;
   Scenario& operator=(const Scenario&) = delete;
 
-  ScenarioSpec spec;  // the parsed file (tasks of later attempts are built from it)
+  // The parsed file with its frames resolved to world coordinates (ResolveSpecFrames); the tasks
+  // of later attempts are built from it.
+  ScenarioSpec spec;
   std::string name;
   std::string source;  // scenario file
   Robot robot;

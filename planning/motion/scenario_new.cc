@@ -12,6 +12,8 @@
 #include "base/numbers.h"
 #include "planning/collision/collision.h"
 #include "planning/motion/internal/scenario_arm.h"
+#include "planning/motion/internal/scenario_file.h"
+#include "planning/motion/internal/scenario_unwrap.h"
 #include "planning/motion/robot_scene.h"
 #include "planning/motion/success.h"
 #include "planning/robot/ik.h"
@@ -22,113 +24,49 @@ namespace planning {
 namespace {
 
 namespace fs = std::filesystem;
-using internal::Arm;
-using internal::ChooseArm;
-using internal::Origin;
-using internal::Subtree;
-using Json = nlohmann::ordered_json;
-
-Json Vec(const Eigen::Vector3d& v) {
-  const auto r = [](double x) { return std::round(x * 1e6) / 1e6; };  // µm: readable files
-  return Json::array({r(v.x()), r(v.y()), r(v.z())});
-}
-
-Json QJson(const Eigen::VectorXd& q) {
-  Json a = Json::array();
-  for (Eigen::Index k = 0; k < q.size(); ++k) a.push_back(std::round(q[k] * 1e6) / 1e6);
-  return a;
-}
-
-// Roll, pitch, yaw (URDF convention: R = Rz(yaw) Ry(pitch) Rx(roll)) of a rotation.
-Json RpyJson(const Eigen::Matrix3d& r) {
-  const double pitch = std::asin(std::clamp(-r(2, 0), -1.0, 1.0));
-  double roll = std::atan2(r(2, 1), r(2, 2)), yaw = std::atan2(r(1, 0), r(0, 0));
-  if (std::abs(std::cos(pitch)) < 1e-9) {  // gimbal lock: put it all in yaw
-    roll = 0.0;
-    yaw = std::atan2(-r(0, 1), r(1, 1));
-  }
-  const auto q = [](double x) { return std::round(x * 1e9) / 1e9; };
-  return Json::array({q(roll), q(pitch), q(yaw)});
-}
+using internal::ArmSetup;
+using internal::Json;
+using internal::QJson;
+using internal::RpyJson;
+using internal::Vec;
 
 }  // namespace
 
 NewScenario MakeNewScenario(const std::string& urdf, const NewScenarioOptions& o) {
-  if (o.task != "ring" && o.task != "reach") {
-    throw std::invalid_argument("--task: '" + o.task + "' is not one of ring, reach");
+  if (o.task != "ring" && o.task != "reach" && o.task != "unwrap") {
+    throw std::invalid_argument("--task: '" + o.task + "' is not one of ring, reach, unwrap");
   }
   RobotInputOptions input;
   input.package_paths = o.package_paths;
   input.srdf = o.srdf;
   const RobotScene scene = LoadRobotScene(urdf, input);
-  const Robot& robot = scene.robot;
   NewScenario out;
-  // The start: DefaultQ, moved into the limits (an SRDF reference pose may lie outside them,
-  // and a plan must start inside).
-  Eigen::VectorXd q0 = DefaultQ(scene, &out.notes);
-  const Eigen::VectorXd lower = LowerLimits(robot), upper = UpperLimits(robot);
-  const Eigen::VectorXd clamped = q0.cwiseMax(lower).cwiseMin(upper);
-  const bool start_moved = clamped != q0;
-  if (start_moved) {
-    out.notes.push_back(
-        "the default pose lies outside the joint limits: the start is that pose "
-        "moved into them (written as start.q)");
-    q0 = clamped;
-  }
-  const Arm arm = ChooseArm(scene, o.hand, &out.notes);
+  const ArmSetup setup = internal::SetUpArm(scene, o.hand, &out.notes);
+  if (o.task == "unwrap")
+    return internal::MakeUnwrapScenario(scene, urdf, o, setup, std::move(out));
+  const Robot& robot = scene.robot;
+  const Eigen::VectorXd& q0 = setup.q0;
+  const bool start_moved = setup.start_moved;
+  const internal::Arm& arm = setup.arm;
   out.hand_link = robot.links[arm.hand].name;
   KinematicsData kin(robot);
   ForwardKinematics(robot, q0, &kin);
-
-  // Arm joints (the links they move) and the hand's approach axis and size.
-  std::vector<int> arm_links;
-  for (int p : arm.path) {
-    const int j = robot.links[p].parent_joint;
-    if (j >= 0 && robot.joints[j].dof >= 0) arm_links.push_back(p);
-  }
-  const Eigen::Vector3d hand_origin = Origin(kin, arm.hand);
-  const Eigen::Vector3d last_joint = Origin(
-      kin, arm_links.back() == arm.hand && arm_links.size() > 1 ? arm_links[arm_links.size() - 2]
-                                                                : arm_links.back());
-  Eigen::Vector3d tip_world = hand_origin;
-  double hand_size = 0.0;
-  const std::vector<int> below = Subtree(robot, arm.hand);
-  if (!below.empty()) {
-    Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
-    for (int l : below) {
-      centroid += Origin(kin, l);
-      hand_size = std::max(hand_size, (Origin(kin, l) - hand_origin).norm());
-    }
-    tip_world = centroid / static_cast<double>(below.size());
-  }
-  Eigen::Vector3d approach = tip_world - hand_origin;
-  if (approach.norm() < 1e-3) approach = hand_origin - last_joint;
-  if (approach.norm() < 1e-6) approach = kin.world_from_link[arm.hand].linear().col(2);
-  approach.normalize();
-  hand_size = std::max(hand_size, 0.05);
-  const Eigen::Matrix3d hand_rot = kin.world_from_link[arm.hand].linear();
-  const Eigen::Vector3d axis_local = hand_rot.transpose() * approach;
-  const Eigen::Vector3d tool_local = axis_local * hand_size;
-
-  // Reach: the lengths between consecutive arm joints, plus the hand.
-  const Eigen::Vector3d shoulder = Origin(kin, arm_links.front());
-  double reach = hand_size;
-  for (size_t i = 1; i < arm_links.size(); ++i)
-    reach += (Origin(kin, arm_links[i]) - Origin(kin, arm_links[i - 1])).norm();
-  reach += (hand_origin - Origin(kin, arm_links.back())).norm();
+  const std::vector<int>& arm_links = setup.arm_links;
+  const Eigen::Vector3d& approach = setup.approach;
+  const Eigen::Vector3d& tool_local = setup.tool_local;
+  const Eigen::Vector3d& shoulder = setup.shoulder;
+  const double hand_size = setup.hand_size, reach = setup.reach;
+  const Eigen::Vector3d axis_local = tool_local / hand_size;  // the approach axis, hand frame
 
   // The hand chain: last three arm links, the hand, the tool point.
-  std::vector<std::pair<int, Eigen::Vector3d>> chain;
+  internal::LinkPoints chain;
   for (size_t i = arm_links.size() >= 3 ? arm_links.size() - 3 : 0; i < arm_links.size(); ++i) {
     if (arm_links[i] != arm.hand) chain.emplace_back(arm_links[i], Eigen::Vector3d::Zero());
   }
   chain.emplace_back(arm.hand, Eigen::Vector3d::Zero());
   chain.emplace_back(arm.hand, tool_local);
   const auto chain_points = [&](const KinematicsData& k) {
-    Eigen::Matrix3Xd p(3, static_cast<Eigen::Index>(chain.size()));
-    for (size_t i = 0; i < chain.size(); ++i)
-      p.col(static_cast<Eigen::Index>(i)) = k.world_from_link[chain[i].first] * chain[i].second;
-    return p;
+    return internal::WorldPoints(chain, k);
   };
 
   // The object: a ring (its chain "loop"), axis along +x.
@@ -147,34 +85,10 @@ NewScenario MakeNewScenario(const std::string& urdf, const NewScenarioOptions& o
       ring_radius = std::max(ring_radius, lp.col(k).norm());
   }
 
-  // Goal and start keep the arm's revolute joints 0.1 rad inside their limits (a planner's soft
-  // limit terms need room); fingers and prismatic joints are not held to it.
   const auto AwayFromLimits = [&](const Eigen::VectorXd& q) {
-    for (int k : arm.arm_dofs) {
-      const Joint& joint = robot.joints[robot.dof_joints[k]];
-      if (joint.type == JointType::kPrismatic) continue;
-      const double room = std::min(0.1, 0.25 * (upper[k] - lower[k]));
-      if (q[k] < lower[k] + room || q[k] > upper[k] - room) return false;
-    }
-    return true;
+    return internal::AwayFromLimits(robot, setup, q);
   };
-  // Link pairs that touch in the start pose (no SRDF, or one that misses them) are disabled, as
-  // MoveIt's set-up assistant disables pairs in collision by default; written to the file.
-  CollisionOptions collision_options = scene.collision_options;
-  std::vector<std::pair<std::string, std::string>> touching;
-  {
-    CollisionData self(robot, Environment{}, collision_options);
-    const CollisionReport report = CheckCollisions(robot, kin, &self, 1000);
-    for (const ProximityPair& p : report.pairs) {
-      touching.emplace_back(robot.links[p.link_a].name, robot.links[p.link_b].name);
-      collision_options.disabled_pairs.push_back(touching.back());
-    }
-    if (!touching.empty()) {
-      out.notes.push_back(
-          std::to_string(touching.size()) +
-          " link pair(s) touch in the start pose: disabled (collision.disabled_pairs)");
-    }
-  }
+  const CollisionOptions& collision_options = setup.collision_options;
   IkData ik_data(robot);
   IkOptions ik_options;
   ik_options.starts = 24;
@@ -315,42 +229,15 @@ NewScenario MakeNewScenario(const std::string& urdf, const NewScenarioOptions& o
   }
 
   // The file.
-  const std::vector<std::string> dof_names = DofNames(robot);
-  Json j;
-  j["name"] = o.name.empty() ? robot.name + "_" + o.task : o.name;
-  j["description"] = "Made by `topoplan scenario new --task " + o.task + "` for robot '" +
-                     robot.name + "': the hand '" + out.hand_link + "' reaches " +
-                     (o.task == "ring" ? "through a ring" : "a target") +
-                     " in front of the arm. Keys starting with // are comments.";
-  j["robot"] = fs::absolute(urdf).lexically_normal().string();
-  if (scene.srdf) j["srdf"] = fs::absolute(scene.srdf->source).lexically_normal().string();
-  if (!o.package_paths.empty()) {
-    Json pp = Json::array();
-    for (const std::string& p : o.package_paths)
-      pp.push_back(fs::absolute(p).lexically_normal().string());
-    j["package_paths"] = pp;
-  }
-  if (!arm.other_dofs.empty()) {
-    j["// frozen_joints"] = "joints below the hand (fingers), held at their start values";
-    Json fj = Json::array();
-    for (int k : arm.other_dofs) fj.push_back(dof_names[k]);
-    j["frozen_joints"] = fj;
-  }
-  j["// robot_chains"] =
+  Json j = internal::ScenarioHead(
+      scene, urdf, o, setup,
+      "Made by `topoplan scenario new --task " + o.task + "` for robot '" + robot.name +
+          "': the hand '" + out.hand_link + "' reaches " +
+          (o.task == "ring" ? "through a ring" : "a target") +
+          " in front of the arm. Keys starting with // are comments.",
+      "hand", chain,
       "the hand chain: last arm links, the hand, the tool point (move the points"
-      " to change what must pass through the ring)";
-  Json points = Json::array();
-  for (const auto& [link, xyz] : chain)
-    points.push_back({{"link", robot.links[link].name}, {"xyz", Vec(xyz)}});
-  j["robot_chains"] = Json::array({{{"name", "hand"}, {"points", points}}});
-  if (!touching.empty()) {
-    j["// collision"] =
-        "link pairs in contact in the start pose, never checked (as MoveIt's "
-        "set-up assistant disables them); remove a pair to check it";
-    Json pairs = Json::array();
-    for (const auto& [a, b] : touching) pairs.push_back(Json::array({a, b}));
-    j["collision"] = {{"disabled_pairs", pairs}};
-  }
+      " to change what must pass through the ring)");
   if (o.task == "ring") {
     j["// objects"] =
         "the ring: move it with xyz (its axis along x by rpy); the goal below follows"
@@ -408,15 +295,8 @@ NewScenario MakeNewScenario(const std::string& urdf, const NewScenarioOptions& o
   tasks.push_back({{"name", "collision"},
                    {"feature", {{"type", "collision"}, {"margin", 0.02}}},
                    {"precision", 100}});
-  tasks.push_back(
-      {{"name", "limits"},
-       {"feature", {{"type", "joint_limits"}, {"margin", 0.05}, {"prismatic_margin", 0.002}}},
-       {"precision", 1000}});
-  tasks.push_back({{"name", "qdot"},
-                   {"feature", {{"type", "joint_position"}}},
-                   {"order", 1},
-                   {"precision", 0.1},
-                   {"final_precision", 0}});
+  tasks.push_back(internal::LimitsTask(0.05, 1000));
+  tasks.push_back(internal::QdotTask());
   j["tasks"] = tasks;
   j["// final_pose"] =
       "init: the goal found by inverse kinematics (topoplan ik), all joints in fk"
@@ -434,7 +314,9 @@ NewScenario MakeNewScenario(const std::string& urdf, const NewScenarioOptions& o
   j["check_resolution"] = 0.02;
   out.json = std::move(j);
   std::string n = "hand '";
-  n.append(out.hand_link).append("', tool point ").append(base::FormatShortest(hand_size));
+  n.append(out.hand_link)
+      .append("', tool point ")
+      .append(base::FormatShortest(std::round(hand_size * 1000) / 1000));
   n.append(" m ahead of it; reach ").append(base::FormatShortest(std::round(reach * 1000) / 1000));
   n.append(" m; goal by IK");
   out.notes.push_back(n);

@@ -364,6 +364,7 @@ std::unique_ptr<Scenario> SetUpScenario(ScenarioSpec spec,
                                         const ResolvedPoses* resolved) {
   auto s = std::make_unique<Scenario>();
   s->spec = std::move(spec);
+  ResolveSpecFrames(&s->spec);  // world coordinates from here on
   const ScenarioSpec& sp = s->spec;
   s->initial.tasks = sp.tasks;
   s->name = sp.name;

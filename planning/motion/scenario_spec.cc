@@ -1,10 +1,12 @@
 #include "planning/motion/scenario_spec.h"
 
+#include <algorithm>
 #include <filesystem>
 #include <limits>
 #include <stdexcept>
 
 #include "base/json_reader.h"
+#include "base/str_cat.h"
 
 namespace planning {
 
@@ -13,7 +15,9 @@ inline constexpr base::EnumName<SweepMode> kSweepModeNames[] = {
     {SweepMode::kSymmetric, "symmetric"},
     {SweepMode::kLocalGaussNewton, "local_gauss_newton"},
 };
-constexpr std::span<const base::EnumName<SweepMode>> EnumNames(SweepMode) { return kSweepModeNames; }
+constexpr std::span<const base::EnumName<SweepMode>> EnumNames(SweepMode) {
+  return kSweepModeNames;
+}
 
 inline constexpr base::EnumName<WritheOutput> kWritheOutputNames[] = {
     {WritheOutput::kMatrix, "matrix"},
@@ -51,9 +55,29 @@ E Parse(const base::JsonNode& n, const std::string& what) {
 SpecName Name(const base::JsonNode& n) { return {n.String(), n.Where()}; }
 SpecName Name(const base::JsonNode& n, const std::string& key) { return Name(n.At(key)); }
 
+// The names of the objects read so far, in file order.
+using ObjectNames = std::vector<std::string>;
+
+// "frame" of `n` when given: the name of one of `objects` (the objects `before` it in the file,
+// or all of them), else an error naming the key.
+std::optional<SpecName> ReadFrame(const base::JsonNode& n, const ObjectNames& objects,
+                                  bool before = false) {
+  if (!n.Has("frame")) return std::nullopt;
+  const base::JsonNode fn = n.At("frame");
+  SpecName name = Name(fn);
+  if (std::find(objects.begin(), objects.end(), name.name) == objects.end()) {
+    std::string list;
+    for (const std::string& o : objects) list.append(list.empty() ? "" : ", ").append(o);
+    fn.Fail(base::StrCat("unknown object '", name.name, "' (objects", before ? " before it" : "",
+                         ": ", list.empty() ? "none" : list, ")",
+                         base::DidYouMean(name.name, objects)));
+  }
+  return name;
+}
+
 ObjectSpec ReadObject(const base::JsonNode& n, const std::string& dir,
-                      const std::vector<std::string>& roots) {
-  n.CheckKeys({"name", "urdf", "xyz", "rpy", "collide", "capsules"});
+                      const std::vector<std::string>& roots, const ObjectNames& earlier) {
+  n.CheckKeys({"name", "urdf", "xyz", "rpy", "collide", "capsules", "frame"});
   ObjectSpec o;
   o.where = n.Where();
   o.name = n.At("name").String();
@@ -62,6 +86,7 @@ ObjectSpec ReadObject(const base::JsonNode& n, const std::string& dir,
   o.xyz = n.Vec3("xyz", o.xyz);
   o.rpy = n.Vec3("rpy", o.rpy);
   o.collide = n.Bool("collide", true);
+  o.frame = ReadFrame(n, earlier, /*before=*/true);
   if (n.Has("capsules")) {
     const base::JsonNode cn = n.At("capsules");
     cn.CheckKeys({"chain", "radius"});
@@ -141,7 +166,7 @@ ProblemSpec ReadProblem(const base::JsonNode& n) {
   return p;
 }
 
-FeatureSpec ReadFeature(const base::JsonNode& n) {
+FeatureSpec ReadFeature(const base::JsonNode& n, const ObjectNames& objects) {
   FeatureSpec f;
   f.where = n.Where();
   f.type = Parse<FeatureType>(n.At("type"), "feature type");
@@ -152,10 +177,11 @@ FeatureSpec ReadFeature(const base::JsonNode& n) {
       f.offset = n.Vec3("offset", f.offset);
       break;
     case FeatureType::kAxisAlignment:
-      n.CheckKeys({"type", "link", "axis", "direction"});
+      n.CheckKeys({"type", "link", "axis", "direction", "frame"});
       f.link = Name(n, "link");
       f.axis = n.Vec3("axis", f.axis);
       f.direction = n.At("direction").Vec3();
+      f.frame = ReadFrame(n, objects);
       break;
     case FeatureType::kJointLimits:
       n.CheckKeys({"type", "margin", "prismatic_margin"});
@@ -166,10 +192,11 @@ FeatureSpec ReadFeature(const base::JsonNode& n) {
       n.CheckKeys({"type"});
       break;
     case FeatureType::kBox:
-      n.CheckKeys({"type", "link", "offset", "center", "half_extent", "margin"});
+      n.CheckKeys({"type", "link", "offset", "center", "half_extent", "margin", "frame"});
       f.link = Name(n, "link");
       f.offset = n.Vec3("offset", f.offset);
       f.center = n.At("center").Vec3();
+      f.frame = ReadFrame(n, objects);
       f.half_extent = n.At("half_extent").Vec3();
       f.margin = n.Number("margin", 0.0);
       break;
@@ -181,16 +208,19 @@ FeatureSpec ReadFeature(const base::JsonNode& n) {
       if (n.Has("output")) f.output = Parse<WritheOutput>(n.At("output"), "writhe output");
       break;
     case FeatureType::kWinding:
-      n.CheckKeys({"type", "chain", "axis_point", "axis_direction", "object", "object_chain"});
+      n.CheckKeys(
+          {"type", "chain", "axis_point", "axis_direction", "object", "object_chain", "frame"});
       f.chain = Name(n, "chain");
       if (n.Has("object") || n.Has("object_chain")) {
         if (n.Has("axis_point") || n.Has("axis_direction"))
           n.Fail("give either axis_point and axis_direction or object and object_chain");
+        if (n.Has("frame")) n.At("frame").Fail("\"frame\" is for axis_point and axis_direction");
         f.object = Name(n, "object");
         f.object_chain = Name(n, "object_chain");
       } else {
         f.axis_point = n.At("axis_point").Vec3();
         f.axis_direction = n.At("axis_direction").Vec3();
+        f.frame = ReadFrame(n, objects);
       }
       break;
     case FeatureType::kCollision:
@@ -208,13 +238,13 @@ FeatureSpec ReadFeature(const base::JsonNode& n) {
   return f;
 }
 
-TaskSpec ReadTask(const base::JsonNode& n) {
+TaskSpec ReadTask(const base::JsonNode& n, const ObjectNames& objects) {
   n.CheckKeys({"name", "feature", "order", "between", "max_jump", "target", "precision",
                "final_precision", "final_steps"});
   TaskSpec t;
   t.where = n.Where();
   t.name = n.String("name", t.name);
-  t.feature = ReadFeature(n.At("feature"));
+  t.feature = ReadFeature(n.At("feature"), objects);
   if (n.Has("order")) t.order = static_cast<int>(n.At("order").Integer(0, 1));
   if (n.Has("between")) t.between = static_cast<int>(n.At("between").Integer(0, 64));
   if (t.between > 0 && t.order != 0) n.Fail("\"between\" needs an order-0 task");
@@ -230,7 +260,7 @@ TaskSpec ReadTask(const base::JsonNode& n) {
   t.target.where = n.Where() + ".target";
   if (n.Has("target")) {
     const base::JsonNode tn = n.At("target");
-    tn.CheckKeys({"type", "value", "reach_at"});
+    tn.CheckKeys({"type", "value", "reach_at", "frame"});
     t.target.kind =
         tn.Has("type") ? Parse<TargetKind>(tn.At("type"), "target type") : TargetKind::kValue;
     if (tn.Has("reach_at")) {
@@ -243,6 +273,16 @@ TaskSpec ReadTask(const base::JsonNode& n) {
       t.target.value_where = vn.Where();
       t.target.scalar = vn.IsNumber();
       t.target.value = vn.IsNumber() ? Eigen::VectorXd::Constant(1, vn.Number()) : vn.Vector();
+    }
+    t.target.frame = ReadFrame(tn, objects);
+    if (t.target.frame) {
+      const base::JsonNode fn = tn.At("frame");
+      if (t.target.kind != TargetKind::kValue && t.target.kind != TargetKind::kInterpolate)
+        fn.Fail("\"frame\" needs a \"value\" or \"interpolate\" target");
+      if (t.feature.type != FeatureType::kPosition)
+        fn.Fail("\"frame\" needs a \"position\" feature (a point target)");
+      if (t.target.scalar || t.target.value.size() != 3)
+        fn.Fail("\"frame\" needs a point value [x, y, z]");
     }
   }
   return t;
@@ -408,8 +448,10 @@ ScenarioSpec ParseScenarioSpec(const std::string& path,
   }
   if (root.Has("objects")) {
     const base::JsonNode objs = root.At("objects");
+    ObjectNames earlier;
     for (size_t i = 0; i < objs.Size(); ++i) {
-      s.objects.push_back(ReadObject(objs.At(i), dir, search_roots));
+      s.objects.push_back(ReadObject(objs.At(i), dir, search_roots, earlier));
+      earlier.push_back(s.objects.back().name);
     }
   }
   if (root.Has("frozen_joints")) {
@@ -434,7 +476,11 @@ ScenarioSpec ParseScenarioSpec(const std::string& path,
   }
   if (root.Has("problem")) s.problem = ReadProblem(root.At("problem"));
   const base::JsonNode tasks = root.At("tasks");
-  for (size_t i = 0; i < tasks.Size(); ++i) s.tasks.push_back(ReadTask(tasks.At(i)));
+  ObjectNames object_names;
+  for (const ObjectSpec& o : s.objects) object_names.push_back(o.name);
+  for (size_t i = 0; i < tasks.Size(); ++i) {
+    s.tasks.push_back(ReadTask(tasks.At(i), object_names));
+  }
   if (root.Has("final_pose")) {
     s.final_pose = ReadFinalPose(root.At("final_pose"));
     if (s.final_pose.init == FinalPoseInit::kUnwrapped && s.start.kind != StartKind::kCoil) {

@@ -1,6 +1,6 @@
 // Planning scenario files (assets/scenarios/*.json) as plain data: the one place that documents
-// every key. ParseScenarioSpec only reads and checks the file; planning/motion/scenario.h turns a spec
-// into a runnable Scenario (robot, objects, start, goal, MotionProblem).
+// every key. ParseScenarioSpec only reads and checks the file; planning/motion/scenario.h turns a
+// spec into a runnable Scenario (robot, objects, start, goal, MotionProblem).
 //
 // Units: angles in radians (except wrap_deg), lengths in metres, time in seconds. Unknown keys
 // anywhere are errors ("unknown key 'wrapdeg' (did you mean 'wrap_deg'?)"). Every error is a
@@ -14,7 +14,8 @@
 //   name            string   default: the file's stem
 //   description     string   free text, ignored by the planner
 //   robot           string   URDF path (required; its "<stem>.chains.json" sidecar is loaded too)
-//   srdf            string   SRDF path (planning/robot/srdf.h): its disable_collisions pairs are added to
+//   srdf            string   SRDF path (planning/robot/srdf.h): its disable_collisions pairs are
+//   added to
 //                            collision.disabled_pairs and its group_states are start poses.
 //                            Default: FindSrdf (NAME.srdf, ROBOT_NAME.srdf or an SRDF naming the
 //                            robot, next to the URDF or in ../srdf/) if one exists
@@ -25,6 +26,9 @@
 //     urdf          string   URDF path (required)
 //     xyz           [3]      position, m, default [0, 0, 0]
 //     rpy           [3]      roll, pitch, yaw, rad (R = Rz·Ry·Rx), default [0, 0, 0]
+//     frame         string   name of an EARLIER object: xyz and rpy are then in that object's
+//                            frame (world pose = its world pose · this pose), so the object moves
+//                            and tilts with it; default: world coordinates
 //     collide       bool     default true; false: chains and rendering only
 //     capsules      object   collide with capsules along a chain of the object instead of its
 //                            geometry: {chain: string (required), radius: number, m (required)}
@@ -63,7 +67,11 @@
 //                            value: number (every component) or [dim] (for "value" and
 //                            "interpolate"); reach_at: number in (0, 1], default 1 (for
 //                            "interpolate" and "final_pose"): the target moves linearly from
-//                            y(q0) to its end value until t = reach_at·T and holds it after
+//                            y(q0) to its end value until t = reach_at·T and holds it after;
+//                            frame: object name (for "value" and "interpolate" targets of a
+//                            "position" feature, value [3]): value is a point in that object's
+//                            frame (its origin: [0, 0, 0]), so moving, tilting or re-placing the
+//                            object moves the target; default: world coordinates
 //     precision     number   ρ for t < T, >= 0, default 0
 //     final_precision number ρ at t = T, >= 0, default = precision
 //     final_steps   integer  K in 1..T, default 1: final_precision on the last K slices
@@ -112,6 +120,12 @@
 //   check_resolution number  edge resolution (rad) for validating output paths, default
 //                            rrt.resolution if > 0, else 0.02
 //
+// Frames: a "frame" names an object of "objects"; an unknown name is an error naming the key
+// ("<file>: tasks[5].target.frame: unknown object 'polee' (objects: pole, cylinder) (did you
+// mean 'pole'?)"). SetUpScenario resolves every frame to world coordinates (ResolveSpecFrames) from
+// the object placements as they are then, so a caller that moves an object in the spec before the
+// set-up (the unwrap benchmark's pole offset and geometries) moves what is placed in its frame.
+//
 // Value limits (checked when read; the message names the JSON path): every number is finite;
 // check_resolution and a non-zero rrt.resolution >= 1e-6 (check_resolution <= 10); rrt.range and
 // rrt.resolution <= 1000; goal_bias in [0, 1]; max_checks <= 1e9; aico max_iterations and
@@ -121,15 +135,18 @@
 //
 // Features (the keys besides "type"):
 //   position        link (required), offset [3] (default 0)
-//   axis_alignment  link (required), axis [3] (default [0, 0, 1]), direction [3] (required)
+//   axis_alignment  link (required), axis [3] (default [0, 0, 1]), direction [3] (required;
+//                   with frame: an object name, a direction in that object's frame)
 //   joint_limits    margin (rad, default 0: revolute and continuous joints), prismatic_margin
 //                   (m, default 0: prismatic joints); each capped at 45 % of its joint's range
 //   joint_position  (none)
 //   box             link (required), offset [3] (default 0), center [3], half_extent [3]
-//                   (required), margin (m, default 0)
+//                   (required), margin (m, default 0), frame (object name: center is a point in
+//                   that object's frame; the box's axes stay the world's)
 //   writhe          chain, object, object_chain (required), output: "matrix" (default) | "total"
-//   winding         chain (required), and either axis_point [3] and axis_direction [3], or
-//                   object and object_chain (the line through that chain's first and last point)
+//   winding         chain (required), and either axis_point [3] and axis_direction [3] (with
+//                   frame: an object name, both in that object's frame), or object and
+//                   object_chain (the line through that chain's first and last point)
 //   collision       margin (m, default 0.05)
 //   line_clearance  chain, object, object_chain (required), margin (m, default 0.05): the robot
 //                   chain's segments kept `margin` off the line through the first and last point
@@ -137,17 +154,18 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
-#include "planning/motion/aico.h"
-#include "planning/robot/chain_json.h"
 #include "base/enum_names.h"
 #include "planning/features/feature.h"
+#include "planning/motion/aico.h"
 #include "planning/motion/final_pose.h"
 #include "planning/motion/rrt.h"
+#include "planning/robot/chain_json.h"
 
 namespace planning {
 
@@ -164,6 +182,7 @@ struct ObjectSpec {
   Eigen::Vector3d xyz = Eigen::Vector3d::Zero();
   Eigen::Vector3d rpy = Eigen::Vector3d::Zero();
   bool collide = true;
+  std::optional<SpecName> frame;  // xyz/rpy in the frame of this (earlier) object; unset: world
   std::optional<SpecName> capsule_chain;  // set: collide with capsules along this chain
   double capsule_radius = 0.0;
 };
@@ -237,9 +256,12 @@ struct FeatureSpec {
   Eigen::Vector3d half_extent = Eigen::Vector3d::Zero();
   Eigen::Vector3d axis_point = Eigen::Vector3d::Zero();
   Eigen::Vector3d axis_direction = Eigen::Vector3d::Zero();
-  double margin = 0.0;  // the type's default when absent (collision: 0.05)
+  double margin = 0.0;            // the type's default when absent (collision: 0.05)
   double prismatic_margin = 0.0;  // joint_limits: the margin of prismatic joints, m
   WritheOutput output = WritheOutput::kMatrix;
+  // box: center; winding: axis_point and axis_direction; axis_alignment: direction, in the frame
+  // of this object (unset: world).
+  std::optional<SpecName> frame;
 };
 
 enum class TargetKind { kZero, kValue, kInterpolate, kFinalPose, kUnwinding };
@@ -250,14 +272,17 @@ inline constexpr base::EnumName<TargetKind> kTargetKindNames[] = {
     {TargetKind::kFinalPose, "final_pose"},
     {TargetKind::kUnwinding, "unwinding"},
 };
-constexpr std::span<const base::EnumName<TargetKind>> EnumNames(TargetKind) { return kTargetKindNames; }
+constexpr std::span<const base::EnumName<TargetKind>> EnumNames(TargetKind) {
+  return kTargetKindNames;
+}
 
 struct TargetSpec {
   TargetKind kind = TargetKind::kZero;
   Eigen::VectorXd value;  // kValue / kInterpolate
   bool scalar = false;    // value was one number: every component
   double reach_at = 1.0;  // kInterpolate / kFinalPose: fraction of T at which y_T is reached
-  std::string where;      // of "target"
+  std::optional<SpecName> frame;  // value is a point in this object's frame (unset: world)
+  std::string where;              // of "target"
   std::string value_where;
 };
 
@@ -331,6 +356,19 @@ struct ScenarioSpec {
 // Reads and checks a scenario file (see above). Throws std::invalid_argument.
 ScenarioSpec ParseScenarioSpec(const std::string& path,
                                const std::vector<std::string>& search_roots = {});
+
+// World pose of spec.objects[i]: its xyz/rpy composed with the world poses of its "frame" parents.
+// Throws std::out_of_range for i out of range.
+Eigen::Isometry3d ObjectWorldPose(const ScenarioSpec& spec, size_t i);
+
+// Every frame-relative placement of `spec` in world coordinates, from the object placements as
+// they are now: objects get their world xyz/rpy (ObjectWorldPose), target values of position
+// tasks become world points p_w = T_object · p, box centres and winding axis points too,
+// axis_alignment directions and winding axis directions rotated by R_object; then every frame is
+// cleared, so the spec equals one written in world coordinates (a second call changes nothing).
+// SetUpScenario calls it. Throws std::invalid_argument naming the key for a frame that names no
+// object.
+void ResolveSpecFrames(ScenarioSpec* spec);
 
 // A relative `file` next to `base_dir`, else under each search root (leading "../" removed);
 // absolute paths as given. Throws "<where>: cannot find '<file>' (tried: a, b, ...)".

@@ -10,6 +10,9 @@
 #include <stdexcept>
 
 #include "base/random.h"
+#include "planning/motion/success.h"
+#include "planning/robot/kinematics.h"
+#include "topology/winding.h"
 
 namespace planning {
 
@@ -97,6 +100,20 @@ ScenarioSpec PerturbedUnwrapSpec(ScenarioSpec spec, const UnwrapPerturbation& pe
 
 namespace {
 
+// UnwrapRun::unwound_winding_turns of a set-up scenario.
+double UnwoundWinding(const Scenario& s) {
+  if (s.report_chain < 0 || s.success.position_task < 0) return 0.0;
+  KinematicsData kin(s.robot);
+  ForwardKinematics(s.robot, s.initial.problem.q0, &kin);
+  Eigen::Matrix3Xd chain;
+  ChainPoints(s.robot, kin, s.report_chain, &chain);
+  const Task& reach = s.initial.problem.tasks.at(static_cast<size_t>(s.success.position_task));
+  Eigen::Matrix3Xd segment(3, 2);
+  segment.col(0) = chain.col(0);
+  segment.col(1) = reach.target.col(reach.target.cols() - 1).head<3>();
+  return topology::WindingNumber(segment, ReportAxis(s));
+}
+
 // One column of a sweep: a planner, or an AICO ablation.
 struct Column {
   Planner planner = Planner::kAico;
@@ -114,6 +131,7 @@ void CheckOptions(const UnwrapBenchmarkOptions& options) {
 // The spec with the run's options in it (a set-up scenario is not changed).
 ScenarioSpec BenchmarkSpec(const UnwrapBenchmarkOptions& options) {
   ScenarioSpec spec = ParseScenarioSpec(options.scenario_path, options.search_roots);
+  if (options.geometry) ApplyUnwrapGeometry(*options.geometry, &spec);
   if (options.rrt_budget > 0) spec.rrt.max_checks = options.rrt_budget;
   if (options.aico_stop_when_solved) spec.aico_stop_when_solved = *options.aico_stop_when_solved;
   return spec;
@@ -149,12 +167,16 @@ std::vector<UnwrapRun> RunColumns(const UnwrapBenchmarkOptions& options, const S
       }
       if (!own) setup_s = shared_s;
       const Scenario& scenario = own ? *own : *shared;
+      const bool goal_ok = CheckEndState(scenario, scenario.goal_q, true).ok();
+      const double unwound = UnwoundWinding(scenario);
       for (size_t c = 0; c < columns.size(); ++c) {
         UnwrapRun run;
         run.angle_deg = angle;
         run.planner = columns[c].planner;
         run.seed = seed;
         run.pole_offset = offsets[seed];
+        run.goal_meets_end_conditions = goal_ok;
+        run.unwound_winding_turns = unwound;
         PlanRequest request;
         request.planner = columns[c].planner;
         request.seed = static_cast<unsigned>(seed);
@@ -305,6 +327,26 @@ std::string UnwrapAblationCsv(const UnwrapBenchmarkResult& result) {
         << FailureReasonName(p.failure_reason) << "," << p.final_writhe_total << ","
         << p.reach_error_m << "," << p.final_winding_turns << "," << p.counts.state_queries << ","
         << p.cpu_time_s << "\n";
+  }
+  return csv.str();
+}
+
+std::string UnwrapGeometryCsv(const UnwrapGeometry& geometry, const UnwrapBenchmarkResult& result) {
+  std::ostringstream csv;
+  csv.imbue(std::locale::classic());
+  csv.precision(12);
+  csv << "geometry,split,angle_deg,planner,seed,start_wrap_deg,success,failure_reason,"
+         "final_writhe_total,reach_error_m,final_winding_turns,unwound_winding_turns,"
+         "goal_meets_end_conditions,"
+         "state_queries,cpu_time_s,setup_time_s\n";
+  for (const UnwrapRun& r : result.runs) {
+    const PlanReport& p = r.report;
+    csv << geometry.name << "," << geometry.split << "," << r.angle_deg << ","
+        << PlannerName(r.planner) << "," << r.seed << "," << 360.0 * std::abs(p.start_writhe_total)
+        << "," << (p.success ? 1 : 0) << "," << FailureReasonName(p.failure_reason) << ","
+        << p.final_writhe_total << "," << p.reach_error_m << "," << p.final_winding_turns << ","
+        << r.unwound_winding_turns << "," << (r.goal_meets_end_conditions ? 1 : 0) << ","
+        << p.counts.state_queries << "," << p.cpu_time_s << "," << p.setup_time_s << "\n";
   }
   return csv.str();
 }

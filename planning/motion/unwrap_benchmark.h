@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "planning/motion/planner.h"
+#include "planning/motion/unwrap_geometry.h"
 
 namespace planning {
 
@@ -23,6 +24,15 @@ struct UnwrapRun {
                         // narrow_phase_calls, iterations, time_s / cpu_time_s / setup_time_s (the
                         // non-deterministic fields), path_length [rad], final_writhe_total, ...
   std::string variant;  // ablation runs: the UnwrapAblation's name; "" otherwise
+  // The set-up's goal q̂_T (the RRTs' goal, searched to meet the end conditions) meets every end
+  // condition of the success criterion (success.h CheckEndState with state checks): false means
+  // no configuration the set-up found ends as a success must, on this scenario and geometry.
+  bool goal_meets_end_conditions = false;
+  // Winding (turns) about the report line of the straight segment from the report chain's first
+  // point (the arm's base, fixed) to the reach target: about the winding an arm that does not wrap
+  // the pole ends with (its chain ends near the target), the reference for the criterion's
+  // |final winding| < final_below. 0 without a report pair or position criterion.
+  double unwound_winding_turns = 0.0;
 };
 
 // Aggregate of the runs of one (angle, planner) pair.
@@ -51,6 +61,9 @@ struct UnwrapBenchmarkOptions {
   double perturb_m = 0.0;
   // Replaces the scenario's aico.stop_when_solved when set (planner.h RunAicoAttempts).
   std::optional<bool> aico_stop_when_solved;
+  // The geometry to run on (unwrap_geometry.h ApplyUnwrapGeometry, applied to the parsed scenario
+  // before the pole perturbation); unset: the scenario as shipped.
+  std::optional<UnwrapGeometry> geometry;
   // Where relative robot/object paths of the scenario are also looked up (see ScenarioOverrides).
   std::vector<std::string> search_roots;
   // Called after every run with the number of runs done so far and the total.
@@ -166,5 +179,13 @@ UnwrapBenchmarkResult RunUnwrapAblation(const UnwrapBenchmarkOptions& options,
 // "angle_deg,ablation,seed,success,failure_reason,final_writhe_total,reach_error_m,
 // final_winding_turns,state_queries,cpu_time_s" rows of an ablation result.
 std::string UnwrapAblationCsv(const UnwrapBenchmarkResult& result);
+
+// "geometry,split,angle_deg,planner,seed,start_wrap_deg,success,failure_reason,
+// final_writhe_total,reach_error_m,final_winding_turns,unwound_winding_turns,
+// goal_meets_end_conditions,state_queries,cpu_time_s,setup_time_s" rows
+// of a benchmark run on `geometry` (bench unwrap --geometry): start_wrap_deg = 360°·|start writhe|
+// is the coil the start continuation reached (it can fall short of angle_deg on a geometry where
+// the arm cannot coil that far), reach_error_m in m, final_winding_turns in turns.
+std::string UnwrapGeometryCsv(const UnwrapGeometry& geometry, const UnwrapBenchmarkResult& result);
 
 }  // namespace planning

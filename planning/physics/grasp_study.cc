@@ -96,13 +96,15 @@ StudyUnit PrepareStudyUnit(const Robot& human, const Robot& sdh_source,
   return unit;
 }
 
-void FinishStudyUnit(const OdeRuntime& runtime, const GraspStudyOptions& o, StudyUnit* unit) {
+void FinishStudyUnit(const OdeRuntime& runtime, const GraspStudyOptions& o, StudyUnit* unit,
+                     const std::function<void(const StudyRow&)>& on_row) {
   for (size_t k = 0; k < unit->rows.size(); ++k) {
     const StabilityResult r =
         TestGraspStability(runtime, unit->hands[k], unit->object, o.stability);
     unit->rows[k].ode_stable = r.stable;
     unit->rows[k].ode_directions = r.directions_passed;
     unit->rows[k].ode_status = r.status;
+    if (on_row) on_row(unit->rows[k]);
   }
 }
 

@@ -10,6 +10,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -99,7 +100,10 @@ StudyUnit PrepareStudyUnit(const Robot& human, const Robot& sdh_source,
                            const std::vector<GraspObject>& objects, const HumanGrasp& nominal,
                            int demo, const GraspStudyOptions& options);
 
-// Runs the ODE stability test of every method of a prepared unit and fills the ODE fields.
-void FinishStudyUnit(const OdeRuntime& runtime, const GraspStudyOptions& options, StudyUnit* unit);
+// Runs the ODE stability test of every method of a prepared unit and fills the ODE fields;
+// `on_row` (if set) is called with each row as soon as its verdict is in (`bench grasp` journals
+// it there, so that a killed run keeps every finished trial).
+void FinishStudyUnit(const OdeRuntime& runtime, const GraspStudyOptions& options, StudyUnit* unit,
+                     const std::function<void(const StudyRow&)>& on_row = {});
 
 }  // namespace planning::physics

@@ -9,9 +9,10 @@
 #include <stdexcept>
 #include <thread>
 
+#include "base/line_journal.h"
+#include "base/random.h"
 #include "planning/grasp/grasp_quality.h"
 #include "planning/robot/kinematics.h"
-#include "base/random.h"
 
 namespace planning::physics {
 namespace {
@@ -99,14 +100,7 @@ void RunPerturbed(const OdeRuntime& runtime, const TransferSetup& setup,
 }
 
 // FNV-1a 64 of a name.
-std::uint64_t NameHash(const std::string& name) {
-  std::uint64_t h = 14695981039346656037ull;
-  for (unsigned char c : name) {
-    h ^= c;
-    h *= 1099511628211ull;
-  }
-  return h;
-}
+std::uint64_t NameHash(const std::string& name) { return base::Fnv1a64(name); }
 
 void CheckTrialsOptions(const GraspTrialsOptions& o) {
   if (!(o.mu >= 0) || !std::isfinite(o.mu)) {

@@ -171,4 +171,37 @@ BENCHMARK(BM_FarFieldTorusLink)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 
+// Growth with N for docs/benchmarks.md (tests/bench/plot_linking_scale.py): the Gauss integral of
+// the (2, 6) torus link, N segments per component, one thread, CPU time. range(0): 0 the exact
+// matrix stored and summed (WritheMatrix, N <= 4000: 128 MB), 1 the exact streamed total
+// (StreamWritheSums), 2 and 3 the far field (FarFieldGaussIntegral) with tol 1e-3 and 1e-1.
+void BM_LinkingScale(benchmark::State& state) {
+  const int method = static_cast<int>(state.range(0));
+  const int n = static_cast<int>(state.range(1));
+  const topology::Chain a = TorusComponent(3, 0, n), b = TorusComponent(3, 1, n);
+  double total = 0.0;
+  for (auto _ : state) {
+    if (method == 0) {
+      total = topology::WritheMatrix(a, b).sum();
+    } else if (method == 1) {
+      topology::WritheStreamOptions o;
+      o.threads = 1;
+      total = topology::StreamWritheSums(a, b, o).total;
+    } else {
+      topology::FarFieldOptions o;
+      o.tol = method == 2 ? 1e-3 : 1e-1;
+      o.threads = 1;
+      total = topology::FarFieldGaussIntegral(a, b, o).total;
+    }
+    benchmark::DoNotOptimize(total);
+  }
+  state.counters["segments"] = n;
+  state.counters["T"] = total;
+}
+BENCHMARK(BM_LinkingScale)
+    ->ArgsProduct({{0}, {250, 500, 1000, 2000, 4000}})
+    ->ArgsProduct({{1}, {250, 500, 1000, 2000, 4000, 8000, 16000, 32000}})
+    ->ArgsProduct({{2, 3}, {250, 500, 1000, 2000, 4000, 8000, 16000, 32000, 64000, 128000}})
+    ->Unit(benchmark::kMillisecond);
+
 }  // namespace

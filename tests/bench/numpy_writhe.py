@@ -12,9 +12,10 @@ import numpy as np
 
 
 def writhe_matrix(a, b):
-    """a: (n+1, 3), b: (m+1, 3) -> (n, m) signed, normalised by 4*pi."""
-    p1, p2 = a[:-1, None, :], a[1:, None, :]
-    p3, p4 = b[None, :-1, :], b[None, 1:, :]
+    """a: (..., n+1, 3), b: (..., m+1, 3) -> (..., n, m) signed, normalised by 4*pi (leading
+    dimensions broadcast: a batch of pairs in one call)."""
+    p1, p2 = a[..., :-1, None, :], a[..., 1:, None, :]
+    p3, p4 = b[..., None, :-1, :], b[..., None, 1:, :]
     r13, r14, r23, r24 = p3 - p1, p4 - p1, p3 - p2, p4 - p2
 
     def unit(v):

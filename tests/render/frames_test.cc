@@ -6,6 +6,10 @@
 
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+#include <vector>
 
 namespace render {
 namespace {
@@ -109,6 +113,48 @@ TEST(FramesTest, StampDarkensTextInTheTopLeftCorner) {
 TEST(FramesTest, FindExecutable) {
   EXPECT_FALSE(FindExecutable("sh").empty());
   EXPECT_TRUE(FindExecutable("no-such-program-topoplan").empty());
+}
+
+// The PNGs are written by a background thread: after Finish every file holds exactly the bytes
+// EncodePng gives inline, in order, also for more frames than the queue holds.
+TEST(FramesTest, BackgroundWritesEqualInlineEncoding) {
+  const fs::path dir = fs::path(TOPOPLAN_BINARY_DIR) / "test-tmp" / "frames_test_background";
+  fs::remove_all(dir);
+  FrameWriterOptions o;
+  o.video = false;
+  FrameWriter writer(dir.string(), o);
+  std::vector<Image> images;
+  for (int i = 0; i < 12; ++i) {
+    Image img(64 + i, 48, static_cast<std::uint8_t>(20 * i), 90,
+              static_cast<std::uint8_t>(255 - i));
+    img.at(i, 3)[1] = 7;  // each frame different
+    images.push_back(img);
+    writer.Add(img);
+  }
+  const FrameSequence seq = writer.Finish();
+  ASSERT_EQ(seq.frames.size(), images.size());
+  for (size_t i = 0; i < images.size(); ++i) {
+    std::ifstream in(seq.frames[i], std::ios::binary);
+    const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    EXPECT_EQ(bytes, EncodePng(images[i])) << seq.frames[i];
+  }
+}
+
+// A frame that cannot be written (its folder was replaced by a file) is reported by Add or
+// Finish, not lost.
+TEST(FramesTest, BackgroundWriteFailureIsThrown) {
+  const fs::path dir = fs::path(TOPOPLAN_BINARY_DIR) / "test-tmp" / "frames_test_failure";
+  fs::remove_all(dir);
+  FrameWriterOptions o;
+  o.video = false;
+  o.contact_sheet = false;
+  FrameWriter writer(dir.string(), o);
+  fs::remove_all(dir);
+  std::ofstream(dir) << "not a folder";
+  EXPECT_ANY_THROW({
+    for (int i = 0; i < 10; ++i) writer.Add(Image(16, 16, 0, 0, 0));
+    writer.Finish();
+  });
 }
 
 }  // namespace

@@ -14,8 +14,7 @@ namespace planning::internal {
 // find(robot, name) with the spec's JSON path prefixed to its error.
 int FindIn(const SpecName& n, int (*find)(const Robot&, const std::string&), const Robot& r);
 // The world points (3 × M) of chain `chain` of object `object` in state `w`.
-Eigen::Matrix3Xd ObjectChain(const ScenarioState& w, const SpecName& object,
-                             const SpecName& chain);
+Eigen::Matrix3Xd ObjectChain(const ScenarioState& w, const SpecName& object, const SpecName& chain);
 // The feature of a task spec with the objects of state `w`.
 std::unique_ptr<Feature> BuildFeature(const Scenario& s, const ScenarioState& w,
                                       const FeatureSpec& f);

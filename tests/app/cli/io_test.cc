@@ -169,5 +169,26 @@ TEST(ParseScript, NumbersAreCheckedWhenRead) {
             std::string::npos);
 }
 
+// A folder holding only the journal of a hard-killed run (no manifest yet) is accepted again, so
+// that the run can resume there; Commit leaves the journal alone.
+TEST(OutputDir, AcceptsTheJournalOfAKilledRun) {
+  const fs::path d = TempDir("journal");
+  std::string journal;
+  {
+    OutputDir o(d.string(), "-o", "bench grasp");
+    journal = o.JournalPath("bench-grasp");
+    std::ofstream(journal) << "# topoplan journal 1: x\n";
+  }  // killed: no Commit
+  EXPECT_EQ(fs::path(journal).parent_path(), d);
+  EXPECT_TRUE(fs::exists(journal));
+  {
+    OutputDir o(d.string(), "-o", "bench grasp");
+    std::ofstream(fs::path(o.staging()) / "grasp.csv") << "rows";
+    o.Commit();
+  }
+  EXPECT_TRUE(fs::exists(journal));
+  EXPECT_TRUE(fs::exists(d / "grasp.csv"));
+}
+
 }  // namespace
 }  // namespace app

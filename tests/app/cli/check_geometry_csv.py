@@ -1,0 +1,42 @@
+#!/usr/bin/env python3
+"""Checks DIR/geometry.csv and DIR/unwrap.csv of `topoplan bench unwrap --geometry FILE`: the
+header, one row per run, the geometry's name and split, the start coil reached the angle, and
+(the property) the frozen set-up solved it: success, reach within the 5 cm criterion, the set-up's
+goal meeting the end conditions.
+Usage: check_geometry_csv.py DIR NAME SPLIT ANGLE_DEG"""
+import csv
+import os
+import sys
+
+HEADER = ("geometry,split,angle_deg,planner,seed,start_wrap_deg,success,failure_reason,"
+          "final_writhe_total,reach_error_m,final_winding_turns,unwound_winding_turns,"
+          "goal_meets_end_conditions,"
+          "state_queries,cpu_time_s,setup_time_s")
+
+
+def main():
+    out, name, split, angle = sys.argv[1], sys.argv[2], sys.argv[3], float(sys.argv[4])
+    with open(os.path.join(out, "geometry.csv")) as f:
+        text = f.read()
+    lines = text.splitlines()
+    assert lines[0] == HEADER, "header: " + lines[0]
+    rows = list(csv.DictReader(text.splitlines()))
+    assert len(rows) == 1, "expected 1 run, got %d" % len(rows)
+    r = rows[0]
+    assert r["geometry"] == name and r["split"] == split, r
+    assert float(r["angle_deg"]) == angle, r
+    assert abs(float(r["start_wrap_deg"]) - angle) < 5.0, "start coil %s" % r["start_wrap_deg"]
+    assert r["success"] == "1" and r["failure_reason"] == "none", r
+    assert 0.0 <= float(r["reach_error_m"]) < 0.05, r
+    assert abs(float(r["final_writhe_total"])) < 0.05, r
+    assert r["goal_meets_end_conditions"] == "1", r
+    # The arm unwrapped: its final winding is near that of the straight base -> target segment.
+    assert abs(float(r["final_winding_turns"]) - float(r["unwound_winding_turns"])) < 0.1, r
+    assert int(r["state_queries"]) > 0, r
+    with open(os.path.join(out, "unwrap.csv")) as f:
+        assert len(f.read().splitlines()) == 2, "unwrap.csv: expected a header and one row"
+    print("ok:", name, angle, "deg,", r["state_queries"], "state queries")
+
+
+if __name__ == "__main__":
+    main()

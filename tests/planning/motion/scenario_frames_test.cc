@@ -1,0 +1,232 @@
+// Targets and objects placed in another object's frame (scenario_spec.h "Frames"), and the unwrap
+// geometries applied to the shipped unwrap scenario (unwrap_geometry.h): moving or tilting the
+// pole moves the reach target with it; unknown frames are errors naming the key.
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "planning/motion/scenario.h"
+#include "planning/motion/scenario_spec.h"
+#include "planning/motion/unwrap_geometry.h"
+#include "planning/robot/pose.h"
+
+namespace planning {
+namespace {
+
+const std::string kAssets = TOPOPLAN_SOURCE_DIR "/assets/";
+const std::string kUnwrap = kAssets + "scenarios/unwrap.json";
+
+std::string WriteTemp(const std::string& name, const std::string& text) {
+  const std::filesystem::path dir =
+      std::filesystem::path(TOPOPLAN_BINARY_DIR) / "scenario_frames_test_tmp";
+  std::filesystem::create_directories(dir);
+  const std::string path = (dir / name).string();
+  std::ofstream(path) << text;
+  return path;
+}
+
+// A small scenario (LWR4 + SDH, zero start, T = 5) with a pole and `extra` objects, and a reach
+// task whose target is `target`.
+std::string MiniScenario(const std::string& target, const std::string& extra = "") {
+  return R"({"robot": ")" + kAssets + R"(robots/lwr4_sdh.urdf",
+    "objects": [{"name": "pole", "urdf": ")" +
+         kAssets + R"(objects/pole.urdf", "xyz": [0.6, 0.1, 0.5], "rpy": [0.3, -0.2, 0.7]})" +
+         extra + R"(],
+    "start": {"q": "zero"}, "problem": {"T": 5},
+    "tasks": [{"name": "reach", "feature": {"type": "position", "link": "sdh_grasp_link"},
+               "target": )" +
+         target + R"(, "precision": 1}]})";
+}
+
+size_t Index(const ScenarioSpec& spec, const std::string& name) {
+  for (size_t i = 0; i < spec.objects.size(); ++i) {
+    if (spec.objects[i].name == name) return i;
+  }
+  ADD_FAILURE() << "no object " << name;
+  return 0;
+}
+
+const TaskSpec& TaskOf(const ScenarioSpec& spec, const std::string& name) {
+  for (const TaskSpec& t : spec.tasks) {
+    if (t.name == name) return t;
+  }
+  throw std::invalid_argument("no task " + name);
+}
+
+// The shipped unwrap scenario's reach target resolves to the absolute point it had before it was
+// placed in the cylinder's frame (itself in the pole's): bit for bit, so the shipped results stay.
+TEST(ScenarioFrames, ShippedUnwrapTargetIsTheCylinderInThePoleFrame) {
+  ScenarioSpec spec = ParseScenarioSpec(kUnwrap);
+  ASSERT_TRUE(TaskOf(spec, "reach").target.frame.has_value());
+  EXPECT_EQ(TaskOf(spec, "reach").target.frame->name, "cylinder");
+  ASSERT_TRUE(spec.objects[Index(spec, "cylinder")].frame.has_value());
+  ResolveSpecFrames(&spec);
+  EXPECT_FALSE(TaskOf(spec, "reach").target.frame.has_value());
+  EXPECT_EQ(TaskOf(spec, "reach").target.value, Eigen::Vector3d(0.4, -2.4, 2.6));
+  const ObjectSpec& cyl = spec.objects[Index(spec, "cylinder")];
+  EXPECT_FALSE(cyl.frame.has_value());
+  EXPECT_EQ(cyl.xyz, Eigen::Vector3d(0.4, -2.4, 2.6));
+  EXPECT_TRUE(PoseFromXyzRpy(cyl.xyz, cyl.rpy).linear().isIdentity(1e-12));
+  // A second resolution changes nothing.
+  const ScenarioSpec once = spec;
+  ResolveSpecFrames(&spec);
+  EXPECT_EQ(TaskOf(spec, "reach").target.value, TaskOf(once, "reach").target.value);
+  EXPECT_EQ(spec.objects[Index(spec, "cylinder")].xyz, once.objects[Index(once, "cylinder")].xyz);
+}
+
+// Moving and tilting the pole (as --pole-offset and the geometries do, in the parsed spec) moves
+// the reach target rigidly with it: the target's coordinates in the new pole frame are those in
+// the old one.
+TEST(ScenarioFrames, MovedAndTiltedPoleMovesTheTarget) {
+  const ScenarioSpec parsed = ParseScenarioSpec(kUnwrap);
+  const size_t pole = Index(parsed, "pole");
+  ScenarioSpec before = parsed;
+  ResolveSpecFrames(&before);
+  const Eigen::Isometry3d pole0 =
+      PoseFromXyzRpy(parsed.objects[pole].xyz, parsed.objects[pole].rpy);
+  const Eigen::Vector3d target0 = TaskOf(before, "reach").target.value;
+
+  UnwrapGeometry g;
+  g.source = "test";
+  g.pole_tilt_deg = Eigen::Vector2d(15.0, -10.0);
+  g.pole_translation = Eigen::Vector3d(0.05, -0.02, 0.08);
+  ScenarioSpec moved = parsed;
+  ApplyUnwrapGeometry(g, &moved);
+  const Eigen::Isometry3d pole1 = PoseFromXyzRpy(moved.objects[pole].xyz, moved.objects[pole].rpy);
+  ResolveSpecFrames(&moved);
+  const Eigen::Vector3d target1 = TaskOf(moved, "reach").target.value;
+  EXPECT_GT((target1 - target0).norm(), 0.1);  // it moved (tilted about the pole's centre)
+  EXPECT_TRUE((pole1.inverse() * target1).isApprox(pole0.inverse() * target0, 1e-12))
+      << (pole1.inverse() * target1).transpose() << " vs "
+      << (pole0.inverse() * target0).transpose();
+  // The pole's axis was tilted by the two angles: cos of the angle between the axes.
+  const double c = pole0.linear().col(2).dot(pole1.linear().col(2));
+  EXPECT_NEAR(c, std::cos(15.0 * M_PI / 180) * std::cos(10.0 * M_PI / 180), 1e-12);
+
+  // A pure translation moves the target by exactly that translation.
+  UnwrapGeometry shift;
+  shift.source = "test";
+  shift.pole_translation = Eigen::Vector3d(0.1, 0.0, -0.05);
+  ScenarioSpec shifted = parsed;
+  ApplyUnwrapGeometry(shift, &shifted);
+  ResolveSpecFrames(&shifted);
+  EXPECT_TRUE(
+      TaskOf(shifted, "reach").target.value.isApprox(target0 + shift.pole_translation, 1e-15));
+}
+
+// Through the whole set-up: the problem's reach target at T is the point in the pole's frame, and
+// a box centre given in the pole's frame follows the pole too.
+TEST(ScenarioFrames, SetUpResolvesTargetsAndBoxCentresInTheirFrames) {
+  const std::string path = WriteTemp(
+      "frames.json",
+      MiniScenario(R"({"type": "interpolate", "value": [0.1, 0.2, 0.3], "frame": "pole"})",
+                   R"(, {"name": "mark", "urdf": ")" + kAssets +
+                       R"(objects/cylinder.urdf", "frame": "pole", "xyz": [0, 0, 0.4],
+                          "collide": false})"));
+  const auto s = LoadScenario(path);
+  const Eigen::Isometry3d pole =
+      PoseFromXyzRpy(Eigen::Vector3d(0.6, 0.1, 0.5), Eigen::Vector3d(0.3, -0.2, 0.7));
+  const Eigen::Vector3d want = pole * Eigen::Vector3d(0.1, 0.2, 0.3);
+  const planning::Task& reach = s->initial.problem.tasks.at(0);
+  EXPECT_TRUE(reach.target.col(reach.target.cols() - 1).isApprox(want, 1e-12));
+  EXPECT_TRUE(
+      ObjectPosition(*s, s->initial, "mark").isApprox(pole * Eigen::Vector3d(0, 0, 0.4), 1e-12));
+
+  const std::string box = WriteTemp(
+      "box_frame.json",
+      R"({"robot": ")" + kAssets + R"(robots/lwr4_sdh.urdf",
+    "objects": [{"name": "pole", "urdf": ")" +
+          kAssets + R"(objects/pole.urdf", "xyz": [0.6, 0.1, 0.5], "rpy": [0.3, -0.2, 0.7]}],
+    "start": {"q": "zero"}, "problem": {"T": 5},
+    "tasks": [{"name": "box", "feature": {"type": "box", "link": "sdh_grasp_link", "frame": "pole",
+               "center": [0.1, 0.2, 0.3], "half_extent": [0.1, 0.1, 0.1]}, "precision": 1}]})");
+  const auto b = LoadScenario(box);
+  EXPECT_TRUE(b->initial.tasks.at(0).feature.center.isApprox(want, 1e-12));
+  EXPECT_FALSE(b->initial.tasks.at(0).feature.frame.has_value());
+}
+
+void ExpectParseError(const std::string& name, const std::string& text,
+                      const std::string& fragment) {
+  const std::string path = WriteTemp(name, text);
+  try {
+    ParseScenarioSpec(path);
+    FAIL() << "expected an error containing '" << fragment << "'";
+  } catch (const std::invalid_argument& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find(path), std::string::npos) << what;
+    EXPECT_NE(what.find(fragment), std::string::npos) << what;
+  }
+}
+
+TEST(ScenarioFrames, UnknownFramesAreErrorsNamingTheKey) {
+  ExpectParseError("bad_target_frame.json",
+                   MiniScenario(R"({"type": "value", "value": [0, 0, 0], "frame": "polee"})"),
+                   "tasks[0].target.frame: unknown object 'polee' (objects: pole) (did you mean "
+                   "'pole'?)");
+  // An object's frame must be an object before it in the file.
+  ExpectParseError(
+      "later_object_frame.json",
+      MiniScenario(R"({"type": "value", "value": [0, 0, 0]})",
+                   R"(, {"name": "a", "urdf": ")" + kAssets +
+                       R"(objects/ball.urdf", "frame": "b"}, {"name": "b", "urdf": ")" + kAssets +
+                       R"(objects/ball.urdf"})"),
+      "objects[1].frame: unknown object 'b' (objects before it: pole)");
+  ExpectParseError("scalar_frame.json",
+                   MiniScenario(R"({"type": "value", "value": 0, "frame": "pole"})"),
+                   "tasks[0].target.frame: \"frame\" needs a point value [x, y, z]");
+  ExpectParseError("zero_frame.json", MiniScenario(R"({"type": "zero", "frame": "pole"})"),
+                   "tasks[0].target.frame: \"frame\" needs a \"value\" or \"interpolate\" target");
+}
+
+TEST(UnwrapGeometry, ReadsAppliesAndRejects) {
+  const std::string path = WriteTemp("geo.json", R"({"split": "tuning", "pole_radius": 0.05,
+      "target_offset": [0.01, 0.02, 0.03],
+      "arm": {"urdf": ")" + kAssets + R"(robots/arm12_sdh.urdf",
+              "disabled_groups": [["sdh_", "arm_link_12"]]}})");
+  const UnwrapGeometry g = ReadUnwrapGeometry(path);
+  EXPECT_EQ(g.name, "geo");
+  EXPECT_EQ(g.split, "tuning");
+  ScenarioSpec spec = ParseScenarioSpec(kUnwrap);
+  const ScenarioSpec shipped = spec;
+  ApplyUnwrapGeometry(g, &spec);
+  const ObjectSpec& pole = spec.objects[Index(spec, "pole")];
+  ASSERT_TRUE(pole.capsule_chain.has_value());
+  EXPECT_EQ(pole.capsule_chain->name, "axis");
+  EXPECT_EQ(pole.capsule_radius, 0.05);
+  EXPECT_EQ(pole.xyz, shipped.objects[Index(shipped, "pole")].xyz);
+  EXPECT_NE(spec.robot.find("arm12_sdh.urdf"), std::string::npos);
+  ASSERT_EQ(spec.collision.disabled_groups.size(), 1u);
+  EXPECT_EQ(spec.collision.disabled_groups[0][1], "arm_link_12");
+  // The target offset moved the cylinder (and with it the target) in the pole's frame.
+  const size_t cyl = Index(spec, "cylinder");
+  EXPECT_TRUE((spec.objects[cyl].xyz - shipped.objects[cyl].xyz)
+                  .isApprox(Eigen::Vector3d(0.01, 0.02, 0.03), 1e-12));
+  ScenarioSpec a = shipped, b = spec;
+  ResolveSpecFrames(&a);
+  ResolveSpecFrames(&b);
+  const Eigen::Matrix3d R = PoseFromXyzRpy(pole.xyz, pole.rpy).linear();
+  EXPECT_TRUE((TaskOf(b, "reach").target.value - TaskOf(a, "reach").target.value)
+                  .isApprox(R * Eigen::Vector3d(0.01, 0.02, 0.03), 1e-12));
+
+  const auto expect_error = [](const std::string& name, const std::string& text,
+                               const std::string& fragment) {
+    const std::string p = WriteTemp(name, text);
+    try {
+      ReadUnwrapGeometry(p);
+      FAIL() << "expected an error containing '" << fragment << "'";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos) << e.what();
+    }
+  };
+  expect_error("geo_split.json", R"({"split": "train"})", "split: expected \"tuning\" or \"test\"");
+  expect_error("geo_tilt.json", R"({"pole_tilt_deg": [0, 95]})", "pole_tilt_deg: component 1");
+  expect_error("geo_key.json", R"({"pole_radias": 0.03})", "unknown key 'pole_radias'");
+  expect_error("geo_arm.json", R"({"arm": {"urdf": "nope.urdf"}})", "arm.urdf: cannot find");
+}
+
+}  // namespace
+}  // namespace planning
