@@ -14,6 +14,8 @@ namespace planning {
 class PositionFeature : public Feature {
  public:
   PositionFeature(int link, const Eigen::Vector3d& offset) : link_(link), offset_(offset) {}
+  int link() const { return link_; }                         // the link index
+  const Eigen::Vector3d& offset() const { return offset_; }  // the point, link frame, m
   int dim() const override { return 3; }
   std::string name() const override { return "position"; }
   void Eval(const Robot& robot, const KinematicsData& kin, FeatureData* data,

@@ -9,10 +9,12 @@
 #include <vector>
 
 #include "base/assets.h"
+#include "planning/features/position_feature.h"
 #include "planning/motion/internal/scenario_build.h"
 #include "planning/motion/robot_scene.h"
 #include "planning/motion/scenario.h"
 #include "planning/motion/success.h"
+#include "planning/robot/ik.h"
 #include "planning/robot/kinematics.h"
 #include "planning/robot/pose.h"
 #include "planning/robot/robot_io.h"
@@ -208,6 +210,36 @@ StartPose ResolveStart(const Scenario& s, const std::optional<double>& wrap_over
   return out;
 }
 
+// final_pose "init": "ik" (the default): inverse kinematics of the end targets y*_T of the
+// order-0 position tasks of `fp` from q0 (16 seeded starts, collision-free); q0 when there are no
+// such tasks or no start reaches them.
+Eigen::VectorXd IkInit(const Scenario& s, const MotionProblem& fp, const Eigen::VectorXd& q0) {
+  IkProblem problem;
+  problem.seed = q0;
+  for (const Task& t : fp.tasks) {
+    const auto* position = dynamic_cast<const PositionFeature*>(t.feature.get());
+    if (position == nullptr || t.order != 0 || t.target.cols() == 0) continue;
+    IkTarget target;
+    target.link = position->link();
+    target.offset = position->offset();
+    target.position = t.target.col(t.target.cols() - 1);
+    problem.targets.push_back(target);
+  }
+  if (problem.targets.empty()) return q0;
+  IkOptions options;
+  options.starts = 16;
+  options.position_tolerance = 1e-4;
+  CollisionData coll(s.robot, s.initial.env, s.collision);
+  KinematicsData kin(s.robot);
+  options.is_valid = [&](const Eigen::VectorXd& q) {
+    ForwardKinematics(s.robot, q, &kin);
+    return !InCollision(s.robot, kin, &coll);
+  };
+  IkData data(s.robot);
+  const IkResult r = SolveIk(s.robot, problem, options, &data);
+  return r.status == IkStatus::kSolved ? r.q : q0;
+}
+
 // The goal q̂_T: the final-pose estimate over the listed tasks (their targets at T), or q0; when
 // it misses the end conditions, the multi-start search (see scenario.h). Needs s.problem (its
 // position and box targets) and s.success.
@@ -239,6 +271,7 @@ Eigen::VectorXd EstimateGoal(const Scenario& s, const StartPose& start) {
     }
     init = fps.init_q;
   }
+  if (fps.init == FinalPoseInit::kIk) init = IkInit(s, fp, start.q0);
   TaskWorkspace ws(fp);
   std::vector<Eigen::VectorXd> inits = {init};
   if (init != start.q0) inits.push_back(start.q0);

@@ -30,6 +30,7 @@ constexpr std::span<const base::EnumName<WritheOutput>> EnumNames(WritheOutput) 
 inline constexpr base::EnumName<FinalPoseInit> kFinalPoseInitNames[] = {
     {FinalPoseInit::kStart, "start"},
     {FinalPoseInit::kUnwrapped, "unwrapped"},
+    {FinalPoseInit::kIk, "ik"},
 };
 constexpr std::span<const base::EnumName<FinalPoseInit>> EnumNames(FinalPoseInit) {
   return kFinalPoseInitNames;
@@ -304,6 +305,8 @@ FinalPoseSpec ReadFinalPose(const base::JsonNode& n) {
     } else {
       f.init = Parse<FinalPoseInit>(in, "final-pose init (or a configuration)");
     }
+  } else {
+    f.init = FinalPoseInit::kIk;
   }
   return f;
 }

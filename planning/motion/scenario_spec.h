@@ -82,8 +82,11 @@
 //                            the feature by max_jump or more between neighbouring states (Task)
 //   final_pose      object   the goal q̂_T (thesis §4.2.2; also the RRT goal), default: the start.
 //                            tasks: [task names] (required); alpha: default 0.05; prior_scale:
-//                            default 1; init: "start" (default) | "unwrapped" (the coil
-//                            continued to writhe 0; needs a coil start) | [n] configuration
+//                            default 1; init: "ik" (default: inverse kinematics, from the
+//                            start with 16 seeded starts and collision rejection, of the end
+//                            targets of the listed "position" tasks; the start when there are
+//                            none or IK fails) | "start" | "unwrapped" (the coil continued to
+//                            writhe 0; needs a coil start) | [n] configuration
 //   success         object   what a plan must meet (every planner alike; planner.h JudgePlan).
 //                            Always: the path resampled at check_resolution is collision-free and
 //                            within the joint limits. writhe_total_below: |total writhe of the
@@ -300,7 +303,7 @@ struct TaskSpec {
   std::string where;
 };
 
-enum class FinalPoseInit { kStart, kUnwrapped, kQ };
+enum class FinalPoseInit { kStart, kUnwrapped, kQ, kIk };
 struct FinalPoseSpec {
   std::vector<SpecName> tasks;  // empty: the goal is the start
   FinalPoseOptions options;

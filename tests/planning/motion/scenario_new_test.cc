@@ -14,6 +14,7 @@
 
 #include "planning/motion/planner.h"
 #include "planning/motion/scenario.h"
+#include "planning/motion/success.h"
 
 namespace planning {
 namespace {
@@ -21,7 +22,10 @@ namespace {
 namespace fs = std::filesystem;
 
 std::string TempFile(const std::string& name, const std::string& text) {
-  const fs::path dir = fs::path(TOPOPLAN_BINARY_DIR) / "scenario_new_test_tmp";
+  // One folder per test: ctest runs the tests as parallel processes, and FindSrdf reads every SRDF
+  // next to a URDF (another test's half-written one would be an error).
+  const fs::path dir = fs::path(TOPOPLAN_BINARY_DIR) / "scenario_new_test_tmp" /
+                       ::testing::UnitTest::GetInstance()->current_test_info()->name();
   fs::create_directories(dir);
   std::ofstream(dir / name) << text;
   return (dir / name).string();
@@ -196,6 +200,23 @@ TEST(ScenarioNew, UnwrapRobotsFromPublishedDimensions) {
   ExpectUnwraps(TempFile("urlike_u.urdf", UrLikeArm(-3.1)), "urlike");
   ExpectUnwraps(TempFile("urlike_offzero_u.urdf", UrLikeArm(0.3)), "urlike_offzero", false);
   ExpectUnwraps(TempFile("pandalike_u.urdf", PandaLikeArm(true)), "pandalike", false);
+}
+
+// final_pose without "init" runs inverse kinematics of the reach target (init "ik", the default):
+// the goal meets the end conditions (the tool inside the box) and the plan succeeds as with the
+// written IK goal.
+TEST(ScenarioNew, FinalPoseWithoutInitUsesInverseKinematics) {
+  NewScenarioOptions o;
+  o.task = "reach";
+  NewScenario made = MakeNewScenario(TempFile("urlike_ik.urdf", UrLikeArm(-3.1)), o);
+  made.json["final_pose"].erase("init");
+  const auto s = LoadScenario(TempFile("urlike_ik.json", made.json.dump(2)));
+  EXPECT_EQ(s->spec.final_pose.init, FinalPoseInit::kIk);
+  const EndState end = CheckEndState(*s, s->goal_q, true);
+  EXPECT_EQ(end.violation, 0.0);  // inside the box, within the limits, collision-free
+  EXPECT_GT((s->goal_q - s->initial.problem.q0).norm(), 0.1);
+  const PlanResult r = RunPlanner(*s, Planner::kBiRrt, 0);
+  EXPECT_TRUE(r.report.success) << FailureReasonName(r.report.failure_reason);
 }
 
 TEST(ScenarioNew, UnwrapIsDeterministicPerSeed) {
