@@ -13,6 +13,9 @@
 //                exactly uniform.
 #pragma once
 
+#include <Eigen/Core>
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <random>
 #include <stdexcept>
@@ -25,6 +28,15 @@ inline double UniformUnit(std::mt19937* rng) {
   const std::uint32_t b = (*rng)() >> 6;  // 26 bits
   return (static_cast<double>(a) * 67108864.0 + static_cast<double>(b)) *
          (1.0 / 9007199254740992.0);
+}
+
+// A direction uniform on the unit sphere (Archimedes: z uniform in [−1, 1), the azimuth uniform in
+// [0, 2π)); consumes two UniformUnit draws, z first.
+inline Eigen::Vector3d UniformUnitVector(std::mt19937* rng) {
+  const double z = 2.0 * UniformUnit(rng) - 1.0;
+  const double phi = 2.0 * M_PI * UniformUnit(rng);
+  const double r = std::sqrt(std::max(0.0, 1.0 - z * z));
+  return Eigen::Vector3d(r * std::cos(phi), r * std::sin(phi), z);
 }
 
 // An integer uniform in [0, n), 1 <= n <= 2^32 − 1; consumes one or more generator outputs.

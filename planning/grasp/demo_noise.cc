@@ -68,10 +68,7 @@ HumanGrasp NoisyDemonstration(const Robot& human, const HumanGrasp& nominal, int
   }
   Eigen::Vector3d t;
   for (int i = 0; i < 3; ++i) t[i] = symmetric(o.palm_translation);
-  const double z = 2.0 * base::UniformUnit(&rng) - 1.0;
-  const double phi = 2.0 * M_PI * base::UniformUnit(&rng);
-  const double r = std::sqrt(std::max(0.0, 1.0 - z * z));
-  const Eigen::Vector3d axis(r * std::cos(phi), r * std::sin(phi), z);
+  const Eigen::Vector3d axis = base::UniformUnitVector(&rng);
   const double angle = symmetric(o.palm_rotation_deg * M_PI / 180.0);
   Eigen::Isometry3d palm = nominal.world_from_palm;
   palm.linear() = Eigen::AngleAxisd(angle, axis).toRotationMatrix() * palm.linear();

@@ -36,6 +36,10 @@ struct SimShape {
   Eigen::Matrix3Xi triangles;
 };
 
+// Volume of a primitive shape [m³]: sphere 4/3·πr³, capsule πr²l + 4/3·πr³, cylinder πr²l, box
+// x·y·z; 0 for a trimesh.
+double PrimitiveVolume(const SimShape& s);
+
 // One link of the hand. Link 0 is the palm: parent −1, no joint, never moves. Every other link
 // has a parent with a smaller index and a hinge joint to it.
 struct SimHandLink {
@@ -108,9 +112,10 @@ struct SimOptions {
   // `quickstep_iterations` projected Gauss-Seidel sweeps, which do not converge the soft-finger
   // torsional rows: a 50 g plate pinched by two fingertips turns 49° about the contact line with
   // 60 iterations, 8.7° with 100, 2.2° with 200, 0.8° with 400, 0.0° with kWorldStep
-  // (tests/planning/physics/grasp_simulation_test.cc). For the SDH and the human hand it is cheaper in total
-  // (48 trials at μ = 1: 34 s of simulation, QuickStep 60: 41 s), but its cost grows with the cube
-  // of the rows: the test claw (16 links, ~20 contacts) takes 12 s per stability test, not 1.4 s.
+  // (tests/planning/physics/grasp_simulation_test.cc). For the SDH and the human hand it is cheaper
+  // in total (48 trials at μ = 1: 34 s of simulation, QuickStep 60: 41 s), but its cost grows with
+  // the cube of the rows: the test claw (16 links, ~20 contacts) takes 12 s per stability test,
+  // not 1.4 s.
   Stepper stepper = Stepper::kWorldStep;
   int quickstep_iterations = 60;  // kQuickStep only: Gauss-Seidel sweeps per step
   // Coulomb friction coefficient. With `friction_pyramid` (dContactApprox1) the friction bound is

@@ -215,10 +215,7 @@ Eigen::Isometry3d PerturbedObjectPose(const Eigen::Isometry3d& world_from_object
   auto symmetric = [&rng](double a) { return a * (2.0 * base::UniformUnit(&rng) - 1.0); };
   Eigen::Vector3d t;
   for (int i = 0; i < 3; ++i) t[i] = symmetric(options.perturb_translation);
-  const double z = 2.0 * base::UniformUnit(&rng) - 1.0;
-  const double phi = 2.0 * M_PI * base::UniformUnit(&rng);
-  const double r = std::sqrt(std::max(0.0, 1.0 - z * z));
-  const Eigen::Vector3d axis(r * std::cos(phi), r * std::sin(phi), z);
+  const Eigen::Vector3d axis = base::UniformUnitVector(&rng);
   const double angle = symmetric(options.perturb_rotation_deg * M_PI / 180.0);
   Eigen::Isometry3d pose = world_from_object;
   pose.linear() = Eigen::AngleAxisd(angle, axis).toRotationMatrix() * world_from_object.linear();

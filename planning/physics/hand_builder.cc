@@ -36,24 +36,6 @@ SimShape ToSimShape(const Geometry& g, const Eigen::Isometry3d& body_from_geomet
   return s;
 }
 
-// Volume of a primitive [m³] (0 for a trimesh).
-double Volume(const SimShape& s) {
-  const double r = s.size.x();
-  switch (s.kind) {
-    case SimShape::Kind::kSphere:
-      return 4.0 / 3.0 * kPi * r * r * r;
-    case SimShape::Kind::kCapsule:
-      return kPi * r * r * s.size.y() + 4.0 / 3.0 * kPi * r * r * r;
-    case SimShape::Kind::kCylinder:
-      return kPi * r * r * s.size.y();
-    case SimShape::Kind::kBox:
-      return s.size.prod();
-    case SimShape::Kind::kTrimesh:
-      return 0.0;
-  }
-  return 0.0;
-}
-
 // First entry whose key is a substring of `name`, else nullptr.
 const double* FindBySubstring(const std::vector<std::pair<std::string, double>>& table,
                               const std::string& name) {
@@ -166,7 +148,7 @@ SimHand BuildSimHand(const Robot& robot, const Eigen::VectorXd& q, const std::st
     for (SimHandLink& l : hand.links) {
       if (FindBySubstring(options.link_masses, l.name)) continue;
       double volume = 0.0;
-      for (const SimShape& s : l.shapes) volume += Volume(s);
+      for (const SimShape& s : l.shapes) volume += PrimitiveVolume(s);
       if (volume > 0) l.mass = options.density * volume;
     }
   }
@@ -238,6 +220,23 @@ SimObject BuildSimObject(const GraspObject& object, const Eigen::Isometry3d& wor
     }
   }
   return o;
+}
+
+double PrimitiveVolume(const SimShape& s) {
+  const double r = s.size.x();
+  switch (s.kind) {
+    case SimShape::Kind::kSphere:
+      return 4.0 / 3.0 * kPi * r * r * r;
+    case SimShape::Kind::kCapsule:
+      return kPi * r * r * s.size.y() + 4.0 / 3.0 * kPi * r * r * r;
+    case SimShape::Kind::kCylinder:
+      return kPi * r * r * s.size.y();
+    case SimShape::Kind::kBox:
+      return s.size.prod();
+    case SimShape::Kind::kTrimesh:
+      return 0.0;
+  }
+  return 0.0;
 }
 
 }  // namespace planning::physics

@@ -34,20 +34,10 @@ std::string PoseAttributes(const Eigen::Isometry3d& pose) {
 }
 
 double ShapeVolume(const SimShape& s) {
-  const double r = s.size.x();
-  switch (s.kind) {
-    case SimShape::Kind::kSphere:
-      return 4.0 / 3.0 * M_PI * r * r * r;
-    case SimShape::Kind::kCapsule:
-      return M_PI * r * r * s.size.y() + 4.0 / 3.0 * M_PI * r * r * r;
-    case SimShape::Kind::kCylinder:
-      return M_PI * r * r * s.size.y();
-    case SimShape::Kind::kBox:
-      return s.size.x() * s.size.y() * s.size.z();
-    case SimShape::Kind::kTrimesh:
-      break;
+  if (s.kind == SimShape::Kind::kTrimesh) {
+    throw std::invalid_argument("MuJoCo backend: trimesh shapes are not supported");
   }
-  throw std::invalid_argument("MuJoCo backend: trimesh shapes are not supported");
+  return PrimitiveVolume(s);
 }
 
 // One geom per shape, `mass` spread by volume; contype/conaffinity from `collision`.
