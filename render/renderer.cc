@@ -5,7 +5,7 @@
 // Per frame (internal/renderer_passes.cc): 1. turn every shape, tube segment and bead into
 // instances of four shared unit meshes (or of a cached user mesh; internal/renderer_collect.cc);
 // 2. compute the scene's bounding sphere for clip planes and the shadow frustum; 3. depth pass
-// from light 0 into a 1024^2 shadow map; 4. lit pass: grid, opaque instance batches, translucent
+// from light 0 into a 1024^2 shadow map; 4. lit pass: opaque instance batches, grid, translucent
 // instances back to front, lines; 5. (Render only) resolve MSAA and read back, flipping rows to
 // top-down.
 #include "render/renderer.h"
@@ -15,6 +15,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "base/str_cat.h"
 #include "render/internal/renderer_impl.h"
 #include "render/internal/shaders.h"
 #include "render/internal/tessellate.h"
@@ -73,13 +74,14 @@ Renderer::Impl::Impl(const GlProcLoader& load) {
     throw ContextError(std::string("GL: need OpenGL >= 3.3 core, context reports '") +
                        (version ? version : "(none)") + "'");
   }
+  const std::string grid_fs =
+      base::StrCat(internal::kShadowLookupShader, internal::kGridFragmentShader);
   for (int shadows = 0; shadows < 2; ++shadows) {
-    for (int grid = 0; grid < 2; ++grid) {
-      const std::string prefix = "#version 330 core\n#define SHADOWS " + std::to_string(shadows) +
-                                 "\n#define GRID " + std::to_string(grid) + "\n";
-      mesh_programs_[shadows][grid] = internal::LinkProgram(
-          gl_, internal::kMeshVertexShader, internal::kMeshFragmentShader, "mesh", prefix.c_str());
-    }
+    const std::string prefix =
+        base::StrCat("#version 330 core\n#define SHADOWS ", std::to_string(shadows), "\n");
+    grid_programs_[shadows] = internal::LinkProgram(gl_, internal::kMeshVertexShader,
+                                                    grid_fs.c_str(), "grid", prefix.c_str());
+    MeshProgram(shadows != 0, 2);  // the default light rig's; others on first use
   }
   depth_program_ = internal::LinkProgram(gl_, internal::kDepthVertexShader,
                                          internal::kDepthFragmentShader, "depth");
@@ -90,6 +92,10 @@ Renderer::Impl::Impl(const GlProcLoader& load) {
     cylinder_[lod] = Upload(internal::UnitCylinder(internal::kLodSlices[lod]));
   }
   box_ = Upload(internal::UnitBox());
+  for (GpuMesh* closed : {&sphere_[0], &sphere_[1], &sphere_[2], &cylinder_[0], &cylinder_[1],
+                          &cylinder_[2], &box_}) {
+    closed->closed = true;
+  }
   quad_ = Upload(internal::UnitQuad());
   gl_.GenVertexArrays(1, &line_vao_);
   gl_.GenBuffers(1, &line_buffer_);
@@ -111,8 +117,11 @@ Renderer::Impl::~Impl() {
   for (auto& [key, entry] : mesh_cache_) Release(&entry.gpu);
   gl_.DeleteVertexArrays(1, &line_vao_);
   gl_.DeleteBuffers(1, &line_buffer_);
-  for (auto& row : mesh_programs_) {
-    for (GLuint program : row) gl_.DeleteProgram(program);
+  for (int shadows = 0; shadows < 2; ++shadows) {
+    for (GLuint program : mesh_programs_[shadows]) {
+      if (program) gl_.DeleteProgram(program);
+    }
+    gl_.DeleteProgram(grid_programs_[shadows]);
   }
   gl_.DeleteProgram(depth_program_);
   gl_.DeleteProgram(line_program_);

@@ -6,9 +6,10 @@
 // projected size: 12/20/32 slices below 6 px / 20 px / above), tubes (cylinder per segment +
 // bead spheres), GL lines, and a ground grid (procedural, in the fragment shader) with
 // Blinn-Phong lighting from up to 4 directional lights plus hemispheric ambient, and a soft
-// shadow (1024^2 shadow map, 4-tap bilinear PCF) from the first light onto everything. Renders are
-// deterministic: the same Scene, Camera, size and options give byte-identical pixels run to run
-// (tessellation counts are fixed; no time).
+// shadow (1024^2 shadow map, 4-tap bilinear PCF) from the first light onto everything. Spheres,
+// cylinders, capsules and boxes are closed and drawn with back faces culled (a near plane that
+// cuts into one shows through the cut). Renders are deterministic: the same Scene, Camera, size and
+// options give byte-identical pixels run to run (tessellation counts are fixed; no time).
 //
 // Cost on the 2-core reference machine (tests/bench/bench_render.cc): see the README.
 #pragma once

@@ -38,6 +38,7 @@ struct BenchArgs {
   bool ablation = false;  // --ablation: AICO with each task term removed (ablation.csv/.png)
   double perturb = 0.0;
   std::string geometry;   // --geometry FILE ("": the shipped scene)
+  std::string scenario;   // --scenario FILE ("": the shipped unwrap.json)
   std::string aico_stop;  // --aico-stop solved|converged ("": the scenario's)
   double timeout = 0.0;
   std::string
@@ -256,6 +257,9 @@ void AddBenchCommands(CLI::App* root, CommandList* commands) {
                      "run on the geometry of FILE (pole tilt, radius, translation, target offset, "
                      "arm; planning/motion/unwrap_geometry.h) with the scenario's parameters "
                      "unchanged; also writes DIR/geometry.csv");
+  unwrap->add_option("--scenario", ba->scenario,
+                     "the unwrap scenario to run (a coil start \"start_wrap_deg\" and a "
+                     "writhe_report pair; default: the shipped assets/scenarios/unwrap.json)");
   unwrap->add_option("--aico-stop", ba->aico_stop, kAicoStopHelp)
       ->check(CLI::IsMember({"solved", "converged"}));
   AddTimeoutFlag(unwrap, &ba->timeout);
@@ -267,7 +271,10 @@ void AddBenchCommands(CLI::App* root, CommandList* commands) {
   unwrap->footer(
       "Writes DIR/unwrap.csv (angle_deg,planner,seed,success,failure_reason,collision_checks,\n"
       "narrow_phase_calls,time_s,path_length,reach_error_m,pole_offset_m,state_queries,\n"
-      "bool_pair_tests,distance_pair_tests,cpu_time_s,setup_time_s) and DIR/unwrap.png (three\n"
+      "bool_pair_tests,distance_pair_tests,cpu_time_s,setup_time_s,goal_samples,\n"
+      "goal_sampler_state_queries,goal_sampler_pair_tests,goal_sampler_cpu_time_s: the goal\n"
+      "sampler's share of the goal-region planners' totals, 0 for the others) and DIR/unwrap.png "
+      "(three\n"
       "panels over the angle, log scale: collision checks, narrow-phase calls, wall time; median\n"
       "and interquartile band over the seeds, one colour per planner, crosses where a run\n"
       "failed; --formats adds unwrap.svg/.pdf). Cost units (docs/results/unwrap.md): a state\n"
@@ -297,7 +304,8 @@ void AddBenchCommands(CLI::App* root, CommandList* commands) {
          planning::UnwrapBenchmarkOptions options;
          options.angles_deg = ParseRange(ba->angles, "--angles");
          options.planners = ParsePlanners(ba->planners);
-         options.scenario_path = base::ResolveScenarioPath("unwrap");
+         options.scenario_path =
+             ba->scenario.empty() ? base::ResolveScenarioPath("unwrap") : ba->scenario;
          options.search_roots = {base::AssetRoot()};
          options.seeds = ba->seeds;
          if (!ba->budget.empty()) {

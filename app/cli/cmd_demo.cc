@@ -16,7 +16,9 @@
 #include "app/cli/command.h"
 #include "app/cli/demo_page.h"
 #include "app/cli/forked_jobs.h"
+#include "app/cli/grasp_forked.h"
 #include "app/cli/io.h"
+#include "app/cli/unwrap_forked.h"
 #include "app/present/grasp_frames.h"
 #include "app/present/reports.h"
 #include "base/assets.h"
@@ -78,7 +80,11 @@ class Demo {
     std::printf("topoplan demo -> %s\n", fs::absolute(args_.out_dir).c_str());
     const std::vector<Part> parts = Parts();
     const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-    const int jobs = std::min(static_cast<int>(parts.size()), args_.jobs > 0 ? args_.jobs : cores);
+    const int requested = args_.jobs > 0 ? args_.jobs : cores;
+    const int jobs = std::min(static_cast<int>(parts.size()), requested);
+    // The grasp and Fig. 4.5 stages fork workers of their own, from a process that runs nothing
+    // else (a stage's process, or this one when it is the only stage).
+    workers_ = jobs > 1 || parts.size() == 1 ? requested : 1;
     if (jobs <= 1) {
       for (const Part& p : parts) Stage(p.title, p.body);
     } else {
@@ -405,7 +411,17 @@ class Demo {
       stop_->Poll();  // a stopped benchmark stage ends (as a failed stage) at a run boundary
       if (done == total) EndProgress();
     };
-    const planning::UnwrapBenchmarkResult result = planning::RunUnwrapBenchmark(options);
+    // With --jobs N > 1 the angles run in N processes of their own, as the grasp trials do.
+    UnwrapRunOptions run;
+    run.workers = workers_;
+    run.scratch_dir = (out_ / ".bench-runs").string();
+    run.should_stop = [this] { return stop_->Stopped(); };
+    const UnwrapForkedResult ran = RunUnwrapBenchmarkInProcesses(options, run);
+    if (ran.exit_code != 0) {
+      stop_->Poll();  // a stopped worker: the stage ends as a stopped stage
+      return ran.exit_code;
+    }
+    const planning::UnwrapBenchmarkResult& result = ran.result;
     base::WriteFileAtomic((dir / "unwrap.csv").string(), planning::UnwrapCsv(result));
     if (const auto figure = visualize::UnwrapFigure(result)) {
       render::WriteFigure((dir / "unwrap.png").string(), *figure);
@@ -433,13 +449,20 @@ class Demo {
     namespace phys = planning::physics;
     const planning::GraspInputs in = planning::LoadGraspInputs(planning::SelectGraspFiles("all"));
     const std::vector<planning::TransferMethod> methods = planning::AllTransferMethods();
-    phys::OdeRuntime ode;
-    GraspFrameWriter frames;
     phys::GraspTrialsOptions options;  // default protocol (mu 1), no perturbation
     options.threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-    const phys::GraspTrialsResult result =
-        phys::RunGraspTrials(ode, in.human, in.lwr_sdh, in.objects, in.grasps, methods, options,
-                             GraspTransferHooks(dir, &frames));
+    // With --jobs N > 1 the trials run in N processes of their own (this stage's process only
+    // waits), so the stage keeps every core busy that the other stages leave free.
+    GraspRunOptions run;
+    run.workers = workers_;
+    run.frames = true;
+    run.out_dir = dir.string();
+    run.scratch_dir = (out_ / ".grasp-trials").string();
+    run.should_stop = [this] { return stop_->Stopped(); };
+    const GraspRunResult ran = RunGraspTrialsInProcesses(in, methods, options, run);
+    stop_->Poll();  // stopped: the stage ends here (as a stopped stage)
+    if (ran.exit_code != 0) return ran.exit_code;
+    const phys::GraspTrialsResult& result = ran.trials;
     WriteGraspOutputs(result, dir.string(), args_.formats);
     // Unstable baseline grasps are results, not errors.
     html_ << "<h2>5. Grasp transfer: human hand &rarr; Schunk SDH, tested in ODE</h2>\n"
@@ -520,6 +543,7 @@ class Demo {
   fs::path out_;
   std::ostringstream html_;
   int stage_ = 0;
+  int workers_ = 1;  // processes at a time (--jobs; 1: everything in this process)
   int worst_ = kExitOk;
   const StopCheck* stop_ = nullptr;
   bool stopped_ = false, stopped_timeout_ = false;
@@ -538,9 +562,10 @@ void AddDemoCommand(CLI::App* root, CommandList* commands) {
                  "the whole Fig. 4.5 sweep (0..1080 deg every 15 deg, 3 seeds)");
   demo->add_flag("--no-grasp", args->no_grasp, "skip the grasp-transfer stage");
   IntIn(demo->add_option("--jobs", args->jobs,
-                         "stages run at the same time, each in its own process (default 0: the "
-                         "number of cores; 1: one after the other in this process); the "
-                         "outputs do not depend on it"),
+                         "stages run at the same time, each in its own process, and worker "
+                         "processes of the grasp trials and of the Fig. 4.5 angles (default 0: "
+                         "the number of cores; 1: everything one after the other in this "
+                         "process); the outputs do not depend on it"),
         0, 64);
   demo->add_option("--only", args->only,
                    "run only these stages (comma-separated): writhe, unwrap, ring, bench, grasp, "

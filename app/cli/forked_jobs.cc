@@ -2,11 +2,13 @@
 
 #include <fcntl.h>
 #include <signal.h>
+#include <sys/mman.h>
 #include <sys/resource.h>
 #include <sys/time.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <cerrno>
 #include <chrono>
 #include <cstdio>
@@ -55,6 +57,20 @@ using Clock = std::chrono::steady_clock;
 double Seconds(const timeval& t) { return static_cast<double>(t.tv_sec) + 1e-6 * t.tv_usec; }
 
 }  // namespace
+
+SharedCounter::SharedCounter() {
+  static_assert(std::atomic<size_t>::is_always_lock_free);
+  memory_ = ::mmap(nullptr, sizeof(std::atomic<size_t>), PROT_READ | PROT_WRITE,
+                   MAP_SHARED | MAP_ANONYMOUS, -1, 0);
+  if (memory_ == MAP_FAILED) {
+    throw std::runtime_error(base::StrCat("cannot map shared memory: ", std::strerror(errno)));
+  }
+  new (memory_) std::atomic<size_t>(0);
+}
+
+SharedCounter::~SharedCounter() { ::munmap(memory_, sizeof(std::atomic<size_t>)); }
+
+size_t SharedCounter::Next() { return static_cast<std::atomic<size_t>*>(memory_)->fetch_add(1); }
 
 std::vector<ForkedJobResult> RunForkedJobs(const std::vector<ForkedJob>& jobs,
                                            const ForkedJobsOptions& options) {

@@ -36,6 +36,22 @@ struct ForkedJobsOptions {
   std::function<bool()> should_stop;
 };
 
+// A counter shared by this process and the children it forks while the counter lives (anonymous
+// shared memory, a lock-free atomic): jobs that each take the next piece of work from it balance
+// themselves over the workers. Throws std::runtime_error when the memory cannot be mapped.
+class SharedCounter {
+ public:
+  SharedCounter();
+  ~SharedCounter();
+  SharedCounter(const SharedCounter&) = delete;
+  SharedCounter& operator=(const SharedCounter&) = delete;
+
+  size_t Next();  // 0, 1, 2, ... over all processes, each value once
+
+ private:
+  void* memory_ = nullptr;
+};
+
 // Runs every job in `jobs` order, at most options.workers at a time, and waits for all of them;
 // results[i] belongs to jobs[i]. Only call from a single-threaded process (fork copies only the
 // calling thread); stdio is flushed before each fork. A child's exception escaping `run` ends it

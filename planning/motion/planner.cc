@@ -12,6 +12,7 @@
 #include "planning/collision/collision.h"
 #include "planning/motion/internal/ompl_planners.h"
 #include "planning/motion/rrt.h"
+#include "planning/motion/scenario_goal_region.h"
 #include "planning/robot/kinematics.h"
 #include "topology/winding.h"
 
@@ -24,6 +25,8 @@ inline constexpr base::EnumName<Planner> kPlannerNames[] = {
     {Planner::kOmplRrt, "ompl-rrt"},
     {Planner::kOmplRrtConnect, "ompl-rrtconnect"},
     {Planner::kAicoGoal, "aico-goal"},
+    {Planner::kRrtRegion, "rrt-region"},
+    {Planner::kBiRrtRegion, "birrt-region"},
 };
 constexpr std::span<const base::EnumName<Planner>> EnumNames(Planner) { return kPlannerNames; }
 
@@ -240,20 +243,38 @@ PlanResult RunPlanner(const Scenario& s, const PlanRequest& request) {
     return false;
   };
   RrtResult r;
+  GoalSamplerCost sampler;
+  // A polled budget is tested after every iteration (Step(1) repeated = one Step(max)).
+  const bool polled = request.budget.unit == Budget::Unit::kCpuTime ||
+                      request.budget.unit == Budget::Unit::kPairTests;
+  // Runs a resumable tree solver (RrtSolver, GoalRegionSolver) in chunks of iterations, polling
+  // between them (the same result as one call to the end).
+  const auto step_to_end = [&](auto& solver) {
+    while (!solver.done()) {
+      solver.Step(polled ? 1 : kRrtPollIterations);
+      if (poll) poll();
+      if (!solver.done() && out_of_time()) solver.RequestStop();
+    }
+    return solver.result();
+  };
   switch (planner) {
     case Planner::kRrt:
     case Planner::kBiRrt: {
-      // In chunks of iterations, polling between them (same result as one PlanRrt call).
       RrtSolver solver(rp, options, valid, std::mt19937(seed), planner == Planner::kBiRrt);
-      // A polled budget is tested after every iteration (Step(1) repeated = one Step(max)).
-      const bool polled = request.budget.unit == Budget::Unit::kCpuTime ||
-                          request.budget.unit == Budget::Unit::kPairTests;
-      while (!solver.done()) {
-        solver.Step(polled ? 1 : kRrtPollIterations);
-        if (poll) poll();
-        if (!solver.done() && out_of_time()) solver.RequestStop();
-      }
-      r = solver.result();
+      r = step_to_end(solver);
+      break;
+    }
+    case Planner::kRrtRegion:
+    case Planner::kBiRrtRegion: {
+      GoalRegionProblem gp;
+      gp.lower = rp.lower;
+      gp.upper = rp.upper;
+      gp.start = rp.start;
+      gp.goal = ScenarioGoalRegion(s, w, valid, coll, &sampler);
+      GoalRegionOptions go;
+      go.rrt = options;
+      GoalRegionSolver solver(gp, go, valid, seed, planner == Planner::kBiRrtRegion);
+      r = step_to_end(solver);
       break;
     }
     case Planner::kOmplRrt:
@@ -276,6 +297,10 @@ PlanResult RunPlanner(const Scenario& s, const PlanRequest& request) {
   PlanResult out = SamplingPlanResult(s, w, planner, r, coll);
   out.report.time_s = time_s;
   out.report.cpu_time_s = cpu_s;
+  out.report.goal_sampler_draws = r.goal.draws;
+  out.report.goal_samples = r.goal.samples;
+  out.report.goal_sampler_counts = sampler.counts;
+  out.report.goal_sampler_cpu_time_s = sampler.cpu_time_s;
   return out;
 }
 

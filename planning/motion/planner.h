@@ -23,14 +23,28 @@ namespace planning {
 // kAicoGoal ("aico-goal"): AICO on the same problem without its writhe terms (every task whose
 // feature is a writhe matrix or total, WritheTaskNames), the baseline that has the reach,
 // collision and guard terms but no topology target (docs/results/unwrap.md).
-enum class Planner { kAico, kRrt, kBiRrt, kOmplRrt, kOmplRrtConnect, kAicoGoal };
+// kRrtRegion / kBiRrtRegion ("rrt-region", "birrt-region"): RRT and BiRRT whose goal is the region
+// of every configuration meeting the success criterion's end conditions (goal_region.h,
+// scenario_goal_region.h), sampled lazily by projection and rejection, instead of q̂_T; the same
+// start, checker, box, edge resolution, options and budget as kRrt / kBiRrt.
+enum class Planner {
+  kAico,
+  kRrt,
+  kBiRrt,
+  kOmplRrt,
+  kOmplRrtConnect,
+  kAicoGoal,
+  kRrtRegion,
+  kBiRrtRegion
+};
 // kAico or kAicoGoal.
 bool IsAico(Planner planner);
 
 // The registry: every planner of this build, in order ("aico", "rrt", "birrt", "ompl-rrt",
-// "ompl-rrtconnect" when built with OMPL, "aico-goal").
+// "ompl-rrtconnect" when built with OMPL, "aico-goal", "rrt-region", "birrt-region").
 std::vector<Planner> AvailablePlanners();
-// "aico" | "rrt" | "birrt" | "ompl-rrt" | "ompl-rrtconnect"; throws std::invalid_argument for an
+// "aico" | "rrt" | "birrt" | "ompl-rrt" | "ompl-rrtconnect" | "aico-goal" | "rrt-region" |
+// "birrt-region"; throws std::invalid_argument for an
 // unknown name (listing the valid ones), and for the OMPL names when built without OMPL
 // ("... built without OMPL ...").
 Planner ParsePlanner(const std::string& name);
@@ -77,6 +91,14 @@ struct PlanReport {
   bool loop_checked = false;
   bool passed_through = false;
   int through_segment = -1;
+  // Goal-region planners: the goal sampler's share of the totals above (scenario_goal_region.h):
+  // draws made, goal states found (valid candidates in the region), the state queries and pair
+  // tests of its validity checks (part of `counts`) and the CPU time of its draws and checks (part
+  // of cpu_time_s). All 0 for the other planners.
+  long goal_sampler_draws = 0;
+  long goal_samples = 0;
+  QueryCounts goal_sampler_counts;
+  double goal_sampler_cpu_time_s = 0.0;
 };
 
 struct PlanResult {
@@ -96,11 +118,12 @@ RrtProblem ScenarioRrtProblem(const Scenario& s);
 // Runs one planner on the scenario. AICO: RunAicoAttempts (its collision feature's queries and
 // the validations at check_resolution are counted); RRT/BiRRT: PlanRrt / PlanBiRrt from q0 to
 // goal_q with a validity checker (joint limits + InCollision, one counted query per state) inside
-// the joint-limit box. `seed` seeds the RRTs' std::mt19937. OMPL planners: the same checker, box,
-// goal, scenario.rrt options (range, resolution, goal_bias, max_checks) and seed, through OMPL (no
-// path simplification). The AICO callback, if given, is forwarded. `poll`, if given, is called
-// every few RRT/BiRRT iterations; it may throw to abort the run (the CLI's interrupt/--timeout
-// check).
+// the joint-limit box; rrt-region / birrt-region: a GoalRegionSolver from q0 to
+// ScenarioGoalRegion with the same checker (the sampler's checks counted in the same budget).
+// `seed` seeds the RRTs' std::mt19937. OMPL planners: the same checker, box, goal, scenario.rrt
+// options (range, resolution, goal_bias, max_checks) and seed, through OMPL (no path
+// simplification). The AICO callback, if given, is forwarded. `poll`, if given, is called every few
+// RRT/BiRRT iterations; it may throw to abort the run (the CLI's interrupt/--timeout check).
 using PollFn = std::function<void()>;
 
 // A run's budget in one cost unit: the run ends with status kBudgetExhausted once it has spent it.

@@ -23,6 +23,13 @@ nlohmann::json PlanReportJson(const Scenario& s, const PlanReport& r, unsigned s
   j["bool_pair_tests"] = r.counts.bool_pair_tests;
   j["distance_pair_tests"] = r.counts.distance_pair_tests;
   j["cpu_time_s"] = r.cpu_time_s;
+  // The goal sampler's share of those (goal-region planners; 0 for the others).
+  j["goal_sampler_draws"] = r.goal_sampler_draws;
+  j["goal_samples"] = r.goal_samples;
+  j["goal_sampler_state_queries"] = r.goal_sampler_counts.state_queries;
+  j["goal_sampler_bool_pair_tests"] = r.goal_sampler_counts.bool_pair_tests;
+  j["goal_sampler_distance_pair_tests"] = r.goal_sampler_counts.distance_pair_tests;
+  j["goal_sampler_cpu_time_s"] = r.goal_sampler_cpu_time_s;
   j["iterations"] = r.iterations;
   j["attempts"] = r.attempts;
   j["cost"] = r.cost;
@@ -97,7 +104,8 @@ std::string UnwrapCsv(const UnwrapBenchmarkResult& result) {
   csv.imbue(std::locale::classic());  // "0.5" whatever the global locale
   csv << "angle_deg,planner,seed,success,failure_reason,collision_checks,narrow_phase_calls,"
          "time_s,path_length,reach_error_m,pole_offset_m,state_queries,bool_pair_tests,"
-         "distance_pair_tests,cpu_time_s,setup_time_s\n";
+         "distance_pair_tests,cpu_time_s,setup_time_s,goal_samples,goal_sampler_state_queries,"
+         "goal_sampler_pair_tests,goal_sampler_cpu_time_s\n";
   for (const UnwrapRun& r : result.runs) {
     const PlanReport& p = r.report;
     csv << r.angle_deg << "," << p.planner << "," << r.seed << "," << (p.success ? 1 : 0) << ","
@@ -105,7 +113,9 @@ std::string UnwrapCsv(const UnwrapBenchmarkResult& result) {
         << p.narrow_phase_calls << "," << p.time_s << "," << p.path_length << "," << p.reach_error_m
         << "," << r.pole_offset.norm() << "," << p.counts.state_queries << ","
         << p.counts.bool_pair_tests << "," << p.counts.distance_pair_tests << "," << p.cpu_time_s
-        << "," << p.setup_time_s << "\n";
+        << "," << p.setup_time_s << "," << p.goal_samples << ","
+        << p.goal_sampler_counts.state_queries << "," << p.goal_sampler_counts.pair_tests() << ","
+        << p.goal_sampler_cpu_time_s << "\n";
   }
   return csv.str();
 }

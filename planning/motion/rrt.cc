@@ -8,105 +8,24 @@
 #include <utility>
 
 #include "base/random.h"
+#include "planning/motion/internal/rrt_tree.h"
 
 namespace planning {
 namespace {
 
-enum class EdgeResult { kValid, kInvalid, kBudget };
-
-// Counts validity calls and enforces the budget.
-struct Checker {
-  const ValidityFn& valid;
-  std::int64_t max_checks;
-  std::int64_t count = 0;
-
-  bool exhausted() const { return count >= max_checks; }
-  bool operator()(const Eigen::VectorXd& q) {
-    ++count;
-    return valid(q);
-  }
-};
+using internal::BranchPath;
+using internal::CheckEdge;
+using internal::Checker;
+using internal::EdgeResult;
+using internal::Nearest;
+using internal::Steer;
 
 void CheckProblem(const RrtProblem& p) {
-  const Eigen::Index n = p.start.size();
-  if (n == 0 || p.goal.size() != n || p.lower.size() != n || p.upper.size() != n) {
-    throw std::invalid_argument(
-        "RRT: start, goal, lower, upper must have the same non-zero size (" +
-        std::to_string(p.start.size()) + ", " + std::to_string(p.goal.size()) + ", " +
-        std::to_string(p.lower.size()) + ", " + std::to_string(p.upper.size()) + ")");
-  }
-  if (!p.start.allFinite() || !p.goal.allFinite() || !p.lower.allFinite() || !p.upper.allFinite()) {
-    throw std::invalid_argument("RRT: non-finite start, goal or bounds");
-  }
-  if ((p.upper - p.lower).minCoeff() < 0.0) {
-    throw std::invalid_argument("RRT: a lower bound exceeds its upper bound");
-  }
-}
-
-double Diagonal(const RrtProblem& p) { return (p.upper - p.lower).norm(); }
-
-// Edge from -> to: end state first, then the interior states in order.
-EdgeResult CheckEdge(const Eigen::VectorXd& from, const Eigen::VectorXd& to, double resolution,
-                     Checker* check, Eigen::VectorXd* tmp) {
-  if (check->exhausted()) return EdgeResult::kBudget;
-  if (!(*check)(to)) return EdgeResult::kInvalid;
-  const std::int64_t steps = EdgeSteps((to - from).norm(), resolution);
-  for (std::int64_t i = 1; i < steps; ++i) {
-    if (check->exhausted()) return EdgeResult::kBudget;
-    const double s = static_cast<double>(i) / static_cast<double>(steps);
-    tmp->noalias() = (1.0 - s) * from + s * to;
-    if (!(*check)(*tmp)) return EdgeResult::kInvalid;
-  }
-  return EdgeResult::kValid;
-}
-
-int Nearest(const std::vector<RrtNode>& tree, const Eigen::VectorXd& q) {
-  int best = 0;
-  double best_d = std::numeric_limits<double>::infinity();
-  for (int i = 0; i < static_cast<int>(tree.size()); ++i) {
-    const double d = (tree[i].q - q).squaredNorm();
-    if (d < best_d) {
-      best_d = d;
-      best = i;
-    }
-  }
-  return best;
+  internal::CheckBox("RRT", p.lower, p.upper, p.start, &p.goal);
 }
 
 void SampleUniform(const RrtProblem& p, std::mt19937* rng, Eigen::VectorXd* q) {
-  for (Eigen::Index i = 0; i < q->size(); ++i) {
-    (*q)[i] = p.lower[i] + base::UniformUnit(rng) * (p.upper[i] - p.lower[i]);
-  }
-}
-
-// q_new = q_near moved toward q_target by at most `range`.
-void Steer(const Eigen::VectorXd& q_near, const Eigen::VectorXd& q_target, double range,
-           Eigen::VectorXd* q_new) {
-  const double d = (q_target - q_near).norm();
-  if (d <= range) {
-    *q_new = q_target;
-  } else {
-    q_new->noalias() = q_near + (range / d) * (q_target - q_near);
-  }
-}
-
-// Root-to-node configurations of `tree` ending at `index` (root first).
-void AppendBranch(const std::vector<RrtNode>& tree, int index, bool reverse,
-                  std::vector<int>* out) {
-  std::vector<int> branch;
-  for (int i = index; i >= 0; i = tree[i].parent) branch.push_back(i);
-  if (!reverse) {
-    out->insert(out->end(), branch.rbegin(), branch.rend());
-  } else {
-    out->insert(out->end(), branch.begin(), branch.end());
-  }
-}
-
-Trajectory ToTrajectory(const std::vector<const RrtNode*>& nodes, int n) {
-  Trajectory path;
-  path.q.resize(n, static_cast<Eigen::Index>(nodes.size()));
-  for (size_t i = 0; i < nodes.size(); ++i) path.q.col(static_cast<Eigen::Index>(i)) = nodes[i]->q;
-  return path;
+  internal::SampleUniform(p.lower, p.upper, rng, q);
 }
 
 // What both planners set up first: argument checks, the default range (20 % of the joint box's
@@ -122,15 +41,8 @@ struct Setup {
 
 bool Prepare(const RrtProblem& problem, const RrtOptions& options, Setup* s, RrtResult* result) {
   CheckProblem(problem);
-  const double diag = Diagonal(problem);
   s->n = static_cast<int>(problem.start.size());
-  s->range = options.range > 0 ? options.range : 0.2 * diag;
-  // A zero-volume box (diag = 0) has only zero-length edges: any resolution checks them.
-  s->resolution = options.resolution > 0 ? options.resolution : (diag > 0 ? 0.01 * diag : 1.0);
-  if (!std::isfinite(s->range) || !std::isfinite(s->resolution)) {
-    throw std::invalid_argument("RRT: range and resolution must be finite");
-  }
-  EdgeSteps(s->range, s->resolution);  // the longest edge must be checkable (throws)
+  internal::RangeAndResolution(options, problem.lower, problem.upper, &s->range, &s->resolution);
   s->q_rand.resize(s->n);
   s->q_new.resize(s->n);
   s->tmp.resize(s->n);
@@ -200,11 +112,7 @@ void RrtSolver::Impl::IterateRrt() {
   if (edge == EdgeResult::kInvalid) return;
   tree.push_back({setup.q_new, near});
   if ((setup.q_new - problem.goal).norm() <= 1e-12) {
-    std::vector<int> idx;
-    AppendBranch(tree, static_cast<int>(tree.size()) - 1, false, &idx);
-    std::vector<const RrtNode*> nodes;
-    for (int i : idx) nodes.push_back(&tree[i]);
-    path = ToTrajectory(nodes, setup.n);
+    path = BranchPath(tree, static_cast<int>(tree.size()) - 1, nullptr, -1);
     Finish(SolveStatus::kConverged);
   }
 }
@@ -235,13 +143,7 @@ void RrtSolver::Impl::IterateBiRrt() {
         // Path: start tree root .. joint, then goal tree joint .. root.
         const int start_end = grow == 0 ? added : other;
         const int goal_end = grow == 0 ? other : added;
-        std::vector<int> from_start, from_goal;
-        AppendBranch(trees[0], start_end, false, &from_start);
-        AppendBranch(trees[1], goal_end, true, &from_goal);
-        std::vector<const RrtNode*> nodes;
-        for (int i : from_start) nodes.push_back(&trees[0][i]);
-        for (int i : from_goal) nodes.push_back(&trees[1][i]);
-        path = ToTrajectory(nodes, setup.n);
+        path = BranchPath(trees[0], start_end, &trees[1], goal_end);
         return Finish(SolveStatus::kConverged);
       }
     }

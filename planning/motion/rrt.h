@@ -45,12 +45,22 @@ struct RrtOptions {
   std::int64_t max_iterations = 10000000;
 };
 
+// The goal sampler's share of a goal-region run (goal_region.h); all zero for a goal state.
+struct GoalSamplerStats {
+  std::int64_t draws = 0;         // sampler calls (a candidate drawn and tested against G)
+  std::int64_t in_region = 0;     // candidates in the region G (then checked for validity)
+  std::int64_t samples = 0;       // of those, valid: goal states the planner used
+  std::int64_t checks = 0;        // validity calls on candidates (included in RrtResult::checks)
+  std::int64_t region_tests = 0;  // G(q) calls on tree nodes (the uni-directional goal test)
+};
+
 struct RrtResult {
   SolveStatus status = SolveStatus::kBudgetExhausted;
   Trajectory path;              // start .. goal waypoints (tree nodes), empty on failure
   std::int64_t checks = 0;      // validity-function calls made by this run
   std::int64_t iterations = 0;  // sampling iterations
   int tree_size = 0;            // total number of nodes in all trees
+  GoalSamplerStats goal;        // goal-region runs only
 };
 
 // One tree node: configuration and the index of its parent (−1 for the root).

@@ -9,9 +9,10 @@
 // initialise the final-pose estimate (the goal). Deterministic.
 //
 // Goal: the final-pose estimate q̂_T (final_pose.h) from the configured init; when it misses an end
-// condition of the success criteria (CheckEndState with state checks, success.h: limits, collision, writhe,
-// winding, reach, box), SearchFinalPose tries the start and seeded perturbations of the init and
-// keeps the estimate that meets them at least cost (or, if none does, the least violation).
+// condition of the success criteria (CheckEndState with state checks, success.h: limits, collision,
+// writhe, winding, reach, box), SearchFinalPose tries the start and seeded perturbations of the
+// init and keeps the estimate that meets them at least cost (or, if none does, the least
+// violation).
 #pragma once
 
 #include <Eigen/Core>
@@ -20,13 +21,13 @@
 #include <string>
 #include <vector>
 
-#include "planning/motion/aico.h"
 #include "planning/collision/collision.h"
+#include "planning/features/task.h"
+#include "planning/motion/aico.h"
 #include "planning/motion/final_pose.h"
-#include "planning/robot/robot.h"
 #include "planning/motion/rrt.h"
 #include "planning/motion/scenario_spec.h"
-#include "planning/features/task.h"
+#include "planning/robot/robot.h"
 
 namespace planning {
 
@@ -50,6 +51,11 @@ struct SuccessCriteria {
   // turns: largest change between neighbouring resampled path states, and |value| at the end.
   double winding_max_jump = -1.0;     // < 0: not checked
   double winding_final_below = -1.0;  // < 0: not checked
+  // The end condition's winding is that of the report chain closed by its chord (the segment
+  // from its last point back to its first), an integer number of turns about the line up to
+  // rounding: w_chain − w([first, last]). false: the open chain's winding (the jump check always
+  // uses the open chain).
+  bool winding_closed_by_chord = false;
   // The report chain passes through the report object's closed loop at the end
   // (ChainSegmentThroughLoop, planning/motion/success.h).
   bool through_loop = false;
@@ -151,8 +157,7 @@ std::unique_ptr<Scenario> LoadScenario(const std::string& path,
 // <assets>/scenarios/NAME.json (base::ResolveScenarioPath), loaded with the asset root as the
 // search root for its relative robot/object paths (so a copy of a shipped scenario loads from
 // any folder).
-std::unique_ptr<Scenario> LoadScenarioArg(const std::string& arg,
-                                          ScenarioOverrides overrides = {});
+std::unique_ptr<Scenario> LoadScenarioArg(const std::string& arg, ScenarioOverrides overrides = {});
 
 // The MotionProblem of AICO attempt k (0 <= k < aico_attempts.size()): the scenario's tasks with
 // attempt k's precision multipliers (k = 0 gives a problem equal to `problem`).
@@ -181,7 +186,7 @@ double ReportWritheTotal(const Scenario& scenario, const ScenarioState& state,
 double ReportWritheTotal(const Scenario& scenario, const Eigen::VectorXd& q,
                          Eigen::MatrixXd* matrix = nullptr);
 
-// --- Moving objects (planning/motion/replan.h) ------------------------------------------------------
+// --- Moving objects (planning/motion/replan.h) ------------------------------------------------
 
 // Names of the scenario's objects (spec order), e.g. {"ring"} or {"pole"}.
 std::vector<std::string> ObjectNames(const Scenario& scenario);

@@ -475,6 +475,7 @@ std::unique_ptr<Scenario> SetUpScenario(ScenarioSpec spec,
   s->success.through_loop = su.through_loop;
   s->success.winding_max_jump = su.winding_max_jump;
   s->success.winding_final_below = su.winding_final_below;
+  s->success.winding_closed_by_chord = su.winding_closed_by_chord;
 
   // The goal's end conditions read the position/box targets of a problem built with goal q0.
   s->goal_q = start.q0;

@@ -328,10 +328,16 @@ SuccessSpec ReadSuccess(const base::JsonNode& n) {
   }
   if (n.Has("winding")) {
     const base::JsonNode wn = n.At("winding");
-    wn.CheckKeys({"max_jump", "final_below"});
+    wn.CheckKeys({"max_jump", "final_below", "final_closure"});
     s.winding_where = wn.Where();
     s.winding_max_jump = wn.Number("max_jump", 0.1);
     s.winding_final_below = wn.Number("final_below", 0.1);
+    const std::string closure = wn.String("final_closure", "open");
+    if (closure != "open" && closure != "chord") {
+      throw std::invalid_argument(base::StrCat(wn.Where(), ".final_closure: \"", closure,
+                                               "\" is not \"open\" or \"chord\""));
+    }
+    s.winding_closed_by_chord = closure == "chord";
     if (!(s.winding_max_jump > 0.0) || !(s.winding_final_below > 0.0)) {
       throw std::invalid_argument(s.winding_where + ": max_jump and final_below must be > 0");
     }

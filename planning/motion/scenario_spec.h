@@ -317,11 +317,12 @@ struct SuccessSpec {
   std::optional<SpecName> position_task;
   double position_tolerance = 0.05;
   std::optional<SpecName> box_task;
-  double winding_max_jump = -1.0;     // turns; < 0: not checked
-  double winding_final_below = -1.0;  // turns; < 0: not checked
-  std::string winding_where;          // of "success.winding" (empty: not given)
-  bool through_loop = false;          // the report chain must end through the report loop
-  std::string through_loop_where;     // of "success.through_loop" (empty: not given)
+  double winding_max_jump = -1.0;        // turns; < 0: not checked
+  double winding_final_below = -1.0;     // turns; < 0: not checked
+  bool winding_closed_by_chord = false;  // "final_closure": "chord" (default "open")
+  std::string winding_where;             // of "success.winding" (empty: not given)
+  bool through_loop = false;             // the report chain must end through the report loop
+  std::string through_loop_where;        // of "success.through_loop" (empty: not given)
 };
 
 // One AICO attempt: task precisions scaled by name, and its iteration limit.

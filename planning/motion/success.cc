@@ -56,6 +56,18 @@ std::string LimitDetail(const Robot& robot, int k, double value) {
   return d;
 }
 
+// Winding (turns) about the report line of the straight segment from the report chain's first
+// point to its last at q: w_chain − this is the winding of the chain closed by its chord.
+double ChordWinding(const Scenario& s, const ScenarioState& w, const Eigen::VectorXd& q) {
+  KinematicsData kin(s.robot);
+  ForwardKinematics(s.robot, q, &kin);
+  Eigen::Matrix3Xd points;
+  ChainPoints(s.robot, kin, s.report_chain, &points);
+  Eigen::Matrix3Xd chord(3, 2);
+  chord << points.col(0), points.col(points.cols() - 1);
+  return topology::WindingNumber(chord, ReportAxis(s, w));
+}
+
 }  // namespace
 
 PlanVerdict JudgePlan(const Scenario& s, const ScenarioState& w, const Trajectory& path,
@@ -121,9 +133,9 @@ PlanVerdict JudgePlan(const Scenario& s, const ScenarioState& w, const Trajector
     v.reason = FailureReason::kTunnelled;
     v.step = tunnel_step;
   }
-  v.final_winding_turns = w_prev;
   const Eigen::VectorXd q_end = path.q.col(path.num_points() - 1);
   const EndState end = CheckEndState(s, w, q_end, false, c);
+  v.final_winding_turns = c.winding_closed_by_chord ? end.winding_turns : w_prev;
   v.final_writhe_total = end.writhe_total;
   v.writhe_peak_row = end.writhe_peak_row;
   v.writhe_peak_col = end.writhe_peak_col;
@@ -180,8 +192,10 @@ EndState CheckEndState(const Scenario& s, const ScenarioState& w, const Eigen::V
     e.writhe_peak_col = static_cast<int>(col);
     e.writhe_peak_value = W(row, col);
   }
-  if (c.winding_max_jump > 0.0 || c.winding_final_below > 0.0)
+  if (c.winding_max_jump > 0.0 || c.winding_final_below > 0.0) {
     e.winding_turns = ReportWinding(s, w, q);
+    if (c.winding_closed_by_chord) e.winding_turns -= ChordWinding(s, w, q);
+  }
   if (c.writhe_total_below >= 0.0)
     e.writhe_reached = within(e.writhe_total, c.writhe_total_below, true);
   if (c.winding_final_below > 0.0)

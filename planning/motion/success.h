@@ -35,7 +35,10 @@ struct EndState {
   bool within_limits = true;   // (state_checks only)
   bool collision_free = true;  // (state_checks only)
   double writhe_total = 0.0;   // ReportWritheTotal(q)
-  double winding_turns = 0.0;  // ReportWinding(q) (with the winding criterion only, else 0)
+  // ReportWinding(q), minus the chord's winding with winding_closed_by_chord (the chain closed by
+  // the segment from its last point to its first: an integer up to rounding), in turns; with the
+  // winding criterion only, else 0.
+  double winding_turns = 0.0;
   // The writhe matrix entry of largest |W_ij| (row = robot chain segment, col = object segment;
   // −1 and 0 when there is no report pair).
   int writhe_peak_row = -1, writhe_peak_col = -1;
@@ -62,7 +65,7 @@ struct PlanVerdict {
   FailureReason reason = FailureReason::kNone;
   int step = -1;  // index into Densify(path, check_resolution) of the first violation, or −1
   double max_winding_jump_turns = 0.0;
-  double final_winding_turns = 0.0;
+  double final_winding_turns = 0.0;  // the end condition's winding (EndState::winding_turns)
   double final_writhe_total = 0.0;
   int writhe_peak_row = -1, writhe_peak_col = -1;  // see PlanReport
   double writhe_peak_value = 0.0;
@@ -87,13 +90,13 @@ struct PlanVerdict {
 // ReportWinding, turns; only with the winding criterion); the first of these is the reason, except
 // that a winding jump replaces a collision (the states passing through the pole collide;
 // failure_step is then the jump's). At the end (CheckEndState of the last state): |w| >=
-// winding_final_below or |total writhe| >= writhe_total_below -> kWritheNotReached; position error
-// > position_tolerance or the box task's point outside its box (margin 0) -> kReachError;
-// with through_loop, the report chain not through the report object's loop -> kNotThroughLoop.
-// The one judge of success: `plan`, `bench`, the re-planner, the viewer and Python all use it.
-// With the objects of `state` and the criteria `criteria` (the re-planner adds through_loop when
-// the moving object is the report loop); the shorter overloads use scenario.initial and
-// scenario.success.
+// winding_final_below (w of the chain closed by its chord with winding_closed_by_chord) or |total
+// writhe| >= writhe_total_below -> kWritheNotReached; position error > position_tolerance or the
+// box task's point outside its box (margin 0) -> kReachError; with through_loop, the report chain
+// not through the report object's loop -> kNotThroughLoop. The one judge of success: `plan`,
+// `bench`, the re-planner, the viewer and Python all use it. With the objects of `state` and the
+// criteria `criteria` (the re-planner adds through_loop when the moving object is the report loop);
+// the shorter overloads use scenario.initial and scenario.success.
 PlanVerdict JudgePlan(const Scenario& scenario, const ScenarioState& state, const Trajectory& path,
                       const SuccessCriteria& criteria);
 PlanVerdict JudgePlan(const Scenario& scenario, const ScenarioState& state, const Trajectory& path);

@@ -203,6 +203,56 @@ class TransferQueue {
   std::vector<std::thread> threads_;
 };
 
+// The result's protocol fields (no trials yet).
+GraspTrialsResult ResultHeader(const std::vector<TransferMethod>& methods,
+                               const GraspTrialsOptions& options) {
+  GraspTrialsResult result;
+  result.methods = methods;
+  result.stability.sim.mu = options.mu;
+  result.stability.sim.contact_patch_radius = options.contact_patch_radius;
+  result.close_by = options.close_by;
+  result.perturb = options.perturb;
+  result.seed = options.seed;
+  result.perturb_translation = options.perturb_translation;
+  result.perturb_rotation_deg = options.perturb_rotation_deg;
+  return result;
+}
+
+std::vector<TransferSetup> MakeSetups(const Robot& human_hand, const Robot& sdh_source,
+                                      const std::vector<GraspObject>& objects,
+                                      const std::vector<HumanGrasp>& grasps) {
+  std::vector<TransferSetup> setups;
+  for (const HumanGrasp& g : grasps) {
+    setups.push_back(
+        MakeTransferSetup(human_hand, sdh_source, FindGraspObject(objects, g.object), g));
+  }
+  return setups;
+}
+
+// Per-method summaries and all_stable of the trials in `result`.
+void Summarise(GraspTrialsResult* result) {
+  const std::vector<TransferMethod>& methods = result->methods;
+  for (size_t mi = 0; mi < methods.size(); ++mi) {
+    GraspMethodSummary s;
+    s.method = methods[mi];
+    s.grasps = static_cast<int>(result->trials.size());
+    for (const std::vector<GraspTrial>& row : result->trials) {
+      const GraspTrial& t = row[mi];
+      s.stable += t.stability.stable ? 1 : 0;
+      result->all_stable = result->all_stable && t.stability.stable;
+      s.perturbed_trials += static_cast<int>(t.perturbed.size());
+      s.perturbed_stable += t.perturbed_stable;
+    }
+    s.rate = static_cast<double>(s.stable) / std::max(1, s.grasps);
+    if (s.grasps > 0) s.ci95 = WilsonInterval(s.stable, s.grasps);
+    s.perturbed_rate = static_cast<double>(s.perturbed_stable) / std::max(1, s.perturbed_trials);
+    if (s.perturbed_trials > 0) {
+      s.perturbed_ci95 = WilsonInterval(s.perturbed_stable, s.perturbed_trials);
+    }
+    result->summary.push_back(s);
+  }
+}
+
 }  // namespace
 
 Eigen::Isometry3d PerturbedObjectPose(const Eigen::Isometry3d& world_from_object,
@@ -242,21 +292,9 @@ GraspTrialsResult RunGraspTrials(const OdeRuntime& runtime, const Robot& human_h
                                  const std::vector<TransferMethod>& methods,
                                  const GraspTrialsOptions& options, const GraspTrialHooks& hooks) {
   CheckTrialsOptions(options);
-  GraspTrialsResult result;
-  result.methods = methods;
-  result.stability.sim.mu = options.mu;
-  result.stability.sim.contact_patch_radius = options.contact_patch_radius;
-  result.close_by = options.close_by;
-  result.perturb = options.perturb;
-  result.seed = options.seed;
-  result.perturb_translation = options.perturb_translation;
-  result.perturb_rotation_deg = options.perturb_rotation_deg;
+  GraspTrialsResult result = ResultHeader(methods, options);
   // Every setup first, so that a bad grasp or object fails before any work.
-  std::vector<TransferSetup> setups;
-  for (const HumanGrasp& g : grasps) {
-    setups.push_back(
-        MakeTransferSetup(human_hand, sdh_source, FindGraspObject(objects, g.object), g));
-  }
+  const std::vector<TransferSetup> setups = MakeSetups(human_hand, sdh_source, objects, grasps);
   {
     TransferQueue queue(setups, methods, options.close_by,
                         methods.empty() ? 0 : options.threads - 1);
@@ -277,24 +315,50 @@ GraspTrialsResult RunGraspTrials(const OdeRuntime& runtime, const Robot& human_h
       result.trials.push_back(std::move(row));
     }
   }
-  for (size_t mi = 0; mi < methods.size(); ++mi) {
-    GraspMethodSummary s;
-    s.method = methods[mi];
-    s.grasps = static_cast<int>(result.trials.size());
-    for (const std::vector<GraspTrial>& row : result.trials) {
-      const GraspTrial& t = row[mi];
-      s.stable += t.stability.stable ? 1 : 0;
-      result.all_stable = result.all_stable && t.stability.stable;
-      s.perturbed_trials += static_cast<int>(t.perturbed.size());
-      s.perturbed_stable += t.perturbed_stable;
-    }
-    s.rate = static_cast<double>(s.stable) / std::max(1, s.grasps);
-    if (s.grasps > 0) s.ci95 = WilsonInterval(s.stable, s.grasps);
-    s.perturbed_rate = static_cast<double>(s.perturbed_stable) / std::max(1, s.perturbed_trials);
-    if (s.perturbed_trials > 0)
-      s.perturbed_ci95 = WilsonInterval(s.perturbed_stable, s.perturbed_trials);
-    result.summary.push_back(s);
+  Summarise(&result);
+  return result;
+}
+
+GraspTrialsPlan::GraspTrialsPlan(const Robot& human_hand, const Robot& sdh_source,
+                                 const std::vector<GraspObject>& objects,
+                                 const std::vector<HumanGrasp>& grasps,
+                                 const std::vector<TransferMethod>& methods,
+                                 const GraspTrialsOptions& options)
+    : grasps_(grasps), methods_(methods), options_(options) {
+  CheckTrialsOptions(options);
+  stability_ = ResultHeader(methods, options).stability;
+  setups_ = MakeSetups(human_hand, sdh_source, objects, grasps);
+}
+
+GraspTrial GraspTrialsPlan::RunTrial(const OdeRuntime& runtime, size_t j,
+                                     const GraspTrialHooks& hooks) const {
+  if (j >= num_trials()) throw std::out_of_range("grasp trials: no such trial");
+  GraspTrial trial = PrepareTrial(setup(j), method(j), options_.close_by);
+  Simulate(runtime, setup(j), stability_, hooks, &trial);
+  RunPerturbed(runtime, setup(j), stability_, options_, &trial);
+  return trial;
+}
+
+GraspTrialsResult GraspTrialsPlan::Assemble(std::vector<std::optional<GraspTrial>> trials) const {
+  if (trials.size() != num_trials()) {
+    throw std::invalid_argument("grasp trials: one entry per trial expected");
   }
+  GraspTrialsResult result = ResultHeader(methods_, options_);
+  for (size_t gi = 0; gi < grasps_.size() && result.complete; ++gi) {
+    std::vector<GraspTrial> row;
+    for (size_t mi = 0; mi < methods_.size(); ++mi) {
+      std::optional<GraspTrial>& t = trials[gi * methods_.size() + mi];
+      if (!t) {
+        result.complete = false;
+        break;
+      }
+      row.push_back(std::move(*t));
+    }
+    if (!result.complete) break;
+    result.grasps.push_back(grasps_[gi]);
+    result.trials.push_back(std::move(row));
+  }
+  Summarise(&result);
   return result;
 }
 

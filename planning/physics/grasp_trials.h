@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -160,6 +161,36 @@ GraspTrialsResult RunGraspTrials(const OdeRuntime& runtime, const Robot& human_h
                                  const std::vector<TransferMethod>& methods,
                                  const GraspTrialsOptions& options,
                                  const GraspTrialHooks& hooks = {});
+
+// RunGraspTrials taken apart into its independent trials, for callers that run them elsewhere
+// (the demo: in forked processes). The constructor checks the options and makes every setup as
+// RunGraspTrials does (the same exceptions); trial j (0 <= j < num_trials(), grasp-major: grasp
+// j / methods.size(), method j % methods.size()) is RunTrial(j), the nominal trial with the hooks
+// and its perturbed repetitions: exactly what RunGraspTrials computes for it, in any process and
+// order. Assemble() gives RunGraspTrials' result from the trials (all of them, or with
+// complete = false the finished grasps of a stopped run: the first grasps whose trials are all
+// given). Keeps references to its arguments.
+class GraspTrialsPlan {
+ public:
+  GraspTrialsPlan(const Robot& human_hand, const Robot& sdh_source,
+                  const std::vector<GraspObject>& objects, const std::vector<HumanGrasp>& grasps,
+                  const std::vector<TransferMethod>& methods, const GraspTrialsOptions& options);
+
+  size_t num_trials() const { return setups_.size() * methods_.size(); }
+  const TransferSetup& setup(size_t j) const { return setups_[j / methods_.size()]; }
+  TransferMethod method(size_t j) const { return methods_[j % methods_.size()]; }
+  GraspTrial RunTrial(const OdeRuntime& runtime, size_t j, const GraspTrialHooks& hooks) const;
+  // `trials[j]` is trial j when present (nullopt: not run); the result holds the grasps before
+  // the first one with a missing trial, complete = false when there is one.
+  GraspTrialsResult Assemble(std::vector<std::optional<GraspTrial>> trials) const;
+
+ private:
+  const std::vector<HumanGrasp>& grasps_;
+  const std::vector<TransferMethod>& methods_;
+  const GraspTrialsOptions& options_;
+  std::vector<TransferSetup> setups_;
+  StabilityOptions stability_;
+};
 
 // The same with GraspTrialsOptions{mu}.
 GraspTrialsResult RunGraspTrials(const OdeRuntime& runtime, const Robot& human_hand,

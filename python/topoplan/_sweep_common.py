@@ -13,7 +13,8 @@ import time
 CSV_HEADER = (
     "angle_deg,planner,seed,success,failure_reason,collision_checks,narrow_phase_calls,"
     "time_s,path_length,reach_error_m,pole_offset_m,state_queries,bool_pair_tests,"
-    "distance_pair_tests,cpu_time_s,setup_time_s"
+    "distance_pair_tests,cpu_time_s,setup_time_s,goal_samples,goal_sampler_state_queries,"
+    "goal_sampler_pair_tests,goal_sampler_cpu_time_s"
 )
 
 
@@ -49,6 +50,10 @@ def row_line(row):
             str(row["distance_pair_tests"]),
             fmt_number(row["cpu_time_s"]),
             fmt_number(row["setup_time_s"]),
+            str(row["goal_samples"]),
+            str(row["goal_sampler_state_queries"]),
+            str(row["goal_sampler_pair_tests"]),
+            fmt_number(row["goal_sampler_cpu_time_s"]),
         ]
     )
 
@@ -98,6 +103,10 @@ def parse_unwrap_row(parts):
         "distance_pair_tests": int(parts[13]),
         "cpu_time_s": float(parts[14]),
         "setup_time_s": float(parts[15]),
+        "goal_samples": int(parts[16]),
+        "goal_sampler_state_queries": int(parts[17]),
+        "goal_sampler_pair_tests": int(parts[18]),
+        "goal_sampler_cpu_time_s": float(parts[19]),
     }
 
 

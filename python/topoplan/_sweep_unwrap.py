@@ -132,6 +132,12 @@ def run_unwrap(angle, planner, seed, budget=-1, seeds=1, perturb=0.0, resolved=N
         "distance_pair_tests": int(report["distance_pair_tests"]),
         "cpu_time_s": float(report["cpu_time_s"]),
         "setup_time_s": 0.0,
+        # The goal-region planners' sampler share (0 for the others).
+        "goal_samples": int(report["goal_samples"]),
+        "goal_sampler_state_queries": int(report["goal_sampler_state_queries"]),
+        "goal_sampler_pair_tests": int(report["goal_sampler_bool_pair_tests"])
+        + int(report["goal_sampler_distance_pair_tests"]),
+        "goal_sampler_cpu_time_s": float(report["goal_sampler_cpu_time_s"]),
     }
 
 

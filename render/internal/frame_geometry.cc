@@ -2,13 +2,12 @@
 // frame_geometry.h).
 #include "render/internal/frame_geometry.h"
 
-#include "base/numbers.h"
-
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
 
+#include "base/numbers.h"
 #include "render/renderer.h"
 
 namespace render::internal {
@@ -100,6 +99,44 @@ Eigen::Matrix4f LightViewProjection(const BoundingSphere& sphere,
   ortho(2, 2) = -2.0f / (f - n);
   ortho(2, 3) = -(f + n) / (f - n);
   return ortho * ViewMatrix(light_cam);
+}
+
+PixelRect GroundShadowRect(const Bounds& casters, float margin, const Eigen::Vector3f& direction,
+                           float plane_height, const Eigen::Matrix4f& view_proj, int width,
+                           int height) {
+  const PixelRect all{0, 0, width, height};
+  if (casters.empty()) return {};
+  if (!(direction.z() > 0.05f)) return all;
+  const Eigen::Vector3f lo = casters.lo - Eigen::Vector3f::Constant(margin);
+  const Eigen::Vector3f hi = casters.hi + Eigen::Vector3f::Constant(margin);
+  // The shadow region on the plane lies in the convex hull of the box corners projected along
+  // the light; its image lies in the hull of the corners' images while all are in front of the
+  // camera (w > 0).
+  float u0 = 1e30f, v0 = 1e30f, u1 = -1e30f, v1 = -1e30f;
+  for (int corner = 0; corner < 8; ++corner) {
+    const Eigen::Vector3f p((corner & 1) ? hi.x() : lo.x(), (corner & 2) ? hi.y() : lo.y(),
+                            (corner & 4) ? hi.z() : lo.z());
+    const Eigen::Vector3f on_plane = p - direction * ((p.z() - plane_height) / direction.z());
+    const Eigen::Vector4f c = view_proj * on_plane.homogeneous();
+    if (!(c.w() > 1e-6f)) return all;
+    const float u = (0.5f * c.x() / c.w() + 0.5f) * static_cast<float>(width);
+    const float v = (0.5f * c.y() / c.w() + 0.5f) * static_cast<float>(height);
+    if (!std::isfinite(u) || !std::isfinite(v)) return all;
+    u0 = std::min(u0, u);
+    u1 = std::max(u1, u);
+    v0 = std::min(v0, v);
+    v1 = std::max(v1, v);
+  }
+  // To whole pixels, one more on every side, clamped to the image (in float first: no overflow).
+  const auto to_pixel = [](float x, int size) {
+    return static_cast<int>(std::clamp(x, 0.0f, static_cast<float>(size)));
+  };
+  PixelRect r;
+  r.x0 = to_pixel(std::floor(u0) - 1.0f, width);
+  r.x1 = to_pixel(std::ceil(u1) + 1.0f, width);
+  r.y0 = to_pixel(std::floor(v0) - 1.0f, height);
+  r.y1 = to_pixel(std::ceil(v1) + 1.0f, height);
+  return r.empty() ? PixelRect{} : r;
 }
 
 }  // namespace render::internal

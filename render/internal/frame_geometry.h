@@ -46,4 +46,23 @@ std::vector<Light> FrameLights(const Scene& scene, const Camera& camera);
 // [0.5 radius, 3.5 radius].
 Eigen::Matrix4f LightViewProjection(const BoundingSphere& sphere, const Eigen::Vector3f& direction);
 
+// A rectangle of pixels in GL window coordinates (x right, y up from the bottom row): columns
+// x0 <= x < x1, rows y0 <= y < y1.
+struct PixelRect {
+  int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+  bool empty() const { return x1 <= x0 || y1 <= y0; }
+  bool operator==(const PixelRect&) const = default;
+};
+
+// Pixels of a width x height image (clip from world `view_proj`) where the ground plane
+// z = plane_height can lie in the shadow of `casters` (bounds of everything drawn into the
+// shadow map) from a light along unit `direction` (towards the light): the screen bounds of the
+// casters' box, grown by `margin` (the shadow map's filter reach, world units), projected along
+// the light onto the plane, plus one pixel. Conservative: the whole image when the light is
+// within ~3 degrees of the horizon or below it, or when that region reaches behind the camera;
+// empty when there are no casters or the region is off screen.
+PixelRect GroundShadowRect(const Bounds& casters, float margin, const Eigen::Vector3f& direction,
+                           float plane_height, const Eigen::Matrix4f& view_proj, int width,
+                           int height);
+
 }  // namespace render::internal

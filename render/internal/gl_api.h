@@ -69,6 +69,7 @@ namespace render::internal {
   X(PFNGLUNIFORM2FPROC, Uniform2f)                                           \
   X(PFNGLUNIFORM3FPROC, Uniform3f)                                           \
   X(PFNGLUNIFORM4FPROC, Uniform4f)                                           \
+  X(PFNGLUNIFORM1FVPROC, Uniform1fv)                                         \
   X(PFNGLUNIFORM3FVPROC, Uniform3fv)                                         \
   X(PFNGLUNIFORMMATRIX4FVPROC, UniformMatrix4fv)                             \
   X(PFNGLGENVERTEXARRAYSPROC, GenVertexArrays)                               \

@@ -27,6 +27,7 @@ struct GpuMesh {
   GLuint vao = 0, vertex_buffer = 0, index_buffer = 0, instance_buffer = 0;
   GLsizei index_count = 0;
   float bound_radius = 1.0f;  // radius about the mesh origin enclosing every vertex
+  bool closed = false;  // closed surface, counter-clockwise outside (back faces never visible)
 };
 
 // diag(s.x, s.y, s.z, 1).

@@ -2,6 +2,7 @@
 // segment and bead becomes an instance of a unit mesh (spheres and cylinders at the level of
 // detail of their projected radius) or of a cached user mesh, batched per mesh when opaque and
 // listed one by one when translucent (alpha < 1).
+#include <Eigen/LU>
 #include <algorithm>
 #include <vector>
 
@@ -14,12 +15,12 @@ using internal::Scale;
 using internal::Translate;
 
 void Renderer::Impl::Collect(const Scene& scene) {
-  for (auto& batch : opaque_) batch.second.clear();
+  for (Batch& batch : opaque_) batch.items.clear();
   translucent_.clear();
   for (const Shape& s : scene.shapes) CollectShape(s);
   for (const Tube& t : scene.tubes) CollectTube(t);
   // Batches unused this frame may point at meshes dropped from the cache: forget them.
-  std::erase_if(opaque_, [](const auto& batch) { return batch.second.empty(); });
+  std::erase_if(opaque_, [](const Batch& batch) { return batch.items.empty(); });
 }
 
 void Renderer::Impl::CollectShape(const Shape& s) {
@@ -88,13 +89,15 @@ void Renderer::Impl::Add(const GpuMesh* mesh, const Eigen::Matrix4f& model,
     translucent_.emplace_back(mesh, inst);
     return;
   }
-  for (auto& batch : opaque_) {
-    if (batch.first == mesh) {
-      batch.second.push_back(inst);
+  // A mirroring placement turns the mesh inside out (clockwise outside): draw it unculled.
+  const bool cull = mesh->closed && model.block<3, 3>(0, 0).determinant() > 0.0f;
+  for (Batch& batch : opaque_) {
+    if (batch.mesh == mesh && batch.cull == cull) {
+      batch.items.push_back(inst);
       return;
     }
   }
-  opaque_.emplace_back(mesh, std::vector<Instance>{inst});
+  opaque_.push_back(Batch{mesh, cull, {inst}});
 }
 
 int Renderer::Impl::Lod(const Eigen::Vector3f& centre, float radius) const {

@@ -12,6 +12,7 @@
 #include <utility>
 #include <vector>
 
+#include "render/internal/frame_geometry.h"
 #include "render/internal/gl_api.h"
 #include "render/internal/instance.h"
 #include "render/internal/overlay_pass.h"
@@ -27,6 +28,9 @@ struct LitFrame {
   Eigen::Matrix4f view_proj;        // camera clip from world
   Eigen::Matrix4f light_view_proj;  // light 0's shadow-map clip from world (identity: no shadows)
   bool shadows = false;
+  // Pixel rectangle of the ground that light 0 can shadow (GroundShadowRect); the grid outside
+  // it is drawn without shadow lookups.
+  PixelRect ground_shadow_rect;
   int num_lights = 0;                              // 1..4
   std::array<float, 12> light_dir{}, light_rgb{};  // xyz per light; directions towards the light
   Eigen::Vector3f eye, up;                         // camera position and unit up
@@ -55,6 +59,13 @@ class Renderer::Impl {
   using GpuMesh = internal::GpuMesh;
   using Instance = internal::Instance;
 
+  // Opaque instances of one mesh drawn together; `cull`: back faces may be culled in the lit pass
+  // (closed unit meshes placed with a positive determinant, whose back faces are hidden).
+  struct Batch {
+    const GpuMesh* mesh = nullptr;
+    bool cull = false;
+    std::vector<Instance> items;
+  };
   struct CachedMesh {
     std::weak_ptr<const TriangleMesh> owner;
     GpuMesh gpu;
@@ -71,17 +82,28 @@ class Renderer::Impl {
 
   // renderer_passes.cc: one frame.
   GLint Uniform(GLuint program, const char* name) const;
-  // Bounds of this frame's instances and of the scene's lines (world frame).
-  internal::Bounds FrameBounds(const std::vector<Lines>& lines) const;
+  // Bounds of this frame's opaque instances (the shadow casters; world frame).
+  internal::Bounds OpaqueBounds() const;
+  // `opaque` plus this frame's translucent instances and the scene's lines.
+  internal::Bounds FrameBounds(const internal::Bounds& opaque,
+                               const std::vector<Lines>& lines) const;
   // Renders the opaque instances into the shadow map from `light_view_proj` (clip from world).
   void ShadowPass(const Eigen::Matrix4f& light_view_proj);
-  // Clears framebuffer `fbo` to the scene background and draws grid, opaque instances,
+  // Draws the opaque batches with the current program; `cull_back_faces`: cull those of the
+  // batches that allow it (Batch::cull).
+  void DrawOpaque(bool cull_back_faces);
+  // Clears framebuffer `fbo` to the scene background and draws opaque instances, the grid,
   // translucent instances and lines.
   void LitPass(const Scene& scene, const Camera& camera, int width, int height, GLuint fbo,
                const internal::LitFrame& frame);
-  // Binds the lit program variant (with or without grid lines) and sets its shared uniforms.
-  GLuint UseLitProgram(const internal::LitFrame& frame, bool grid);
-  void DrawGrid(const Grid& grid, const internal::LitFrame& frame);
+  // The lit mesh program variant for `shadows` and 1..4 lights, linked on first use.
+  GLuint MeshProgram(bool shadows, int num_lights);
+  // Binds the lit mesh program variant and sets its uniforms.
+  void UseLitProgram(const internal::LitFrame& frame);
+  // The grid: the shadowing variant inside frame.ground_shadow_rect, the plain one around it.
+  void DrawGrid(const Grid& grid, const internal::LitFrame& frame, int width, int height);
+  // Binds grid program variant `shadows` and sets its uniforms (lighting of the flat plane).
+  void UseGridProgram(const Grid& grid, const internal::LitFrame& frame, bool shadows);
   // translucent_ sorted back to front by view depth of the instance origin, then blended.
   void DrawTranslucent(const Camera& camera);
   void DrawLines(const std::vector<Lines>& lines, const Eigen::Matrix4f& view_proj);
@@ -115,7 +137,8 @@ class Renderer::Impl {
   void ReleaseTargets();
 
   internal::GlApi gl_;
-  GLuint mesh_programs_[2][2] = {{0, 0}, {0, 0}};  // [shadows][grid]
+  GLuint mesh_programs_[2][4] = {};   // [shadows][lights - 1]; linked on first use
+  GLuint grid_programs_[2] = {0, 0};  // [shadows]
   GLuint depth_program_ = 0, line_program_ = 0;
   GpuMesh sphere_[3], cylinder_[3], box_, quad_;  // spheres and cylinders per level of detail
   // Pixels per unit length at unit depth (f of the pinhole model) and the camera, for choosing
@@ -130,7 +153,7 @@ class Renderer::Impl {
   Target cache_;  // CacheScene()'s image
   int cache_w_ = 0, cache_h_ = 0;
   // Per-frame scratch, reused between frames (no reallocation once sized).
-  std::vector<std::pair<const GpuMesh*, std::vector<Instance>>> opaque_;
+  std::vector<Batch> opaque_;
   std::vector<std::pair<const GpuMesh*, Instance>> translucent_;
   std::vector<Instance> scratch_;
   std::unique_ptr<internal::OverlayPass> overlay_pass_;  // created on first use

@@ -82,6 +82,29 @@ void main() {
 }
 )";
 
+const char* const kShadowLookupShader = R"(
+#if SHADOWS
+uniform sampler2DShadow u_shadow_map;
+uniform float u_shadow_texel;
+#endif
+
+// Fraction of light 0 reaching a point whose shadow-map clip position is `light`, on a surface
+// with n.l = `ndl`: 4 bilinear depth comparisons 1.5 texels apart (percentage-closer filtering;
+// soft edges about 3 shadow-map texels wide).
+float Shadow(vec4 light, float ndl) {
+#if !SHADOWS
+  return 1.0;
+#else
+  vec3 p = light.xyz / light.w * 0.5 + 0.5;
+  if (p.x <= 0.0 || p.x >= 1.0 || p.y <= 0.0 || p.y >= 1.0 || p.z >= 1.0) return 1.0;
+  float bias = 0.001 + 0.004 * (1.0 - clamp(ndl, 0.0, 1.0));
+  vec2 o = vec2(0.75 * u_shadow_texel, -0.75 * u_shadow_texel);
+  return 0.5 * (texture(u_shadow_map, vec3(p.xy + o.xx, p.z - bias)) +
+                texture(u_shadow_map, vec3(p.xy - o.xx, p.z - bias)));
+#endif
+}
+)";
+
 const char* const kMeshFragmentShader = R"(
 in vec3 v_world;
 in vec3 v_normal;
@@ -90,65 +113,63 @@ in vec2 v_material;
 in vec4 v_light;
 uniform vec3 u_eye;
 uniform vec3 u_up;
-uniform int u_num_lights;
 uniform vec3 u_light_dir[4];
 uniform vec3 u_light_rgb[4];
 uniform vec3 u_ambient;
-uniform sampler2DShadow u_shadow_map;
-uniform float u_shadow_texel;
-uniform vec2 u_grid_center;
-uniform float u_grid_spacing;
-uniform vec4 u_grid_line;
 out vec4 frag_color;
-
-// Fraction of light 0 reaching this fragment: 4 bilinear depth comparisons 1.5 texels apart
-// (percentage-closer filtering; soft edges about 3 shadow-map texels wide).
-float Shadow(vec3 n, vec3 l) {
-#if !SHADOWS
-  return 1.0;
-#else
-  vec3 p = v_light.xyz / v_light.w * 0.5 + 0.5;
-  if (p.x <= 0.0 || p.x >= 1.0 || p.y <= 0.0 || p.y >= 1.0 || p.z >= 1.0) return 1.0;
-  float bias = 0.001 + 0.004 * (1.0 - clamp(dot(n, l), 0.0, 1.0));
-  vec2 o = vec2(0.75 * u_shadow_texel, -0.75 * u_shadow_texel);
-  return 0.5 * (texture(u_shadow_map, vec3(p.xy + o.xx, p.z - bias)) +
-                texture(u_shadow_map, vec3(p.xy - o.xx, p.z - bias)));
-#endif
-}
-
-#if GRID
-// Grid line coverage (0..1) of lines every `spacing` world units, about `px` pixels wide.
-float GridLines(vec2 g, float px) {
-  vec2 fw = max(fwidth(g), vec2(1e-6));
-  vec2 d = abs(fract(g - 0.5) - 0.5) / fw;
-  return 1.0 - clamp(min(d.x, d.y) / px, 0.0, 1.0);
-}
-#endif
 
 void main() {
   vec3 n = normalize(v_normal);
   if (!gl_FrontFacing) n = -n;
   vec3 v = normalize(u_eye - v_world);
   vec3 base = v_color.rgb;
-#if GRID
-  vec2 g = (v_world.xy - u_grid_center) / u_grid_spacing;
-  float fade = clamp(1.5 - 3.0 * max(fwidth(g).x, fwidth(g).y), 0.0, 1.0);
-  base = mix(base, u_grid_line.rgb, 0.7 * fade * GridLines(g, 1.0));
-  base = mix(base, u_grid_line.rgb * 0.75, GridLines(g / 5.0, 1.2));
-#endif
   float hemi = 0.5 + 0.5 * dot(n, u_up);
   vec3 color = base * u_ambient * mix(0.6, 1.0, hemi);
-  for (int k = 0; k < 4; ++k) {
-    if (k >= u_num_lights) break;
+  // Light 0's shadow once, outside the loop (llvmpipe runs both sides of every branch).
+  float shadow0 = Shadow(v_light, dot(n, u_light_dir[0]));
+  for (int k = 0; k < NUM_LIGHTS; ++k) {
     vec3 l = u_light_dir[k];
     float ndl = dot(n, l);
     if (ndl <= 0.0) continue;
-    float s = (k == 0) ? Shadow(n, l) : 1.0;
+    float s = (k == 0) ? shadow0 : 1.0;
     vec3 h = normalize(l + v);
     float spec = v_material.x * pow(max(dot(n, h), 0.0), v_material.y);
     color += s * u_light_rgb[k] * (base * ndl + vec3(spec));
   }
   frag_color = vec4(clamp(color, 0.0, 1.0), v_color.a);
+}
+)";
+
+const char* const kGridFragmentShader = R"(
+in vec3 v_world;
+in vec4 v_light;
+uniform vec4 u_plane_rgba;
+uniform vec2 u_grid_center;
+uniform float u_grid_spacing;
+uniform vec4 u_grid_line;
+// Index 0: the plane seen from above (front face, normal +z); 1: from below (normal -z).
+uniform vec3 u_unshadowed[2];  // ambient (hemispheric) + lights 1..3: rgb max(n.l, 0)
+uniform vec3 u_key[2];         // light 0: rgb max(n.l, 0)
+uniform float u_key_ndl[2];    // light 0: n.l (shadow bias)
+out vec4 frag_color;
+
+// Grid line coverage (0..1) of lines every `spacing` world units, about `px` pixels wide.
+float GridLines(vec2 g, float px) {
+  vec2 fw = max(fwidth(g), vec2(1e-6));
+  vec2 d = abs(fract(g - 0.5) - 0.5) / fw;
+  return 1.0 - clamp(min(d.x, d.y) / px, 0.0, 1.0);
+}
+
+void main() {
+  int side = gl_FrontFacing ? 0 : 1;
+  vec3 base = u_plane_rgba.rgb;
+  vec2 g = (v_world.xy - u_grid_center) / u_grid_spacing;
+  float fade = clamp(1.5 - 3.0 * max(fwidth(g).x, fwidth(g).y), 0.0, 1.0);
+  base = mix(base, u_grid_line.rgb, 0.7 * fade * GridLines(g, 1.0));
+  base = mix(base, u_grid_line.rgb * 0.75, GridLines(g / 5.0, 1.2));
+  float s = Shadow(v_light, u_key_ndl[side]);
+  vec3 color = base * (u_unshadowed[side] + s * u_key[side]);
+  frag_color = vec4(clamp(color, 0.0, 1.0), u_plane_rgba.a);
 }
 )";
 

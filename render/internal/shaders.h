@@ -18,14 +18,21 @@ GLuint CompileShader(const GlApi& gl, GLenum stage, const char* source, const ch
 GLuint LinkProgram(const GlApi& gl, const char* vertex_source, const char* fragment_source,
                    const char* what, const char* prefix = "");
 
-// Lit instanced meshes (shapes, tube pieces, the ground grid). Per-vertex: position (0), normal
-// (1). Per-instance: model matrix columns (2..5), RGBA colour (6), material (7: specular,
-// shininess).
-// These two have no #version line: the renderer prepends "#version 330 core" and the variant
-// switches "#define SHADOWS 0|1" (shadow-map lookup for light 0) and "#define GRID 0|1"
-// (procedural grid lines), compiling one program per variant instead of branching per fragment.
+// Lit instanced meshes (shapes, tube pieces; the vertex shader also places the ground grid).
+// Per-vertex: position (0), normal (1). Per-instance: model matrix columns (2..5), RGBA colour
+// (6), material (7: specular, shininess), normal matrix columns (8..10).
+// These have no #version line: the renderer prepends "#version 330 core" and the variant
+// switches "#define SHADOWS 0|1" (shadow-map lookup for light 0) and, for the mesh fragment
+// shader, "#define NUM_LIGHTS 1..4", compiling one program per variant instead of branching per
+// fragment (llvmpipe evaluates both sides of a branch and every unrolled loop iteration), and
+// puts kShadowLookupShader (Shadow(light_clip, n.l)) before each fragment shader.
 extern const char* const kMeshVertexShader;
+extern const char* const kShadowLookupShader;
 extern const char* const kMeshFragmentShader;
+// The ground grid: procedural lines on the plane colour, lit by per-frame constants (the plane
+// is flat and has no highlight), so a fragment costs the line pattern and at most one shadow
+// lookup instead of the lighting loop.
+extern const char* const kGridFragmentShader;
 // Depth-only pass from the first light into the shadow map (same vertex layout).
 extern const char* const kDepthVertexShader;
 extern const char* const kDepthFragmentShader;

@@ -25,7 +25,7 @@ def key(row):
 
 
 def without_time(row):
-    return {k: v for k, v in row.items() if k not in ("time_s", "cpu_time_s", "setup_time_s")}
+    return {k: v for k, v in row.items() if k not in ("time_s", "cpu_time_s", "setup_time_s", "goal_sampler_cpu_time_s")}
 
 
 def run_sweep(*args, timeout=600):

@@ -3,7 +3,9 @@
 header, one row per run, the geometry's name and split, the start coil reached the angle, and
 (the property) the frozen set-up solved it: success, reach within the 5 cm criterion, the set-up's
 goal meeting the end conditions.
-Usage: check_geometry_csv.py DIR NAME SPLIT ANGLE_DEG"""
+With --closed (a scenario judged by the chord-closed winding, success.winding.final_closure
+"chord"): the final winding is that of the closed loop, a whole number of turns (0: unwrapped).
+Usage: check_geometry_csv.py DIR NAME SPLIT ANGLE_DEG [--closed]"""
 import csv
 import os
 import sys
@@ -16,6 +18,7 @@ HEADER = ("geometry,split,angle_deg,planner,seed,start_wrap_deg,success,failure_
 
 def main():
     out, name, split, angle = sys.argv[1], sys.argv[2], sys.argv[3], float(sys.argv[4])
+    closed = sys.argv[5:] == ["--closed"]
     with open(os.path.join(out, "geometry.csv")) as f:
         text = f.read()
     lines = text.splitlines()
@@ -30,8 +33,12 @@ def main():
     assert 0.0 <= float(r["reach_error_m"]) < 0.05, r
     assert abs(float(r["final_writhe_total"])) < 0.05, r
     assert r["goal_meets_end_conditions"] == "1", r
-    # The arm unwrapped: its final winding is near that of the straight base -> target segment.
-    assert abs(float(r["final_winding_turns"]) - float(r["unwound_winding_turns"])) < 0.1, r
+    if closed:
+        # The loop arm + chord does not go round the pole: exactly 0 turns (up to rounding).
+        assert abs(float(r["final_winding_turns"])) < 1e-9, r
+    else:
+        # The arm unwrapped: its final winding is near that of the straight base -> target segment.
+        assert abs(float(r["final_winding_turns"]) - float(r["unwound_winding_turns"])) < 0.1, r
     assert int(r["state_queries"]) > 0, r
     with open(os.path.join(out, "unwrap.csv")) as f:
         assert len(f.read().splitlines()) == 2, "unwrap.csv: expected a header and one row"

@@ -148,5 +148,34 @@ TEST(ForkedJobsTest, RefusesNoWorkers) {
   EXPECT_THROW(RunForkedJobs({}, o), std::invalid_argument);
 }
 
+TEST(ForkedJobsTest, SharedCounterGivesEachValueToOneChild) {
+  const fs::path dir = TempDir("forked_jobs_counter");
+  SharedCounter next;
+  std::vector<ForkedJob> jobs;
+  for (int i = 0; i < 3; ++i) {
+    const fs::path out = dir / ("taken" + std::to_string(i));
+    jobs.push_back({"job" + std::to_string(i),
+                    [&next, out] {
+                      std::ofstream f(out);
+                      for (size_t k = next.Next(); k < 200; k = next.Next()) f << k << "\n";
+                      return 0;
+                    },
+                    ""});
+  }
+  ForkedJobsOptions options;
+  options.workers = 3;
+  for (const ForkedJobResult& r : RunForkedJobs(jobs, options)) EXPECT_EQ(r.exit_code, 0);
+  std::vector<int> seen(200, 0);
+  for (int i = 0; i < 3; ++i) {
+    std::ifstream f(dir / ("taken" + std::to_string(i)));
+    for (size_t k; f >> k;) {
+      ASSERT_LT(k, 200u);
+      ++seen[k];
+    }
+  }
+  for (size_t k = 0; k < seen.size(); ++k) EXPECT_EQ(seen[k], 1) << k;
+  EXPECT_GE(next.Next(), 203u);  // each child took one value past the end
+}
+
 }  // namespace
 }  // namespace app

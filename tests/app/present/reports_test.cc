@@ -90,7 +90,8 @@ TEST(ReportsTest, UnwrapTableMatchesCsv) {
   EXPECT_EQ(line,
             "angle_deg,planner,seed,success,failure_reason,collision_checks,narrow_phase_calls,"
             "time_s,path_length,reach_error_m,pole_offset_m,state_queries,bool_pair_tests,"
-            "distance_pair_tests,cpu_time_s,setup_time_s");
+            "distance_pair_tests,cpu_time_s,setup_time_s,goal_samples,goal_sampler_state_queries,"
+            "goal_sampler_pair_tests,goal_sampler_cpu_time_s");
   while (std::getline(in, line)) {
     std::stringstream ss(line);
     std::string angle, planner, seed, success, reason, checks;

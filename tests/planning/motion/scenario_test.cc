@@ -273,7 +273,8 @@ TEST(Planners, NamesRoundTripAndUnknownNamesListTheValidOnes) {
     FAIL();
   } catch (const std::invalid_argument& e) {
     EXPECT_EQ(std::string(e.what()),
-              "unknown planner 'astar' (aico, rrt, birrt, ompl-rrt, ompl-rrtconnect, aico-goal)");
+              "unknown planner 'astar' (aico, rrt, birrt, ompl-rrt, ompl-rrtconnect, aico-goal, "
+              "rrt-region, birrt-region)");
   }
   for (const auto& e : kSolveStatusNames) {
     EXPECT_EQ(base::ParseEnum<SolveStatus>(StatusName(e.value), "status"), e.value);

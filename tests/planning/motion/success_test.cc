@@ -10,10 +10,12 @@
 #include <iterator>
 #include <string>
 
-#include "planning/robot/kinematics.h"
+#include "planning/features/feature.h"
 #include "planning/motion/planner.h"
 #include "planning/motion/scenario.h"
-#include "planning/features/feature.h"
+#include "planning/motion/scenario_spec.h"
+#include "planning/motion/unwrap_geometry.h"
+#include "planning/robot/kinematics.h"
 
 namespace planning {
 namespace {
@@ -119,6 +121,69 @@ TEST(JudgePlan, WindingCriterionNeedsAReportPairAndPositiveBounds) {
       EXPECT_NE(std::string(e.what()).find("success.winding"), std::string::npos) << e.what();
     }
   }
+}
+
+// "final_closure": "chord" judges the loop the arm makes with its chord (last point back to the
+// first): its winding about the pole's line is a whole number of turns (±2 for the coil at 720°,
+// 0 unwrapped), where the open chain's is not. With the pole tilted by 20° the set-up's goal (the
+// arm unwrapped at the target) winds about a third of a turn about the moved line, so the open
+// criterion calls it wrapped; closed by its chord it winds 0 and meets the winding condition.
+TEST(JudgePlan, ChordClosureCountsWholeTurnsAboutThePole) {
+  for (const double wrap : {0.0, 360.0, 720.0}) {
+    const auto s = Unwrap(wrap);
+    SuccessCriteria open = s->success, chord = s->success;
+    chord.winding_closed_by_chord = true;
+    const Eigen::VectorXd q0 = s->initial.problem.q0;
+    const double w_open = CheckEndState(*s, s->initial, q0, false, open).winding_turns;
+    const double w_chord = CheckEndState(*s, s->initial, q0, false, chord).winding_turns;
+    SCOPED_TRACE("wrap " + std::to_string(wrap));
+    EXPECT_NEAR(w_chord, std::round(w_chord), 1e-9);
+    EXPECT_NEAR(std::abs(w_chord), std::round(wrap / 360.0), 1e-9);
+    EXPECT_NEAR(w_open, w_chord, 0.25);  // the chord winds less than a quarter turn
+  }
+  ScenarioSpec spec = ParseScenarioSpec(kAssets + "scenarios/unwrap.json");
+  UnwrapGeometry g;
+  g.pole_tilt_deg = Eigen::Vector2d(20.0, 0.0);
+  ApplyUnwrapGeometry(g, &spec);
+  const auto s = SetUpScenario(spec, 0.0);
+  Trajectory still;  // the set-up's goal q̂_T, unwrapped at the target
+  still.q = s->goal_q;
+  SuccessCriteria open = s->success, chord = s->success;
+  chord.winding_closed_by_chord = true;
+  const PlanVerdict v_open = JudgePlan(*s, s->initial, still, open);
+  const PlanVerdict v_chord = JudgePlan(*s, s->initial, still, chord);
+  EXPECT_GE(std::abs(v_open.final_winding_turns), s->success.winding_final_below);
+  EXPECT_NEAR(v_chord.final_winding_turns, 0.0, 1e-9);
+  EXPECT_FALSE(CheckEndState(*s, s->initial, still.q, false, open).writhe_reached);
+  EXPECT_TRUE(CheckEndState(*s, s->initial, still.q, false, chord).writhe_reached);
+}
+
+// The closure key: "open" (the default) or "chord"; anything else names the key.
+TEST(JudgePlan, ChordClosureKeyIsChecked) {
+  const std::string text = [] {
+    std::ifstream in(kAssets + "scenarios/unwrap.json");
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  }();
+  const std::string key = R"("final_below": 0.1)";
+  ASSERT_NE(text.find(key), std::string::npos);
+  for (const std::string closure : {"chord", "loop"}) {
+    std::string edited = text;
+    edited.replace(edited.find(key), key.size(), key + R"(, "final_closure": ")" + closure + "\"");
+    const std::string path = WriteTemp("closure.json", edited);
+    if (closure == "chord") {
+      EXPECT_TRUE(ParseScenarioSpec(path, {kAssets}).success.winding_closed_by_chord);
+      continue;
+    }
+    try {
+      ParseScenarioSpec(path, {kAssets});
+      ADD_FAILURE() << "expected an error for " << closure;
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("success.winding.final_closure"), std::string::npos)
+          << e.what();
+    }
+  }
+  EXPECT_FALSE(
+      ParseScenarioSpec(kAssets + "scenarios/unwrap.json").success.winding_closed_by_chord);
 }
 
 // The goal q̂_T (the RRT baselines' goal, the end of AICO's final-pose targets) meets the same end
