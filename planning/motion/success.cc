@@ -56,16 +56,24 @@ std::string LimitDetail(const Robot& robot, int k, double value) {
   return d;
 }
 
-// Winding (turns) about the report line of the straight segment from the report chain's first
-// point to its last at q: w_chain − this is the winding of the chain closed by its chord.
-double ChordWinding(const Scenario& s, const ScenarioState& w, const Eigen::VectorXd& q) {
+// ReportWinding(q) (turns), minus the winding of the straight segment from the report chain's
+// first point to its last when `closed_by_chord` (the chain closed by its chord), from one forward
+// kinematics pass.
+double EndWinding(const Scenario& s, const ScenarioState& w, const Eigen::VectorXd& q,
+                  bool closed_by_chord) {
+  if (s.report_chain < 0) return 0.0;
   KinematicsData kin(s.robot);
   ForwardKinematics(s.robot, q, &kin);
   Eigen::Matrix3Xd points;
   ChainPoints(s.robot, kin, s.report_chain, &points);
-  Eigen::Matrix3Xd chord(3, 2);
-  chord << points.col(0), points.col(points.cols() - 1);
-  return topology::WindingNumber(chord, ReportAxis(s, w));
+  const topology::Axis axis = ReportAxis(s, w);
+  double turns = topology::WindingNumber(points, axis);
+  if (closed_by_chord) {
+    Eigen::Matrix3Xd chord(3, 2);
+    chord << points.col(0), points.col(points.cols() - 1);
+    turns -= topology::WindingNumber(chord, axis);
+  }
+  return turns;
 }
 
 }  // namespace
@@ -192,10 +200,8 @@ EndState CheckEndState(const Scenario& s, const ScenarioState& w, const Eigen::V
     e.writhe_peak_col = static_cast<int>(col);
     e.writhe_peak_value = W(row, col);
   }
-  if (c.winding_max_jump > 0.0 || c.winding_final_below > 0.0) {
-    e.winding_turns = ReportWinding(s, w, q);
-    if (c.winding_closed_by_chord) e.winding_turns -= ChordWinding(s, w, q);
-  }
+  if (c.winding_max_jump > 0.0 || c.winding_final_below > 0.0)
+    e.winding_turns = EndWinding(s, w, q, c.winding_closed_by_chord);
   if (c.writhe_total_below >= 0.0)
     e.writhe_reached = within(e.writhe_total, c.writhe_total_below, true);
   if (c.winding_final_below > 0.0)
