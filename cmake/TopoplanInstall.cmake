@@ -127,7 +127,7 @@ install(FILES ${PROJECT_BINARY_DIR}/topoplanConfig.cmake
 
 # The command-line tool and its data. AssetRoot() looks for <exe dir>/<this relative path> before
 # falling back to the source tree's assets/ (so a build-tree binary still runs in place).
-install(TARGETS topoplan RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+install(TARGETS topoplan topoplan-full RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/assets/ DESTINATION ${TOPOPLAN_INSTALL_ASSETDIR})
 file(RELATIVE_PATH _topoplan_asset_rel ${CMAKE_INSTALL_FULL_BINDIR}
      ${CMAKE_INSTALL_FULL_DATADIR}/topoplan)

@@ -362,27 +362,30 @@ bool IsClosedChain(const Chain& c) {
   return (c.col(c.cols() - 1) - c.col(0)).norm() <= kClosedGap * size;
 }
 
-LinkingResult LinkingNumber(const Chain& a, const Chain& b, const WritheStreamOptions& options) {
-  for (const auto& [c, name] : {std::pair<const Chain*, const char*>{&a, "A"}, {&b, "B"}}) {
-    internal::CheckWritheChain(*c, name);
-    if (!IsClosedChain(*c)) {
-      std::string msg = "linking number: chain ";
-      msg.append(name).append(
-          " is not closed (a closed chain has >= 4 points and repeats its first point as its "
-          "last, up to 1e-9 of its size); the linking number is defined only for closed curves");
-      throw std::invalid_argument(msg);
-    }
+namespace internal {
+
+const Chain& CheckClosedSnapped(const Chain& c, const char* name, Chain* copy) {
+  CheckWritheChain(c, name);
+  if (!IsClosedChain(c)) {
+    std::string msg = "linking number: chain ";
+    msg.append(name).append(
+        " is not closed (a closed chain has >= 4 points and repeats its first point as its "
+        "last, up to 1e-9 of its size); the linking number is defined only for closed curves");
+    throw std::invalid_argument(msg);
   }
-  // Snap a last point within the closing gap onto the first (copies only then).
+  if (c.col(0) == c.col(c.cols() - 1)) return c;
+  *copy = c;
+  copy->col(c.cols() - 1) = c.col(0);
+  return *copy;
+}
+
+}  // namespace internal
+
+LinkingResult LinkingNumber(const Chain& a, const Chain& b, const WritheStreamOptions& options) {
+  // A last point within the closing gap of the first is moved onto it (copies only then).
   Chain snapped_a, snapped_b;
-  auto snap = [](const Chain& c, Chain* copy) -> const Chain& {
-    if (c.col(0) == c.col(c.cols() - 1)) return c;
-    *copy = c;
-    copy->col(c.cols() - 1) = c.col(0);
-    return *copy;
-  };
-  const Chain& ca = snap(a, &snapped_a);
-  const Chain& cb = snap(b, &snapped_b);
+  const Chain& ca = internal::CheckClosedSnapped(a, "A", &snapped_a);
+  const Chain& cb = internal::CheckClosedSnapped(b, "B", &snapped_b);
   WritheStreamOptions o = options;
   o.writhe.variant = WritheVariant::kSigned;
   o.row_sums = false;

@@ -95,13 +95,29 @@ constexpr std::span<const base::EnumName<LinkingStatus>> EnumNames(LinkingStatus
 }
 inline const char* LinkingStatusName(LinkingStatus s) { return base::ToName(s); }
 
+// How a linking number is computed: signed crossings of a projection (exact, certified by
+// error-bounded predicates; topology/linking_crossings.h) or the Gauss integral T (below); kAuto
+// tries the crossings and falls back to T.
+enum class LinkingMethod { kAuto, kCrossings, kGauss };
+inline constexpr base::EnumName<LinkingMethod> kLinkingMethodNames[] = {
+    {LinkingMethod::kAuto, "auto"},
+    {LinkingMethod::kCrossings, "crossings"},
+    {LinkingMethod::kGauss, "gauss"}};
+constexpr std::span<const base::EnumName<LinkingMethod>> EnumNames(LinkingMethod) {
+  return kLinkingMethodNames;
+}
+
 struct LinkingResult {
-  double gauss_integral = 0.0;   // T
-  double error_bound = 0.0;      // B
+  double gauss_integral = 0.0;   // T (NaN when method is kCrossings)
+  double error_bound = 0.0;      // B (0 for crossings: every sign is certified)
   double distance = 0.0;         // |T − round(T)|
-  long long linking_number = 0;  // round(T); meaningful only when certified
+  long long linking_number = 0;  // round(T) or ½ Σ ε; meaningful only when certified
   long long degenerate_pairs = 0;
+  long long crossings = 0;  // crossings of A with B in the projection (kCrossings)
+  // Direction projected along (kCrossings, certified); zero otherwise.
+  Eigen::Vector3d projection = Eigen::Vector3d::Zero();
   int segments_a = 0, segments_b = 0;
+  LinkingMethod method = LinkingMethod::kGauss;  // the method that produced this result
   LinkingStatus status = LinkingStatus::kUncertain;
 };
 

@@ -12,6 +12,7 @@
 #include <tuple>
 
 #include "app/cli/command.h"
+#include "app/cli/figure_flags.h"
 #include "app/cli/io.h"
 #include "app/present/ompl_log.h"
 #include "base/assets.h"

@@ -15,6 +15,7 @@
 #include "app/cli/cli.h"
 #include "app/cli/command.h"
 #include "app/cli/demo_page.h"
+#include "app/cli/figure_flags.h"
 #include "app/cli/forked_jobs.h"
 #include "app/cli/grasp_forked.h"
 #include "app/cli/io.h"

@@ -8,20 +8,21 @@
 #include <optional>
 #include <thread>
 
-#include "base/assets.h"
 #include "app/cli/command.h"
-#include "visualize/figures.h"
-#include "app/present/grasp_frames.h"
-#include "planning/grasp/grasp_inputs.h"
+#include "app/cli/figure_flags.h"
 #include "app/cli/io.h"
+#include "app/present/grasp_frames.h"
 #include "app/present/reports.h"
+#include "base/assets.h"
 #include "planning/grasp/grasp.h"
+#include "planning/grasp/grasp_inputs.h"
 #include "planning/grasp/grasp_object.h"
 #include "planning/grasp/grasp_transfer.h"
-#include "planning/robot/kinematics.h"
 #include "planning/physics/grasp_trials.h"
 #include "planning/physics/ode_runtime.h"
+#include "planning/robot/kinematics.h"
 #include "planning/robot/robot_io.h"
+#include "visualize/figures.h"
 
 namespace app {
 namespace {
@@ -32,7 +33,8 @@ struct SynthesizeArgs {
 };
 
 int RunSynthesize(const SynthesizeArgs& a) {
-  if (a.out_given) base::CheckOutputFile(a.out_path, "-o", {a.spec_path});  // before any work; "" is refused
+  if (a.out_given)
+    base::CheckOutputFile(a.out_path, "-o", {a.spec_path});  // before any work; "" is refused
   const std::vector<planning::GraspObject> objects =
       planning::LoadGraspObjects(base::AssetPath("grasps/objects.json"));
   planning::Robot human = planning::LoadRobot(base::AssetPath("robots/human_hand.urdf"));
@@ -131,7 +133,8 @@ int RunTransfer(const TransferArgs& a) {
   const phys::GraspTrialsResult result = phys::RunGraspTrials(ode, in.human, in.lwr_sdh, in.objects,
                                                               in.grasps, methods, options, hooks);
   if (stopped) {
-    WriteGraspOutputs(result, out.staging(), StoppedReportJson(*stopped, planning::physics::GraspReportJson(result)),
+    WriteGraspOutputs(result, out.staging(),
+                      StoppedReportJson(*stopped, planning::physics::GraspReportJson(result)),
                       a.formats);
     out.Commit();
     std::fprintf(stderr, "%s: wrote %s/report.json (%zu of %zu grasps)\n", stopped->what(),

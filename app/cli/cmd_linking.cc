@@ -14,6 +14,8 @@
 
 #include "app/cli/command.h"
 #include "app/cli/io.h"
+#include "base/enum_names.h"
+#include "topology/linking_crossings.h"
 #include "topology/polyline.h"
 #include "topology/writhe_stream.h"
 
@@ -25,6 +27,11 @@ struct LinkingArgs {
   bool json = false, close = false;
   int threads = 0;
   double tol = 0.0;  // > 0: Barnes–Hut far field with this approximation bound
+  std::string method = "auto";
+  // --method as parsed.
+  topology::LinkingMethod Method() const {
+    return base::ParseEnum<topology::LinkingMethod>(method, "linking method");
+  }
 };
 
 // Appends the first point when the chain does not end on it (`--close`).
@@ -51,17 +58,30 @@ nlohmann::ordered_json ResultJson(const topology::LinkingResult& r) {
   const bool ok = r.status == topology::LinkingStatus::kCertified;
   j["linking_number"] = ok ? nlohmann::ordered_json(r.linking_number) : nlohmann::ordered_json();
   j["status"] = topology::LinkingStatusName(r.status);
-  j["gauss_integral"] = r.gauss_integral;
+  const bool crossings = r.method == topology::LinkingMethod::kCrossings;
+  j["gauss_integral"] =
+      crossings ? nlohmann::ordered_json() : nlohmann::ordered_json(r.gauss_integral);
   j["error_bound"] = r.error_bound;
   j["distance"] = r.distance;
   j["segments"] = {r.segments_a, r.segments_b};
   j["degenerate_pairs"] = r.degenerate_pairs;
+  j["method"] = base::ToName(r.method);
+  j["crossings"] = r.crossings;
+  j["projection"] =
+      r.projection.isZero()
+          ? nlohmann::ordered_json()
+          : nlohmann::ordered_json({r.projection.x(), r.projection.y(), r.projection.z()});
   return j;
 }
 
 // Why a result is not certified, for the message on stderr.
 std::string Reason(const topology::LinkingResult& r) {
   char buf[320];
+  if (r.method == topology::LinkingMethod::kCrossings) {
+    return "no projection decides every crossing with certainty (in each of the three tried, "
+           "a vertex projects onto the other curve, or two segments nearly meet); --method "
+           "gauss gives the Gauss integral and its error bound";
+  }
   switch (r.status) {
     case topology::LinkingStatus::kTouching:
       std::snprintf(buf, sizeof buf,
@@ -271,7 +291,7 @@ int RunBatch(const LinkingArgs& la) {
       }
       RequireClosed(a, "\"a\"", la.close);
       RequireClosed(b, "\"b\"", la.close);
-      r = topology::LinkingNumber(a, b, options);
+      r = topology::LinkingNumberAuto(a, b, la.Method(), options);
     } catch (const std::invalid_argument& e) {
       std::fflush(stdout);
       std::string msg = source;
@@ -298,8 +318,9 @@ void AddLinkingCommand(CLI::App* root, CommandList* commands) {
   linking->add_option("A", la->a_path, "first closed chain CSV (last point = first point)");
   linking->add_option("B", la->b_path, "second closed chain CSV");
   linking->add_flag("--json", la->json,
-                    "print {\"linking_number\", \"status\", \"gauss_integral\", \"error_bound\", "
-                    "\"distance\", \"segments\", \"degenerate_pairs\"}");
+                    "print {\"linking_number\", \"status\", \"gauss_integral\" (null for "
+                    "crossings), \"error_bound\", \"distance\", \"segments\", "
+                    "\"degenerate_pairs\", \"method\", \"crossings\", \"projection\"}");
   linking->add_flag("--close", la->close, "close an open chain by appending its first point");
   AddStreamThreadsFlag(linking, &la->threads);
   linking
@@ -308,20 +329,31 @@ void AddLinkingCommand(CLI::App* root, CommandList* commands) {
                    "this error in the Gauss integral, added to the error bound; e.g. 0.05 "
                    "(default: exact; at most 0.5, beyond which no integer can be certified)")
       ->check(FiniteIn(1e-12, 0.5));
+  linking
+      ->add_option("--method", la->method,
+                   "auto (default): signed crossings of a projection, exact; the Gauss integral "
+                   "when no projection tried is generic | crossings | gauss")
+      ->check(CLI::IsMember({"auto", "crossings", "gauss"}));
   linking->add_option("--batch", la->batch,
                       "many pairs from FILE (or - for stdin), one JSON object per line: "
                       "{\"id\": any, \"a\": [[x,y,z],...], \"b\": [[x,y,z],...]}; one JSON result "
                       "line each");
   linking->footer(
-      "The Gauss integral T = sum of the writhe matrix (see `topoplan writhe`) is computed\n"
-      "without storing the matrix, with an error bound B (docs/methods.md). The linking number\n"
-      "round(T) is printed only when |T - round(T)| <= B < 1/2 and no segment pairs touch\n"
-      "(status \"certified\"); otherwise the reason is printed and the exit code is 1.\n"
+      "Crossings: Lk = 1/2 sum of the signs of the crossings of A with B seen along a fixed\n"
+      "generic direction, every sign certified by error-bounded predicates (docs/methods.md);\n"
+      "near-linear time. Gauss: T = sum of the writhe matrix (see `topoplan writhe`), computed\n"
+      "without storing the matrix, with an error bound B; round(T) is printed only when\n"
+      "|T - round(T)| <= B < 1/2 and no segment pairs touch. --tol implies gauss. A result\n"
+      "that is not certified prints its reason and exits 1.\n"
       "Open chains are refused (exit 2) unless --close. --batch stops at the first malformed\n"
       "line with exit 2, naming it (lines before it are answered); exit 1 if any pair is not\n"
       "certified. Long inputs show progress; Ctrl-C stops them (exit 130).");
   commands->push_back(
       {linking, [la]() -> int {
+         if (la->tol > 0.0 && la->Method() == topology::LinkingMethod::kCrossings) {
+           throw std::invalid_argument(
+               "--tol: approximates the Gauss integral; not with --method crossings");
+         }
          if (!la->batch.empty()) {
            if (!la->a_path.empty()) {
              throw std::invalid_argument("--batch: takes no chain files A, B");
@@ -344,11 +376,17 @@ void AddLinkingCommand(CLI::App* root, CommandList* commands) {
          options.threads = la->threads;
          options.far_field_tol = la->tol;
          options.progress = PairProgress("linking", stop);
-         const topology::LinkingResult r = topology::LinkingNumber(a, b, options);
+         const topology::LinkingResult r = topology::LinkingNumberAuto(a, b, la->Method(), options);
          EndProgress();
          const bool ok = r.status == topology::LinkingStatus::kCertified;
          if (la->json) {
            std::cout << ResultJson(r).dump() << "\n";
+         } else if (ok && r.method == topology::LinkingMethod::kCrossings) {
+           std::printf(
+               "linking number %lld (%lld signed crossings in a projection; %d x %d segments)\n",
+               r.linking_number, r.crossings, r.segments_a, r.segments_b);
+         } else if (r.method == topology::LinkingMethod::kCrossings) {
+           std::printf("linking number not certified (crossings: no generic projection)\n");
          } else if (ok) {
            std::printf(
                "linking number %lld (Gauss integral %.17g, error bound %.3g; "

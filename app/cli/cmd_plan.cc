@@ -14,6 +14,7 @@
 #include <sstream>
 
 #include "app/cli/command.h"
+#include "app/cli/figure_flags.h"
 #include "app/cli/io.h"
 #include "app/cli/robot_flags.h"
 #include "app/present/reports.h"

@@ -2,10 +2,8 @@
 
 #include <algorithm>
 #include <cstdio>
-#include <string>
-
-#include <cstdio>
 #include <exception>
+#include <string>
 
 #include "app/cli/io.h"
 

@@ -9,8 +9,8 @@
 #include <utility>
 #include <vector>
 
+#include "base/errors.h"
 #include "base/json_reader.h"
-#include "render/offscreen_context.h"
 
 namespace app {
 
@@ -26,10 +26,10 @@ enum ExitCode : int {
 };
 
 // Environment problems (no GL context, no system font, a missing installed asset): exit code 3.
-// The one class is render's (where a GL context fails); app code throws and RunGuarded catches it
-// under this name. Every other exception that reaches RunGuarded (std::invalid_argument from
-// loaders, ...) is bad input: exit code 2.
-using render::EnvironmentError;
+// The one class is base's (render's ContextError, a GL context that fails, derives from it); app
+// code throws and RunGuarded catches it under this name. Every other exception that reaches
+// RunGuarded (std::invalid_argument from loaders, ...) is bad input: exit code 2.
+using base::EnvironmentError;
 
 // A registered subcommand: `run` is called when `sub` was parsed and returns the exit code.
 struct Command {
@@ -37,6 +37,18 @@ struct Command {
   std::function<int()> run;
 };
 using CommandList = std::vector<Command>;
+// Adds one command family to the root (the Add*Command functions below).
+using CommandRegistrar = void (*)(CLI::App* root, CommandList* commands);
+
+// Parses argv with the root flags every command shares (-q, -v, --strict, --version) and the
+// commands of `registrars`, and runs the one named (RunGuarded); returns the exit code. The
+// full command line (cli.h RunCommandLine) passes every family; the launcher (cli/launcher.cc)
+// only the ones that need no renderer, physics or planner.
+int RunCommands(int argc, char** argv, const std::vector<CommandRegistrar>& registrars);
+
+// End of main(): flushes standard output and returns `rc`, or 3 (environment) with the reason on
+// stderr when a write failed (ENOSPC, EPIPE, EBADF) and rc was 0 or 1.
+int FinishMain(int rc);
 
 // Registration functions, one per command family (app/cmd_*.cc).
 void AddTopologyCommands(CLI::App* root, CommandList* commands);  // writhe, winding

@@ -11,10 +11,9 @@
 #include <filesystem>
 #include <fstream>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <sstream>
 #include <stdexcept>
-
-#include <nlohmann/json.hpp>
 
 #include "base/file_read.h"
 #include "base/str_cat.h"
@@ -62,9 +61,10 @@ void SetCommandLine(int argc, char** argv) {
   for (int i = 0; i < argc; ++i) {
     std::string a = argv[i] ? argv[i] : "";
     if (i == 0) a = "topoplan";
-    const bool plain = !a.empty() && a.find_first_not_of("abcdefghijklmnopqrstuvwxyz"
-                                                         "ABCDEFGHIJKLMNOPQRSTUVWXYZ"
-                                                         "0123456789_-+=.,:/@%") == std::string::npos;
+    const bool plain = !a.empty() && a.find_first_not_of(
+                                         "abcdefghijklmnopqrstuvwxyz"
+                                         "ABCDEFGHIJKLMNOPQRSTUVWXYZ"
+                                         "0123456789_-+=.,:/@%") == std::string::npos;
     if (!plain) {
       std::string q = "'";
       for (char c : a) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
@@ -239,8 +239,8 @@ void MoveEntry(const fs::path& from, const fs::path& to) {
       return;
     }
   }
-  throw base::WriteError(to.string() + ": cannot move the output into place: " +
-                         base::ErrnoText(ec.value()));
+  throw base::WriteError(to.string() +
+                         ": cannot move the output into place: " + base::ErrnoText(ec.value()));
 }
 
 }  // namespace
@@ -385,25 +385,6 @@ void StopCheck::Poll() const {
 void AddTimeoutFlag(CLI::App* command, double* seconds) {
   command->add_option("--timeout", *seconds, "stop after SECONDS (exit 1, status \"timeout\")")
       ->check(FiniteIn(0.0, 1e6));
-}
-
-void AddFormatsFlag(CLI::App* command, std::vector<render::FigureFormat>* formats) {
-  *formats = {render::FigureFormat::kPng};
-  command
-      ->add_option_function<std::string>(
-          "--formats",
-          [formats](const std::string& list) {
-            *formats = render::ParseFigureFormats(list, "--formats");
-          },
-          "figure formats, a comma-separated subset of png,svg,pdf (default png)")
-      ->check([](const std::string& list) {
-        try {
-          render::ParseFigureFormats(list, "--formats");
-        } catch (const std::invalid_argument& e) {
-          return std::string(e.what()).substr(std::string("--formats: ").size());
-        }
-        return std::string();
-      });
 }
 
 }  // namespace app

@@ -2,20 +2,19 @@
 // checked flag parsing, interrupts and time limits.
 #pragma once
 
-#include "base/file_write.h"  // WriteFileAtomic, CheckOutputFile, CheckOutputDir
-#include "base/numbers.h"     // ParseNumberList, ParseFiniteDouble
-#include "render/figure.h"
-
 #include <CLI/CLI.hpp>
-#include <nlohmann/json.hpp>
 #include <Eigen/Core>
 #include <chrono>
 #include <cstdio>
 #include <functional>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
+
+#include "base/file_write.h"  // WriteFileAtomic, CheckOutputFile, CheckOutputDir
+#include "base/numbers.h"     // ParseNumberList, ParseFiniteDouble
 
 namespace app {
 
@@ -75,8 +74,9 @@ void CheckWrithePairs(long long rows_points, long long cols_points);
 // `command` wrote there ("plan", "bench unwrap": its entries not written again are removed, so no
 // stale frames stay behind), moves every staged entry into `dir` and records them in the
 // manifest. Commit(false) (an interrupted run keeping its partial rows) adds the staged entries
-// and leaves the earlier complete outputs of the same command in place. Without Commit (an exception, an interrupt) staging is removed and `dir` is as it
-// was (a folder this run created is removed again).
+// and leaves the earlier complete outputs of the same command in place. Without Commit (an
+// exception, an interrupt) staging is removed and `dir` is as it was (a folder this run created is
+// removed again).
 class OutputDir {
  public:
   OutputDir(const std::string& dir, const std::string& flag, const std::string& command,
@@ -166,9 +166,5 @@ CLI::Option* AddDeprecatedAlias(CLI::App* cmd, const std::string& old_flag,
 
 // --timeout SECONDS on a command (0 = none, at most 1e6 s).
 void AddTimeoutFlag(CLI::App* command, double* seconds);
-
-// --formats LIST on a command that writes several figures: "png,svg,pdf" or a subset (default
-// png). The parsed list is checked at parse time (exit 2 for an unknown name).
-void AddFormatsFlag(CLI::App* command, std::vector<render::FigureFormat>* formats);
 
 }  // namespace app

@@ -1,29 +1,17 @@
-// topoplan: topology-based motion planning and grasp transfer, with offscreen rendering.
-#include <cerrno>
-#include <cstdio>
-#include <iostream>
-
+// topoplan-full: the whole tool (every command). Users run `topoplan`, the launcher
+// (launcher.cc), which runs the commands that need no renderer, physics or planner itself and
+// hands every other command line to this program unchanged.
 #include <unistd.h>
+
+#include <cstdio>
 
 #include "app/cli/cli.h"
 #include "app/cli/command.h"
-#include "base/file_write.h"
 
 int main(int argc, char** argv) {
   // Buffered until the end (1 MiB, unless a terminal), so that a failing write is seen by the
-  // final flush below with its reason (ENOSPC, EPIPE, EBADF).
+  // final flush with its reason.
   static char buffer[1 << 20];
   std::setvbuf(stdout, buffer, isatty(STDOUT_FILENO) ? _IOLBF : _IOFBF, sizeof buffer);
-  const int rc = app::RunCommandLine(argc, argv);
-  // Every write is checked, standard output too: JSON sent to a full disk or a closed pipe is a
-  // failure, not a success (exit 3, the reason named).
-  errno = 0;
-  const bool failed = std::fflush(stdout) != 0 || std::ferror(stdout) || !std::cout.flush();
-  if (failed) {
-    const int err = errno != 0 ? errno : EIO;
-    std::fprintf(stderr, "topoplan: cannot write to standard output: %s\n",
-                 base::ErrnoText(err).c_str());
-    return rc == app::kExitOk || rc == app::kExitFailed ? app::kExitEnvironment : rc;
-  }
-  return rc;
+  return app::FinishMain(app::RunCommandLine(argc, argv));
 }

@@ -1,5 +1,7 @@
 // The topology layer in Python: writhe matrices and their Jacobians, winding numbers.
 #include "python/bind/common.h"
+#include "base/enum_names.h"
+#include "topology/linking_crossings.h"
 #include "topology/winding.h"
 #include "topology/writhe.h"
 #include "topology/writhe_stream.h"
@@ -62,20 +64,25 @@ py::tuple WritheJacobianPy(const py::handle& a_obj, const py::handle& b_obj) {
   return py::make_tuple(w, da, db);
 }
 
-py::dict LinkingNumberPy(const py::handle& a_obj, const py::handle& b_obj, int threads) {
+py::dict LinkingNumberPy(const py::handle& a_obj, const py::handle& b_obj, int threads,
+                         const std::string& method_name) {
+  const topology::LinkingMethod method = base::ParseEnum<topology::LinkingMethod>(method_name, "linking method");
   const Eigen::Matrix3Xd a = ToPoints(a_obj, "A"), b = ToPoints(b_obj, "B");
   topology::WritheStreamOptions options;
   options.threads = threads;
   topology::LinkingResult r;
   {
-    py::gil_scoped_release release;  // streamed, O(N_A N_B) time, O(N_A + N_B) memory
-    r = topology::LinkingNumber(a, b, options);
+    py::gil_scoped_release release;  // crossings: near-linear; gauss: O(N_A N_B), streamed
+    r = topology::LinkingNumberAuto(a, b, method, options);
   }
   py::dict d;
   const bool ok = r.status == topology::LinkingStatus::kCertified;
+  const bool crossings = r.method == topology::LinkingMethod::kCrossings;
   d["linking_number"] = ok ? py::object(py::int_(r.linking_number)) : py::object(py::none());
   d["status"] = topology::LinkingStatusName(r.status);
-  d["gauss_integral"] = r.gauss_integral;
+  d["method"] = base::ToName(r.method);
+  d["crossings"] = r.crossings;
+  d["gauss_integral"] = crossings ? py::object(py::none()) : py::object(py::float_(r.gauss_integral));
   d["error_bound"] = r.error_bound;
   d["distance"] = r.distance;
   d["degenerate_pairs"] = r.degenerate_pairs;
@@ -128,10 +135,14 @@ void BindTopology(py::module_& m) {
       "(dW_dA[i, j, p, k] = dW[i, j]/dA[p, k]; nonzero only for p in {i, i+1}). The arrays are\n"
       "dense: sizes whose two Jacobians would exceed 2^27 numbers (1 GiB) raise ValueError.");
   m.def("linking_number", &LinkingNumberPy, py::arg("A"), py::arg("B"), py::arg("threads") = 0,
-        "Gauss linking number of two closed chains (N x 3; last point = first, up to 1e-9 of the\n"
-        "size), streamed in O(N) memory on `threads` threads (0: all cores). Returns a dict:\n"
-        "linking_number (int, or None unless status == 'certified'), status ('certified',\n"
-        "'not_integer', 'touching', 'uncertain'), gauss_integral, error_bound (a bound on the\n"
+        py::arg("method") = "auto",
+        "Linking number of two closed chains (N x 3; last point = first, up to 1e-9 of the\n"
+        "size). method 'crossings': half the signed crossings of a projection, every sign\n"
+        "certified (near-linear time); 'gauss': the Gauss integral, streamed in O(N) memory on\n"
+        "`threads` threads (0: all cores), rounded when its error bound allows; 'auto' (default):\n"
+        "crossings, else gauss. Returns a dict: linking_number (int, or None unless status ==\n"
+        "'certified'), status ('certified', 'not_integer', 'touching', 'uncertain'), method (the\n"
+        "one used), crossings, gauss_integral (None for crossings), error_bound (a bound on the\n"
         "float error of gauss_integral), distance (to the nearest integer), degenerate_pairs.\n"
         "Raises ValueError for an open chain.");
   m.def("writhe_total", &WritheTotalPy, py::arg("A"), py::arg("B"), py::arg("row_sums") = false,

@@ -3,13 +3,14 @@
 
 Writes K pairs of noisy closed loops (n segments each; the second loop's offset varies, so about
 half the pairs are linked) as JSON lines, then times
-  - topoplan: `topoplan linking --batch FILE` as a whole process (start, parsing, the Gauss
-    integrals, JSON output), wall and CPU time (best of --repeat runs), with --threads 1 and with
-    the default threads;
+  - topoplan: `topoplan linking --batch FILE --method gauss` as a whole process (start, parsing,
+    the Gauss integrals, JSON output), wall and CPU time (best of --repeat runs), with --threads 1
+    and with the default threads; and with the default method (signed crossings);
   - numpy: the vectorised writhe matrix of tests/bench/numpy_writhe.py summed per pair (arrays
     already in memory, the interpreter already started: numpy's best case), one pair at a time
     and batched over pairs (chunks of 256 pairs broadcast together);
-and checks that every total agrees (|difference| < 1e-9). Needs python3-numpy.
+and checks that every total agrees (|difference| < 1e-9) and that every certified crossing count
+is the rounded total. Needs python3-numpy.
 
 Usage: /usr/bin/python3 tests/bench/batch_vs_numpy.py --topoplan build/app/topoplan
            [--pairs 20000] [--segments 32] [--repeat 3]
@@ -52,12 +53,13 @@ def batched_totals(a, b, chunk=256):
     return np.concatenate(out)
 
 
-def run_topoplan(exe, path, threads, repeat):
+def run_topoplan(exe, path, threads, repeat, method="gauss"):
     best = None
     for _ in range(repeat):
         before = resource.getrusage(resource.RUSAGE_CHILDREN)
         t0 = time.perf_counter()
-        cmd = [exe, "linking", "--batch", path] + ([f"--threads={threads}"] if threads else [])
+        cmd = [exe, "linking", "--batch", path, f"--method={method}"] + (
+            [f"--threads={threads}"] if threads else [])
         p = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
         wall = time.perf_counter() - t0
         after = resource.getrusage(resource.RUSAGE_CHILDREN)
@@ -86,7 +88,9 @@ def main():
                 f.write(json.dumps({"id": i, "a": a[i].tolist(), "b": b[i].tolist()}) + "\n")
         one = run_topoplan(args.topoplan, path, 1, args.repeat)
         auto = run_topoplan(args.topoplan, path, 0, args.repeat)
+        crossings = run_topoplan(args.topoplan, path, 0, args.repeat, method="auto")
     totals = np.array([json.loads(line)["gauss_integral"] for line in one[2].splitlines()])
+    crossing_lk = [json.loads(line) for line in crossings[2].splitlines()]
 
     t0, c0 = time.perf_counter(), time.process_time()
     per_pair = np.array([writhe_matrix(a[i], b[i]).sum() for i in range(args.pairs)])
@@ -101,7 +105,15 @@ def main():
     linked = int(np.sum(np.abs(np.rint(totals)) > 0))
     print(f"{args.pairs} pairs of closed loops, {args.segments} x {args.segments} segments "
           f"({linked} linked); max |numpy - topoplan| = {err:.2e}")
-    for label, (wall, cpu, _) in (("--threads 1", one), ("default threads", auto)):
+    # The default method counts crossings: the same integers as the rounded Gauss integrals.
+    wrong = sum(1 for r, t in zip(crossing_lk, totals)
+                if r["status"] == "certified" and r["linking_number"] != int(np.rint(t)))
+    by_crossings = sum(1 for r in crossing_lk if r["method"] == "crossings")
+    print(f"default method: {by_crossings} of {args.pairs} pairs by crossings, {wrong} linking "
+          f"numbers differ from the rounded Gauss integral")
+    for label, (wall, cpu, _) in (("--method gauss --threads 1", one),
+                                  ("--method gauss, default threads", auto),
+                                  ("default method: crossings", crossings)):
         print(f"topoplan linking --batch ({label}): {wall:.3f} s wall, {cpu:.3f} s CPU, whole "
               f"process ({wall / args.pairs * 1e6:.1f} us per pair)")
     print(f"numpy, one pair at a time: {t_loop:.3f} s wall, {c_loop:.3f} s CPU; batched over "
@@ -111,6 +123,11 @@ def main():
           f"{best_batched / one[0]:.1f}x")
     print(f"ratio numpy / topoplan, default threads: wall {t_loop / auto[0]:.1f}x (per-pair loop), "
           f"{best_batched / auto[0]:.1f}x (batched)")
+    print(f"ratio numpy / topoplan, default method (crossings): CPU {c_loop / crossings[1]:.1f}x "
+          f"(per-pair loop), {cpu_batched / crossings[1]:.1f}x (batched)")
+    if wrong:
+        print("batch_vs_numpy: crossings and Gauss integrals disagree", file=sys.stderr)
+        sys.exit(1)
     if err > 1e-9:
         print("batch_vs_numpy: totals disagree", file=sys.stderr)
         return 1

@@ -9,6 +9,7 @@
 
 #include "topology/gauss_far_field.h"
 #include "topology/internal/writhe_tile.h"
+#include "topology/linking_crossings.h"
 #include "topology/winding.h"
 #include "topology/writhe.h"
 #include "topology/writhe_stream.h"
@@ -174,7 +175,8 @@ BENCHMARK(BM_FarFieldTorusLink)
 // Growth with N for docs/benchmarks.md (tests/bench/plot_linking_scale.py): the Gauss integral of
 // the (2, 6) torus link, N segments per component, one thread, CPU time. range(0): 0 the exact
 // matrix stored and summed (WritheMatrix, N <= 4000: 128 MB), 1 the exact streamed total
-// (StreamWritheSums), 2 and 3 the far field (FarFieldGaussIntegral) with tol 1e-3 and 1e-1.
+// (StreamWritheSums), 2 and 3 the far field (FarFieldGaussIntegral) with tol 1e-3 and 1e-1, 4 the
+// signed crossings of a projection (CrossingLinkingNumber; its linking number is the "T").
 void BM_LinkingScale(benchmark::State& state) {
   const int method = static_cast<int>(state.range(0));
   const int n = static_cast<int>(state.range(1));
@@ -187,6 +189,8 @@ void BM_LinkingScale(benchmark::State& state) {
       topology::WritheStreamOptions o;
       o.threads = 1;
       total = topology::StreamWritheSums(a, b, o).total;
+    } else if (method == 4) {
+      total = static_cast<double>(topology::CrossingLinkingNumber(a, b).linking_number);
     } else {
       topology::FarFieldOptions o;
       o.tol = method == 2 ? 1e-3 : 1e-1;
@@ -201,7 +205,7 @@ void BM_LinkingScale(benchmark::State& state) {
 BENCHMARK(BM_LinkingScale)
     ->ArgsProduct({{0}, {250, 500, 1000, 2000, 4000}})
     ->ArgsProduct({{1}, {250, 500, 1000, 2000, 4000, 8000, 16000, 32000}})
-    ->ArgsProduct({{2, 3}, {250, 500, 1000, 2000, 4000, 8000, 16000, 32000, 64000, 128000}})
+    ->ArgsProduct({{2, 3, 4}, {250, 500, 1000, 2000, 4000, 8000, 16000, 32000, 64000, 128000}})
     ->Unit(benchmark::kMillisecond);
 
 }  // namespace

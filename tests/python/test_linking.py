@@ -18,12 +18,23 @@ def torus_link_component(k, j, n, R=2.0, r=0.7):
 def test_linking_number_of_torus_links_is_certified():
     for k in (1, 2, 3):
         a, b = torus_link_component(k, 0, 60 * k), torus_link_component(k, 1, 60 * k)
-        r = topoplan.linking_number(a, b)
-        assert r["status"] == "certified"
+        r = topoplan.linking_number(a, b, method="gauss")
+        assert r["status"] == "certified" and r["method"] == "gauss"
         assert abs(r["linking_number"]) == k
         assert r["distance"] <= r["error_bound"] < 1e-9
         # The same number as the sum of the dense matrix.
         assert abs(r["gauss_integral"] - topoplan.writhe_matrix(a, b).sum()) < 1e-12
+        # The default counts signed crossings: the same integer, no Gauss integral.
+        c = topoplan.linking_number(a, b)
+        assert c["method"] == "crossings" and c["status"] == "certified"
+        assert c["linking_number"] == r["linking_number"] and c["gauss_integral"] is None
+        assert c["crossings"] >= 2 * k
+
+
+def test_linking_method_is_checked():
+    a, b = torus_link_component(1, 0, 40), torus_link_component(1, 1, 40)
+    with pytest.raises(ValueError, match="linking method"):
+        topoplan.linking_number(a, b, method="fast")
 
 
 def test_writhe_total_streams_the_matrix_sum_and_row_sums():

@@ -21,6 +21,11 @@ class WritheRowSink {
 // non-finite coordinate or one beyond ±kMaxCoordinate); `name` is "A" or "B".
 void CheckWritheChain(const Chain& c, const char* name);
 
+// Checks a chain for a linking number (CheckWritheChain, then closed as IsClosedChain says; else
+// std::invalid_argument naming `name`) and returns it, or *copy with its last point moved exactly
+// onto its first when it was closed only within the gap.
+const Chain& CheckClosedSnapped(const Chain& c, const char* name, Chain* copy);
+
 // Rows [row_begin, row_end) of W(A, B) (values only, no gradient), handed to `sink` in order.
 // The chains must have been checked. Allocation-free once `ws` has the sizes of B.
 void WritheRows(const Chain& a, const Chain& b, const WritheOptions& options, int row_begin,
