@@ -15,6 +15,8 @@
 
 namespace render {
 
+class VideoBatch;
+
 struct FrameWriterOptions {
   std::string prefix = "frame_";
   bool contact_sheet = true;
@@ -23,6 +25,9 @@ struct FrameWriterOptions {
   bool video = true;                  // MP4 (H.264) or GIF via ffmpeg, if installed
   bool gif = false;                   // GIF instead of MP4
   int fps = 10;
+  // Not null: Finish() queues the video in this batch instead of running ffmpeg itself (the batch
+  // must outlive the writer); FrameSequence::video is then where the batch writes it.
+  VideoBatch* video_batch = nullptr;
 };
 
 struct FrameSequence {
@@ -73,6 +78,33 @@ class FrameWriter {
   std::vector<std::string> labels_;
   std::vector<bool> keys_;
   std::unique_ptr<internal::PngQueue> pngs_;  // started by the first Add
+};
+
+// Videos of finished frame sequences encoded together by one ffmpeg process per flush, which
+// pays ffmpeg's start-up once instead of once per video; each output is the same file as a
+// FrameWriter encoding it alone writes. Without ffmpeg on PATH, nothing is written.
+class VideoBatch {
+ public:
+  explicit VideoBatch(int max_pending = 8) : max_pending_(max_pending) {}
+  ~VideoBatch();  // flushes (a failure then goes unreported)
+  VideoBatch(const VideoBatch&) = delete;
+  VideoBatch& operator=(const VideoBatch&) = delete;
+
+  // Queues `out` from the numbered PNGs `pattern` (printf style, e.g. DIR/frame_%05d.png, all on
+  // disk); flushes once max_pending videos are queued.
+  void Add(const std::string& pattern, const std::string& out, int fps, bool gif);
+  // Encodes every queued video; false when ffmpeg is missing or failed (none of them written).
+  bool Flush();
+
+  struct Job {
+    std::string pattern, out;
+    int fps = 10;
+    bool gif = false;
+  };
+
+ private:
+  int max_pending_;
+  std::vector<Job> jobs_;
 };
 
 // Contact sheet of `thumbnails` in a grid of ceil(sqrt(n)) columns, each labelled with

@@ -1,5 +1,6 @@
-// The `topoplan` command line as a function: main() and the demo (which runs other commands
-// in-process, exactly as a user would type them) both go through it.
+// The whole `topoplan` command line as a function: main() of topoplan-full (the launcher hands it
+// every command it does not run itself) and the demo (which runs other commands in-process,
+// exactly as a user would type them) both go through it.
 #pragma once
 
 #include <string>

@@ -32,7 +32,7 @@ namespace {
 namespace fs = std::filesystem;
 
 struct BenchArgs {
-  std::string angles = "0:900:90", planners, output;  // planners "": all of this build
+  std::string angles = "0:900:90", planners, output;  // planners "": DefaultPlanners()
   int seeds = 3;
   std::string budget;     // --budget time=S|queries=N ("": the scenario's limits)
   bool survival = false;  // --survival: budget sweep verdicts (survival.csv, survival.png)
@@ -85,10 +85,10 @@ std::vector<double> ParseRange(const std::string& text, const std::string& flag)
   return out;
 }
 
-// "aico,birrt" → the planners, each at most once; "" → every planner of this build (with the OMPL
-// peers when it has them).
+// "aico,birrt" → the planners, each at most once; "" → planning::DefaultPlanners() (with the OMPL
+// peers when the build has them, but not the OMPL goal-region peers).
 std::vector<planning::Planner> ParsePlanners(const std::string& text) {
-  if (text.empty()) return planning::AvailablePlanners();
+  if (text.empty()) return planning::DefaultPlanners();
   std::vector<planning::Planner> out;
   std::stringstream ss(text);
   std::string item;
@@ -229,14 +229,15 @@ void AddBenchCommands(CLI::App* root, CommandList* commands) {
         1, 1000);
   unwrap->add_option(
       "--planners", ba->planners,
-      "comma-separated planners, each at most once (default: all of this build: " +
+      "comma-separated planners, each at most once: " + PlannerChoices() + " (default: " +
           [] {
-            std::string c = PlannerChoices();
-            std::replace(c.begin(), c.end(), '|', ',');
-            c.erase(std::remove(c.begin(), c.end(), ' '), c.end());
+            std::string c;
+            for (const planning::Planner p : planning::DefaultPlanners()) {
+              c.append(c.empty() ? "" : ",").append(planning::PlannerName(p));
+            }
             return c;
           }() +
-          ")");
+          "; the OMPL goal-region peers only by name)");
   unwrap->add_option("--budget", ba->budget,
                      "every planner's budget: time=S (CPU seconds of the solve) or queries=N "
                      "(state queries) or pairs=N (pair tests); a bare N: the RRTs' collision-check "

@@ -404,7 +404,7 @@ class Demo {
     // Reduced: 0..900 deg every 90 deg, 1 seed; full: 0..1080 deg every 15 deg, 3 seeds.
     const double max_angle = args_.full ? 1080.0 : 900.0, step = args_.full ? 15.0 : 90.0;
     for (int k = 0; k * step <= max_angle + 1e-9; ++k) options.angles_deg.push_back(k * step);
-    options.planners = planning::AvailablePlanners();  // with the OMPL peers when built
+    options.planners = planning::DefaultPlanners();  // with the OMPL peers when built
     options.seeds = args_.full ? 3 : 1;
     options.progress = [this](int done, int total, const planning::UnwrapRun& run) {
       Progress("  %d/%d runs (%s @ %.0f deg seed %d)", done, total,

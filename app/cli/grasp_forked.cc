@@ -37,6 +37,15 @@ std::string TrialPath(const std::string& dir, size_t j) {
   return (fs::path(dir) / base::StrCat("trial_", std::to_string(j), ".bin")).string();
 }
 
+// The frame writer of one process (run.frames), its stability videos encoded several at a time
+// (one ffmpeg start-up for a few videos; flushed before the process's trials are handed back).
+std::unique_ptr<GraspFrameWriter> NewFrameWriter(const GraspRunOptions& run) {
+  if (!run.frames) return nullptr;
+  auto frames = std::make_unique<GraspFrameWriter>();
+  frames->set_batch_videos(true);
+  return frames;
+}
+
 }  // namespace
 
 GraspRunResult RunGraspTrialsInProcesses(const planning::GraspInputs& in,
@@ -47,12 +56,12 @@ GraspRunResult RunGraspTrialsInProcesses(const planning::GraspInputs& in,
   GraspRunResult out;
   if (run.workers == 1) {
     phys::OdeRuntime ode;
-    std::unique_ptr<GraspFrameWriter> frames;
-    if (run.frames) frames = std::make_unique<GraspFrameWriter>();
+    std::unique_ptr<GraspFrameWriter> frames = NewFrameWriter(run);
     phys::GraspTrialsOptions o = options;
     if (run.should_stop) o.should_stop = run.should_stop;
     out.trials = phys::RunGraspTrials(ode, in.human, in.lwr_sdh, in.objects, in.grasps, methods, o,
                                       GraspTransferHooks(run.out_dir, frames.get()));
+    if (frames) frames->FlushVideos();
     return out;
   }
   // Every setup (and its errors) here, before any fork; the workers inherit them.
@@ -72,8 +81,7 @@ GraspRunResult RunGraspTrialsInProcesses(const planning::GraspInputs& in,
                     [&] {
                       return RunGuarded("grasp trials", [&] {
                         phys::OdeRuntime ode;
-                        std::unique_ptr<GraspFrameWriter> frames;
-                        if (run.frames) frames = std::make_unique<GraspFrameWriter>();
+                        std::unique_ptr<GraspFrameWriter> frames = NewFrameWriter(run);
                         const phys::GraspTrialHooks hooks =
                             GraspTransferHooks(run.out_dir, frames.get());
                         for (size_t k = next.Next(); k < n; k = next.Next()) {
@@ -82,6 +90,7 @@ GraspRunResult RunGraspTrialsInProcesses(const planning::GraspInputs& in,
                           base::WriteFileAtomic(TrialPath(scratch.path, order[k]),
                                                 phys::EncodeGraspTrial(trial));
                         }
+                        if (frames) frames->FlushVideos();
                         return 0;
                       });
                     },

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <memory>
+#include <utility>
 
 #include "base/file_write.h"
 #include "planning/robot/kinematics.h"
@@ -29,21 +31,33 @@ void GraspFrameWriter::Transfer(const std::string& dir, const planning::Transfer
   visualize::SceneBuildOptions opt;
   opt.grid = false;
   opt.chains = true;
-  // Human grasp.
-  planning::KinematicsData hk(setup.human);
-  planning::ForwardKinematics(setup.human, setup.human_q, &hk);
-  render::Scene human;
-  visualize::AddRobotShapes(setup.human, hk, Eigen::Isometry3d::Identity(), opt, &cache_, &human);
-  visualize::AddGraspObjectShapes(setup.object, setup.grasp.world_from_object, &human);
-  // Look at the palm from the object's side: along the SDH placement's z (palm normal), offset
-  // sideways so fingers and object separate.
-  const Eigen::Matrix3d rs = setup.sdh_placement.linear();
-  view_ = (rs * Eigen::Vector3d(0.5, 0.6, 1.0)).cast<float>();
-  camera_ = visualize::FrameSceneCamera(human, view_, 40.0f);
-  const std::string human_label = setup.grasp.name + ": human grasp";
-  render::Image human_frame = renderer_.Render(human, camera_, kFrameWidth, kFrameHeight);
-  render::DrawStamp(&human_frame, {human_label});
-  writer.Add(human_frame, "human grasp");
+  // Human grasp: the same frame for every method of a grasp, rendered once.
+  if (!SameHumanFrame(setup)) {
+    auto h = std::make_unique<HumanFrame>();
+    h->grasp = setup.grasp.name;
+    h->object = setup.object.name;
+    h->hand = setup.human.name;
+    h->q = setup.human_q;
+    h->world_from_object = setup.grasp.world_from_object.matrix();
+    h->sdh_placement = setup.sdh_placement.matrix();
+    planning::KinematicsData hk(setup.human);
+    planning::ForwardKinematics(setup.human, setup.human_q, &hk);
+    visualize::AddRobotShapes(setup.human, hk, Eigen::Isometry3d::Identity(), opt, &cache_,
+                              &h->scene);
+    visualize::AddGraspObjectShapes(setup.object, setup.grasp.world_from_object, &h->scene);
+    // Look at the palm from the object's side: along the SDH placement's z (palm normal), offset
+    // sideways so fingers and object separate.
+    const Eigen::Matrix3d rs = setup.sdh_placement.linear();
+    h->view = (rs * Eigen::Vector3d(0.5, 0.6, 1.0)).cast<float>();
+    h->camera = visualize::FrameSceneCamera(h->scene, h->view, 40.0f);
+    h->image = renderer_.Render(h->scene, h->camera, kFrameWidth, kFrameHeight);
+    render::DrawStamp(&h->image, {setup.grasp.name + ": human grasp"});
+    human_frame_ = std::move(h);
+  }
+  const render::Scene& human = human_frame_->scene;
+  view_ = human_frame_->view;
+  camera_ = human_frame_->camera;
+  writer.Add(human_frame_->image, "human grasp");
   planning::KinematicsData sk(setup.sdh);
   render::Scene last;
   for (int c = 0; c < t.trajectory.q.cols(); ++c) {
@@ -69,6 +83,14 @@ void GraspFrameWriter::Transfer(const std::string& dir, const planning::Transfer
     base::WriteFileAtomic((std::filesystem::path(dir) / "side_by_side.png").string(),
                           render::EncodePng(SideBySide(human, last, view_)));
   }
+}
+
+bool GraspFrameWriter::SameHumanFrame(const planning::TransferSetup& setup) const {
+  const HumanFrame* h = human_frame_.get();
+  return h != nullptr && h->grasp == setup.grasp.name && h->object == setup.object.name &&
+         h->hand == setup.human.name && h->q.size() == setup.human_q.size() &&
+         h->q == setup.human_q && h->world_from_object == setup.grasp.world_from_object.matrix() &&
+         h->sdh_placement == setup.sdh_placement.matrix();
 }
 
 render::Image GraspFrameWriter::SideBySide(const render::Scene& left, const render::Scene& right,
@@ -158,6 +180,7 @@ std::function<void(int, const phys::SimState&)> GraspFrameWriter::StabilityState
   render::FrameWriterOptions fo;
   fo.prefix = "stability_";
   fo.video = true;
+  fo.video_batch = batch_videos_ ? &videos_ : nullptr;
   writer_ = std::make_unique<render::FrameWriter>(dir, fo);
   camera_set_ = false;
   hand_ = &hand;

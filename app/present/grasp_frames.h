@@ -60,9 +60,17 @@ class GraspFrameWriter {
   const planning::physics::SimState& closure_state() const { return closure_state_; }
   const std::vector<std::string>& phase_outcomes() const { return phase_outcome_; }
 
+  // With `on`, the stability videos are queued and encoded several at a time by one ffmpeg
+  // (render::VideoBatch): the same files, written by FlushVideos() (or the destructor, or once
+  // a few are queued) instead of by FinishStability(). Flush before the frames' folder moves.
+  void set_batch_videos(bool on) { batch_videos_ = on; }
+  void FlushVideos() { videos_.Flush(); }
+
  private:
   render::Image SideBySide(const render::Scene& left, const render::Scene& right,
                            const Eigen::Vector3f& view);
+  // Whether the latest human-grasp frame was rendered from these inputs (the same pixels).
+  bool SameHumanFrame(const planning::TransferSetup& setup) const;
 
   render::OffscreenContext context_;
   render::Renderer renderer_;
@@ -70,6 +78,20 @@ class GraspFrameWriter {
   render::Camera camera_;
   Eigen::Vector3f view_ = Eigen::Vector3f(1.0f, 1.3f, 0.8f);
   bool camera_set_ = false;
+  // The latest human-grasp frame and what it was rendered from: the methods of one grasp share
+  // it, so it is rendered once per grasp (and process).
+  struct HumanFrame {
+    std::string grasp, object, hand;
+    Eigen::VectorXd q;
+    Eigen::Matrix4d world_from_object, sdh_placement;
+    render::Scene scene;
+    render::Camera camera;
+    Eigen::Vector3f view;
+    render::Image image;
+  };
+  std::unique_ptr<HumanFrame> human_frame_;
+  bool batch_videos_ = false;
+  render::VideoBatch videos_;  // before writer_: outlives the writers that queue into it
   std::unique_ptr<render::FrameWriter> writer_;
   // The stability sequence being written.
   const planning::physics::SimHand* hand_ = nullptr;

@@ -224,12 +224,11 @@ void AddEnvironmentShapes(const Environment& env, const CollisionOptions& option
         shape.index = k++;
         shape.link_from_shape = g.link_from_geometry;
         shape.obj = std::make_unique<fcl::CollisionObjectd>(MakeGeometry(o.model, g));
-        shape.obj->setTransform(o.world_from_object * okin.world_from_link[l] *
-                                g.link_from_geometry);
-        shape.obj->computeAABB();
         shape.obj->setUserData(&shape);
         SetCapsule(g, options, &shape);
         SetBound(g, &shape);
+        internal::Place(&shape,
+                        o.world_from_object * okin.world_from_link[l] * g.link_from_geometry);
       }
     }
   }
@@ -314,6 +313,7 @@ CollisionData::CollisionData(const Robot& robot, const Environment& env,
     s.disabled.insert(internal::PairKey(FindLink(robot, na), FindLink(robot, nb)));
   }
   AddRobotShapes(robot, options, &s);
+  internal::BuildSkipTable(&s);
   AddEnvironmentShapes(env, options, &s);
   // Broadphase managers, built in one pass (a top-down median split, O(n log n)) on the robot
   // posed at its reference configuration (zero, moved into the limits): boxes inserted one by
@@ -325,8 +325,7 @@ CollisionData::CollisionData(const Robot& robot, const Environment& env,
                                   .cwiseMin(UpperLimits(robot));
     ForwardKinematics(robot, q, &kin);
     for (FclShape& shape : s.robot) {
-      shape.obj->setTransform(kin.world_from_link[shape.link] * shape.link_from_shape);
-      shape.obj->computeAABB();
+      internal::Place(&shape, kin.world_from_link[shape.link] * shape.link_from_shape);
     }
   }
   std::vector<fcl::CollisionObjectd*> objects;

@@ -47,7 +47,10 @@ bool SkipSelf(const FclScene& s, int link_a, int link_b) {
 
 bool Skip(const FclScene& s, const FclShape& a, const FclShape& b) {
   if (a.object >= 0 && b.object >= 0) return true;  // environment vs environment
-  if (a.object < 0 && b.object < 0) return !s.self_collision || SkipSelf(s, a.link, b.link);
+  if (a.object < 0 && b.object < 0) {
+    if (!s.skip_self.empty()) return s.skip_self[a.index * s.robot.size() + b.index] != 0;
+    return !s.self_collision || SkipSelf(s, a.link, b.link);
+  }
   return !s.environment;
 }
 
@@ -110,11 +113,8 @@ bool ClosedFormCapsules(const FclShape& a, const FclShape& b) {
 // none.
 double BoundGap(const FclShape& a, const FclShape& b) {
   if (a.bound_radius <= 0.0 || b.bound_radius <= 0.0) return 0.0;
-  const Eigen::Vector3d ua = a.obj->getRotation().col(2), ub = b.obj->getRotation().col(2);
-  Eigen::Vector3d p, q;
-  ClosestSegmentPoints(
-      a.obj->getTranslation() - a.bound_half_length * ua, 2.0 * a.bound_half_length * ua,
-      b.obj->getTranslation() - b.bound_half_length * ub, 2.0 * b.bound_half_length * ub, &p, &q);
+  Eigen::Vector3d p, q;  // the segments' ends as Place computed them from the poses
+  ClosestSegmentPoints(a.bound_start, a.bound_span, b.bound_start, b.bound_span, &p, &q);
   return (p - q).norm() - a.bound_radius - b.bound_radius;
 }
 
@@ -186,8 +186,7 @@ bool CollideCallback(fcl::CollisionObjectd* o1, fcl::CollisionObjectd* o2, void*
 // only for boolean checks (`broadphase`), distance queries test the boxes pair by pair.
 void UpdateRobot(const KinematicsData& kin, FclScene* s, bool broadphase) {
   for (FclShape& shape : s->robot) {
-    shape.obj->setTransform(kin.world_from_link[shape.link] * shape.link_from_shape);
-    shape.obj->computeAABB();
+    internal::Place(&shape, kin.world_from_link[shape.link] * shape.link_from_shape);
   }
   if (broadphase) s->robot_manager.update();
 }
@@ -198,7 +197,8 @@ void UpdateRobot(const KinematicsData& kin, FclScene* s, bool broadphase) {
 // perpendicular to a's axis for parallel ones. Witness points lie on the two surfaces along the
 // normal; a penetrating pair reports the middle of its two surface points as both witnesses.
 void CapsuleDistance(const FclShape& a, const FclShape& b, ProximityPair* out) {
-  const Eigen::Vector3d ua = a.obj->getRotation().col(2), ub = b.obj->getRotation().col(2);
+  const Eigen::Vector3d& ua = a.axis;
+  const Eigen::Vector3d& ub = b.axis;
   const Eigen::Vector3d a0 = a.obj->getTranslation() - a.capsule_half_length * ua;
   const Eigen::Vector3d b0 = b.obj->getTranslation() - b.capsule_half_length * ub;
   const Eigen::Vector3d u = 2.0 * a.capsule_half_length * ua;
@@ -410,6 +410,19 @@ double SceneDiagonal(const FclScene& s) {
 }
 
 }  // namespace
+
+void internal::BuildSkipTable(FclScene* scene) {
+  FclScene& s = *scene;
+  const size_t n = s.robot.size();
+  s.skip_self.clear();
+  if (n > FclScene::kMaxSkipTableShapes) return;
+  s.skip_self.resize(n * n);
+  for (size_t i = 0; i < n; ++i) {
+    for (size_t j = 0; j < n; ++j) {
+      s.skip_self[i * n + j] = !s.self_collision || SkipSelf(s, s.robot[i].link, s.robot[j].link);
+    }
+  }
+}
 
 bool InCollision(const Robot& robot, const KinematicsData& kin, CollisionData* coll,
                  ProximityPair* hit) {

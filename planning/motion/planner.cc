@@ -27,6 +27,8 @@ inline constexpr base::EnumName<Planner> kPlannerNames[] = {
     {Planner::kAicoGoal, "aico-goal"},
     {Planner::kRrtRegion, "rrt-region"},
     {Planner::kBiRrtRegion, "birrt-region"},
+    {Planner::kOmplRrtRegion, "ompl-rrt-region"},
+    {Planner::kOmplRrtConnectRegion, "ompl-rrtconnect-region"},
 };
 constexpr std::span<const base::EnumName<Planner>> EnumNames(Planner) { return kPlannerNames; }
 
@@ -35,7 +37,10 @@ namespace {
 // RRT iterations between two polls (about 20 validity checks each at most).
 constexpr std::int64_t kRrtPollIterations = 16;
 
-bool NeedsOmpl(Planner p) { return p == Planner::kOmplRrt || p == Planner::kOmplRrtConnect; }
+bool NeedsOmpl(Planner p) {
+  return p == Planner::kOmplRrt || p == Planner::kOmplRrtConnect || p == Planner::kOmplRrtRegion ||
+         p == Planner::kOmplRrtConnectRegion;
+}
 
 }  // namespace
 
@@ -108,6 +113,14 @@ Planner ParsePlanner(const std::string& name) {
                                 "libompl-dev, then re-run cmake)");
   }
   return p;
+}
+
+std::vector<Planner> DefaultPlanners() {
+  std::vector<Planner> out;
+  for (const Planner p : AvailablePlanners()) {
+    if (p != Planner::kOmplRrtRegion && p != Planner::kOmplRrtConnectRegion) out.push_back(p);
+  }
+  return out;
 }
 
 bool OmplAvailable() {
@@ -257,6 +270,15 @@ PlanResult RunPlanner(const Scenario& s, const PlanRequest& request) {
     }
     return solver.result();
   };
+  // The goal region of the scenario (scenario_goal_region.h), its sampler's cost into `sampler`.
+  const auto region_problem = [&] {
+    GoalRegionProblem gp;
+    gp.lower = rp.lower;
+    gp.upper = rp.upper;
+    gp.start = rp.start;
+    gp.goal = ScenarioGoalRegion(s, w, valid, coll, &sampler);
+    return gp;
+  };
   switch (planner) {
     case Planner::kRrt:
     case Planner::kBiRrt: {
@@ -266,17 +288,25 @@ PlanResult RunPlanner(const Scenario& s, const PlanRequest& request) {
     }
     case Planner::kRrtRegion:
     case Planner::kBiRrtRegion: {
-      GoalRegionProblem gp;
-      gp.lower = rp.lower;
-      gp.upper = rp.upper;
-      gp.start = rp.start;
-      gp.goal = ScenarioGoalRegion(s, w, valid, coll, &sampler);
+      const GoalRegionProblem gp = region_problem();
       GoalRegionOptions go;
       go.rrt = options;
       GoalRegionSolver solver(gp, go, valid, seed, planner == Planner::kBiRrtRegion);
       r = step_to_end(solver);
       break;
     }
+    case Planner::kOmplRrtRegion:
+    case Planner::kOmplRrtConnectRegion:
+#ifdef TOPOPLAN_HAVE_OMPL
+      r = internal::PlanOmplRegion(planner == Planner::kOmplRrtRegion
+                                       ? internal::OmplPlanner::kRrt
+                                       : internal::OmplPlanner::kRrtConnect,
+                                   region_problem(), options, valid, seed, out_of_time);
+      break;
+#else
+      throw std::invalid_argument(std::string("planner '") + PlannerName(planner) +
+                                  "': topoplan was built without OMPL");
+#endif
     case Planner::kOmplRrt:
     case Planner::kOmplRrtConnect:
 #ifdef TOPOPLAN_HAVE_OMPL

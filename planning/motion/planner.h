@@ -27,6 +27,9 @@ namespace planning {
 // of every configuration meeting the success criterion's end conditions (goal_region.h,
 // scenario_goal_region.h), sampled lazily by projection and rejection, instead of q̂_T; the same
 // start, checker, box, edge resolution, options and budget as kRrt / kBiRrt.
+// kOmplRrtRegion / kOmplRrtConnectRegion ("ompl-rrt-region", "ompl-rrtconnect-region"): their OMPL
+// peers, OMPL's RRT and RRTConnect with the same region as an ob::GoalSampleableRegion
+// (internal/ompl_planners.h PlanOmplRegion; only when built with OMPL).
 enum class Planner {
   kAico,
   kRrt,
@@ -35,17 +38,23 @@ enum class Planner {
   kOmplRrtConnect,
   kAicoGoal,
   kRrtRegion,
-  kBiRrtRegion
+  kBiRrtRegion,
+  kOmplRrtRegion,
+  kOmplRrtConnectRegion
 };
 // kAico or kAicoGoal.
 bool IsAico(Planner planner);
 
 // The registry: every planner of this build, in order ("aico", "rrt", "birrt", "ompl-rrt",
-// "ompl-rrtconnect" when built with OMPL, "aico-goal", "rrt-region", "birrt-region").
+// "ompl-rrtconnect" when built with OMPL, "aico-goal", "rrt-region", "birrt-region",
+// "ompl-rrt-region", "ompl-rrtconnect-region" when built with OMPL).
 std::vector<Planner> AvailablePlanners();
+// The planners a sweep runs when none are named (`bench unwrap`, the demo): AvailablePlanners()
+// without the OMPL goal-region peers, which check rrt-region / birrt-region and are run by name.
+std::vector<Planner> DefaultPlanners();
 // "aico" | "rrt" | "birrt" | "ompl-rrt" | "ompl-rrtconnect" | "aico-goal" | "rrt-region" |
-// "birrt-region"; throws std::invalid_argument for an
-// unknown name (listing the valid ones), and for the OMPL names when built without OMPL
+// "birrt-region" | "ompl-rrt-region" | "ompl-rrtconnect-region"; throws std::invalid_argument for
+// an unknown name (listing the valid ones), and for the OMPL names when built without OMPL
 // ("... built without OMPL ...").
 Planner ParsePlanner(const std::string& name);
 // True when this build includes OMPL (libompl-dev was found by CMake).

@@ -503,14 +503,13 @@ void BindScenarioLoading(py::module_& m) {
       "dict from Scenario.resolved_poses() of the same set-up) skips the expensive part;\n"
       "stop_when_solved (bool) replaces the scenario's aico.stop_when_solved (True: AICO stops at\n"
       "the first accepted sweep whose trajectory meets the success criteria, status 'solved').");
-  m.def(
-      "unwrap_perturbation", &UnwrapPerturbationPy, py::arg("path_or_name"), py::arg("seeds"),
-      py::arg("pole_offset") = 0.0, py::kw_only(), py::arg("perturb") = py::none(),
-      "The pole perturbation of `topoplan bench unwrap --pole-offset M --seeds N`: dict with\n"
-      "'object' (the moved object's name, '' when pole_offset is 0) and 'offsets' (N x 3\n"
-      "world-frame offsets [m], row s for seed s; at most pole_offset from the pole's line;\n"
-      "perturb= is its deprecated name). Pass\n"
-      "move_objects={object: offsets[s]} to load_scenario for seed s's set-up.");
+  m.def("unwrap_perturbation", &UnwrapPerturbationPy, py::arg("path_or_name"), py::arg("seeds"),
+        py::arg("pole_offset") = 0.0, py::kw_only(), py::arg("perturb") = py::none(),
+        "The pole perturbation of `topoplan bench unwrap --pole-offset M --seeds N`: dict with\n"
+        "'object' (the moved object's name, '' when pole_offset is 0) and 'offsets' (N x 3\n"
+        "world-frame offsets [m], row s for seed s; at most pole_offset from the pole's line;\n"
+        "perturb= is its deprecated name). Pass\n"
+        "move_objects={object: offsets[s]} to load_scenario for seed s's set-up.");
 }
 
 // grasp_transfer and the grasp experiment's names and statistics.
@@ -562,18 +561,26 @@ void BindGrasp(py::module_& m) {
       "Wilson score 95 % interval (lo, hi) of a success rate successes / trials (Wilson 1927).");
 }
 
-// available_planners and asset_root: what this build and installation provide.
+namespace {
+
+// Planner names, in registry order.
+std::vector<std::string> PlannerNames(const std::vector<planning::Planner>& planners) {
+  std::vector<std::string> names;
+  for (planning::Planner p : planners) names.emplace_back(planning::PlannerName(p));
+  return names;
+}
+
+}  // namespace
+
+// available_planners, default_planners and asset_root: what this build and installation provide.
 void BindBuildInfo(py::module_& m) {
   m.def(
-      "available_planners",
-      [] {
-        std::vector<std::string> names;
-        for (planning::Planner p : planning::AvailablePlanners()) {
-          names.emplace_back(planning::PlannerName(p));
-        }
-        return names;
-      },
+      "available_planners", [] { return PlannerNames(planning::AvailablePlanners()); },
       "Names of the planners of this build (aico, rrt, birrt, and ompl-* with OMPL).");
+  m.def(
+      "default_planners", [] { return PlannerNames(planning::DefaultPlanners()); },
+      "The planners an unwrap sweep runs when none are named: available_planners() without the\n"
+      "OMPL goal-region peers (ompl-rrt-region, ompl-rrtconnect-region), run by name only.");
   m.def("asset_root", &base::AssetRoot,
         "Root of the asset tree ($TOPOPLAN_ASSETS, else the installed or source assets/).");
 }

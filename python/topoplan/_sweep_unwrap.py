@@ -40,11 +40,12 @@ def parse_range(text, flag="--angles"):
     return [a + i * step for i in range(count)]
 
 
-def parse_planners(text, available):
-    """Comma-separated planner names, each one of `available` and listed once; None -> all of
-    `available` (the OMPL peers too when the module was built with them), as `bench unwrap`."""
+def parse_planners(text, available, default=None):
+    """Comma-separated planner names, each one of `available` and listed once; None -> `default`
+    (topoplan.default_planners(): the OMPL peers too when the module was built with them, but not
+    the OMPL goal-region peers), or all of `available` when no default is given, as `bench unwrap`."""
     if text is None:
-        return list(available)
+        return list(default if default is not None else available)
     names = [p for p in text.split(",")]
     if not names or any(not p for p in names):
         raise UsageError(f"--planners: empty name in '{text}'")
@@ -151,7 +152,8 @@ def sweep_unwrap(args):
     import topoplan
 
     angles = parse_range(args.angles)
-    planners = parse_planners(args.planners, topoplan.available_planners())
+    planners = parse_planners(args.planners, topoplan.available_planners(),
+                              topoplan.default_planners())
     check_common(args)
     if not (0 <= args.perturb <= 1):  # also refuses NaN
         raise UsageError("--pole-offset: expected a distance in metres in 0..1")

@@ -115,8 +115,8 @@ def build_parser():
     u.add_argument(
         "--planners",
         default=None,
-        help="comma-separated planners, each at most once (default: all of this build, with the "
-        "OMPL peers when built)",
+        help="comma-separated planners, each at most once (default: topoplan.default_planners(), "
+        "with the OMPL peers when built, but not the OMPL goal-region peers)",
     )
     u.add_argument("--budget", type=int, default=-1, help="RRT collision-check budget (default: the scenario's, 100000)")
     u.add_argument(

@@ -67,6 +67,44 @@ TEST(FramesTest, WritesAnMp4WhenFfmpegExists) {
   EXPECT_GT(fs::file_size(seq.video), 100u);
 }
 
+// Videos queued in a VideoBatch (one ffmpeg for several) are the files each FrameWriter writes
+// alone, byte for byte, whatever the batch size; they appear on Flush (or when the batch is full).
+TEST(FramesTest, BatchedVideosEqualVideosEncodedAlone) {
+  if (FindExecutable("ffmpeg").empty()) GTEST_SKIP() << "ffmpeg is not installed (optional)";
+  const fs::path root = fs::path(TOPOPLAN_BINARY_DIR) / "test-tmp" / "frames_batch_test";
+  fs::remove_all(root);
+  auto write = [&](const std::string& name, int k, VideoBatch* batch) {
+    FrameWriterOptions o;
+    o.contact_sheet = false;
+    o.gif = k == 2;  // one GIF among the MP4s
+    o.video_batch = batch;
+    FrameWriter writer((root / name).string(), o);
+    for (int i = 0; i < 4; ++i) {
+      writer.Add(Image(40 + 6 * k, 30 + 2 * k, static_cast<std::uint8_t>(60 * i), 20 * k, 90));
+    }
+    return writer.Finish().video;
+  };
+  auto bytes = [](const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  };
+  VideoBatch batch(2);
+  std::vector<std::string> alone, batched;
+  for (int k = 0; k < 3; ++k) {
+    alone.push_back(write("alone_" + std::to_string(k), k, nullptr));
+    batched.push_back(write("batched_" + std::to_string(k), k, &batch));
+  }
+  EXPECT_TRUE(fs::exists(batched[0]));   // the batch was full after two: flushed
+  EXPECT_FALSE(fs::exists(batched[2]));  // queued
+  ASSERT_TRUE(batch.Flush());
+  for (int k = 0; k < 3; ++k) {
+    ASSERT_FALSE(alone[k].empty());
+    ASSERT_TRUE(fs::exists(batched[k])) << batched[k];
+    EXPECT_EQ(fs::path(batched[k]).extension(), k == 2 ? ".gif" : ".mp4");
+    EXPECT_EQ(bytes(alone[k]), bytes(batched[k])) << k;
+  }
+}
+
 TEST(FramesTest, LabelsKeyFramesAndMultiLineLabels) {
   const fs::path dir = fs::path(TOPOPLAN_BINARY_DIR) / "test-tmp" / "frames_label_test";
   fs::remove_all(dir);

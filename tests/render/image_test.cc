@@ -66,6 +66,28 @@ TEST(ImageTest, BadInputNamesTheFile) {
   EXPECT_THROW(DecodePng(truncated, "truncated"), std::invalid_argument);
 }
 
+// Halving (the frames' thumbnails take a fast path) averages each 2 × 2 block, rounding halves up,
+// as every other size does.
+TEST(ImageTest, DownscaleByHalfAveragesTwoByTwoBlocks) {
+  Image img(10, 6);
+  for (int y = 0; y < 6; ++y) {
+    for (int x = 0; x < 10; ++x) {
+      for (int c = 0; c < 4; ++c)
+        img.at(x, y)[c] = static_cast<std::uint8_t>((37 * x + 91 * y + 53 * c) % 256);
+    }
+  }
+  const Image half = Downscale(img, 5, 3);
+  for (int y = 0; y < 3; ++y) {
+    for (int x = 0; x < 5; ++x) {
+      for (int c = 0; c < 4; ++c) {
+        const unsigned sum = img.at(2 * x, 2 * y)[c] + img.at(2 * x + 1, 2 * y)[c] +
+                             img.at(2 * x, 2 * y + 1)[c] + img.at(2 * x + 1, 2 * y + 1)[c];
+        ASSERT_EQ(half.at(x, y)[c], (sum + 2) / 4) << x << "," << y << "," << c;
+      }
+    }
+  }
+}
+
 TEST(ImageTest, DownscaleAveragesBlocks) {
   Image img(4, 2, 0, 0, 0);
   img.at(0, 0)[0] = 200;

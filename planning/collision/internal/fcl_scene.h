@@ -33,7 +33,23 @@ struct FclShape {
   // The exact triangle mesh (OBBRSS BVH) of a robot link mesh collided as its convex hull: a hull
   // hit is confirmed on it before it counts (CollisionOptions::confirm_meshes); null otherwise.
   std::unique_ptr<fcl::CollisionObjectd> exact;
+  // Set by Place with every pose of `obj` (the queries read these instead of asking FCL): the
+  // shape's local z axis in the world, and its bounding capsule's core segment, start and span
+  // (zero for a shape without bound_radius).
+  Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();
+  Eigen::Vector3d bound_start = Eigen::Vector3d::Zero();
+  Eigen::Vector3d bound_span = Eigen::Vector3d::Zero();
 };
+
+// Poses `shape` at world_from_shape: its FCL object's transform and world AABB, and the cached
+// axis and bounding segment (the same arithmetic as on the FCL object's pose, so the same bits).
+inline void Place(FclShape* shape, const Eigen::Isometry3d& world_from_shape) {
+  shape->obj->setTransform(world_from_shape);
+  shape->obj->computeAABB();
+  shape->axis = shape->obj->getRotation().col(2);
+  shape->bound_start = shape->obj->getTranslation() - shape->bound_half_length * shape->axis;
+  shape->bound_span = 2.0 * shape->bound_half_length * shape->axis;
+}
 
 struct FclScene {
   std::vector<FclShape> robot;  // pointers to elements are used as FCL user data: never resized
@@ -46,12 +62,21 @@ struct FclScene {
   std::vector<int> body;
   std::vector<int> parent_body;
   std::unordered_set<std::uint64_t> disabled;
+  // skip_self[i · robot.size() + j]: robot shapes i and j are never checked (self collision off,
+  // adjacent or disabled links), the same answer as the rule above in one load; built by
+  // BuildSkipTable, empty (the rule above is used) for more than kMaxSkipTableShapes shapes.
+  std::vector<std::uint8_t> skip_self;
+  static constexpr size_t kMaxSkipTableShapes = 512;
   bool self_collision = true;
   bool environment = true;
   bool confirm_meshes = true;  // CollisionOptions::confirm_meshes
   fcl::DynamicAABBTreeCollisionManagerd robot_manager;
   fcl::DynamicAABBTreeCollisionManagerd env_manager;
 };
+
+// Fills scene->skip_self from the robot shapes, body, parent_body, disabled and self_collision
+// (call once they are set).
+void BuildSkipTable(FclScene* scene);
 
 // The key of an unordered link pair.
 inline std::uint64_t PairKey(int a, int b) {

@@ -5,6 +5,7 @@
 
 #include <functional>
 
+#include "planning/motion/goal_region.h"
 #include "planning/motion/rrt.h"
 
 namespace planning::internal {
@@ -33,5 +34,26 @@ enum class OmplPlanner { kRrt, kRrtConnect };
 // unless solved), e.g. a CPU-time budget.
 RrtResult PlanOmpl(OmplPlanner planner, const RrtProblem& problem, const RrtOptions& options,
                    const ValidityFn& valid, unsigned seed, const std::function<bool()>& stop = {});
+
+// The same with a goal region (goal_region.h) instead of one goal state: the OMPL peers of
+// "rrt-region" / "birrt-region". The goal is an ob::GoalSampleableRegion whose isSatisfied is
+// problem.goal.contains; goal candidates come from problem.goal.sample with a std::mt19937 seeded
+// with `seed` (separate from OMPL's generator). OMPL's own rules then apply:
+//  - RRT steers toward a goal sample on goal-biased iterations and succeeds when a new node
+//    satisfies the goal. Its goal samples follow OMPL's GoalLazySamples: each call draws one
+//    candidate while fewer than 32 goal states are kept, keeps it when it is in G and the counted
+//    checker accepts it, and returns the kept states in turn (a uniform state of the box while
+//    none is kept).
+//  - RRTConnect roots goal trees at valid goal samples (PlannerInputStates::nextGoal checks
+//    bounds and validity through the counted checker, as long as OMPL's rule asks for more);
+//    each sample is the first in G of up to kOmplGoalDraws fresh candidates, or a state outside
+//    the box (skipped by nextGoal) when none was.
+// The check of a goal candidate calls problem.goal.valid when set (it must answer as `valid`; the
+// scenario's books the cost to the goal sampler), every other check `valid`. result.goal: draws =
+// candidates drawn, in_region = those in G, samples = goal states handed to the planner.
+inline constexpr int kOmplGoalDraws = 8;
+RrtResult PlanOmplRegion(OmplPlanner planner, const GoalRegionProblem& problem,
+                         const RrtOptions& options, const ValidityFn& valid, unsigned seed,
+                         const std::function<bool()>& stop = {});
 
 }  // namespace planning::internal

@@ -9,9 +9,10 @@
 #include <vector>
 
 #include "planning/motion/internal/ompl_planners.h"
-#include "planning/robot/kinematics.h"
 #include "planning/motion/planner.h"
 #include "planning/motion/scenario.h"
+#include "planning/motion/success.h"
+#include "planning/robot/kinematics.h"
 #include "scenario_test_util.h"
 
 namespace planning {
@@ -116,6 +117,40 @@ TEST(OmplPeers, BudgetInAScenarioRunIsAFailedReport) {
   EXPECT_EQ(r.report.status, SolveStatus::kBudgetExhausted);
   EXPECT_EQ(r.report.collision_checks, 30);
   EXPECT_EQ(r.trajectory.num_points(), 0);
+}
+
+// The OMPL peers of the goal-region trees: registered, kept out of the default sweep, and
+// ompl-rrtconnect-region unwraps the shipped arm from 360° into the region the criterion judges,
+// deterministically per seed.
+TEST(OmplPeers, GoalRegionPeersAreRegisteredButNotDefault) {
+  EXPECT_EQ(ParsePlanner("ompl-rrt-region"), Planner::kOmplRrtRegion);
+  EXPECT_EQ(ParsePlanner("ompl-rrtconnect-region"), Planner::kOmplRrtConnectRegion);
+  const std::vector<Planner> all = AvailablePlanners(), def = DefaultPlanners();
+  EXPECT_NE(std::find(all.begin(), all.end(), Planner::kOmplRrtConnectRegion), all.end());
+  EXPECT_EQ(std::find(def.begin(), def.end(), Planner::kOmplRrtConnectRegion), def.end());
+  EXPECT_EQ(std::find(def.begin(), def.end(), Planner::kOmplRrtRegion), def.end());
+  EXPECT_EQ(def.size() + 2, all.size());
+}
+
+TEST(OmplPeers, RrtConnectRegionUnwrapsFrom360Degrees) {
+  ScenarioOverrides o;
+  o.start_wrap_deg = 360.0;
+  const auto s = LoadScenario(kAssets + "scenarios/unwrap.json", o);
+  const PlanResult a = RunPlanner(*s, Planner::kOmplRrtConnectRegion, 0);
+  const PlanReport& r = a.report;
+  EXPECT_EQ(r.planner, "ompl-rrtconnect-region");
+  ASSERT_TRUE(r.success) << FailureReasonName(r.failure_reason);
+  const Trajectory& path = a.trajectory;
+  EXPECT_TRUE(CheckEndState(*s, path.q.col(path.num_points() - 1), true).ok());
+  EXPECT_TRUE(JudgePlan(*s, path).ok());
+  EXPECT_TRUE(PathCollisionFree(*s, path));
+  EXPECT_GT(r.goal_samples, 0);
+  EXPECT_GE(r.goal_sampler_draws, r.goal_samples);
+  EXPECT_GT(r.goal_sampler_counts.state_queries, 0);
+  EXPECT_LE(r.collision_checks, s->rrt.max_checks);
+  const PlanReport again = RunPlanner(*s, Planner::kOmplRrtConnectRegion, 0).report;
+  EXPECT_EQ(again.counts, r.counts);
+  EXPECT_EQ(again.goal_samples, r.goal_samples);
 }
 
 }  // namespace

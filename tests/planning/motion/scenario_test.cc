@@ -274,7 +274,7 @@ TEST(Planners, NamesRoundTripAndUnknownNamesListTheValidOnes) {
   } catch (const std::invalid_argument& e) {
     EXPECT_EQ(std::string(e.what()),
               "unknown planner 'astar' (aico, rrt, birrt, ompl-rrt, ompl-rrtconnect, aico-goal, "
-              "rrt-region, birrt-region)");
+              "rrt-region, birrt-region, ompl-rrt-region, ompl-rrtconnect-region)");
   }
   for (const auto& e : kSolveStatusNames) {
     EXPECT_EQ(base::ParseEnum<SolveStatus>(StatusName(e.value), "status"), e.value);
