@@ -17,9 +17,8 @@ REQUIRED=(
   fonts-dejavu-core                               # font for labels
   locales                                         # locale definitions (tests: a comma-decimal locale)
   libassimp-dev liburdfdom-dev libtinyxml-dev     # meshes, URDF (+ TinyXML, used directly)
-  libfcl-dev libccd-dev libqhull-dev              # collision, convex hulls of meshes
+  libfcl-dev libccd-dev libqhull-dev              # collision, convex hulls (meshes, grasp quality)
   libode-dev                                      # physics
-  libqhull-dev                                    # convex hulls (grasp quality)
   libgtest-dev libgmock-dev libbenchmark-dev      # tests, benchmarks
   pybind11-dev python3-dev python3-pybind11       # Python module (python/)
   python3-numpy python3-pytest                    # its arrays and tests

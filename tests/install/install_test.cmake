@@ -33,7 +33,8 @@ foreach(f
     ${LIBDIR}/libplanning_physics.a
     include/topology/writhe.h include/planning/robot/kinematics.h include/render/renderer.h
     include/planning/physics/ode_runtime.h
-    bin/topoplan share/topoplan/scenarios/unwrap.json share/topoplan/robots/arm20_sdh.urdf)
+    bin/topoplan bin/topoplan-full share/topoplan/scenarios/unwrap.json
+    share/topoplan/robots/arm20_sdh.urdf)
   if(NOT EXISTS ${prefix}/${f})
     message(FATAL_ERROR "not installed: ${prefix}/${f}")
   endif()
