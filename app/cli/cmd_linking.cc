@@ -263,7 +263,7 @@ void ParseBatchLine(const std::string& line, nlohmann::json* id, topology::Chain
 }
 
 // --batch: one result line per input line; stops with exit 2 at the first malformed line.
-int RunBatch(const LinkingArgs& la) {
+int RunBatch(const LinkingArgs& la, topology::LinkingMethod method) {
   std::ifstream file;
   if (la.batch != "-") {
     file.open(la.batch);
@@ -291,7 +291,7 @@ int RunBatch(const LinkingArgs& la) {
       }
       RequireClosed(a, "\"a\"", la.close);
       RequireClosed(b, "\"b\"", la.close);
-      r = topology::LinkingNumberAuto(a, b, la.Method(), options);
+      r = topology::LinkingNumberAuto(a, b, method, options);
     } catch (const std::invalid_argument& e) {
       std::fflush(stdout);
       std::string msg = source;
@@ -350,7 +350,8 @@ void AddLinkingCommand(CLI::App* root, CommandList* commands) {
       "certified. Long inputs show progress; Ctrl-C stops them (exit 130).");
   commands->push_back(
       {linking, [la]() -> int {
-         if (la->tol > 0.0 && la->Method() == topology::LinkingMethod::kCrossings) {
+         const topology::LinkingMethod method = la->Method();
+         if (la->tol > 0.0 && method == topology::LinkingMethod::kCrossings) {
            throw std::invalid_argument(
                "--tol: approximates the Gauss integral; not with --method crossings");
          }
@@ -358,7 +359,7 @@ void AddLinkingCommand(CLI::App* root, CommandList* commands) {
            if (!la->a_path.empty()) {
              throw std::invalid_argument("--batch: takes no chain files A, B");
            }
-           return RunBatch(*la);
+           return RunBatch(*la, method);
          }
          if (la->a_path.empty() || la->b_path.empty()) {
            throw std::invalid_argument("linking: needs two chain files A B (or --batch)");
@@ -376,7 +377,7 @@ void AddLinkingCommand(CLI::App* root, CommandList* commands) {
          options.threads = la->threads;
          options.far_field_tol = la->tol;
          options.progress = PairProgress("linking", stop);
-         const topology::LinkingResult r = topology::LinkingNumberAuto(a, b, la->Method(), options);
+         const topology::LinkingResult r = topology::LinkingNumberAuto(a, b, method, options);
          EndProgress();
          const bool ok = r.status == topology::LinkingStatus::kCertified;
          if (la->json) {

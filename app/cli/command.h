@@ -46,6 +46,9 @@ using CommandRegistrar = void (*)(CLI::App* root, CommandList* commands);
 // only the ones that need no renderer, physics or planner.
 int RunCommands(int argc, char** argv, const std::vector<CommandRegistrar>& registrars);
 
+// Start of main(): standard output buffered until the end (1 MiB, unless a terminal), so that a
+// failing write is seen by FinishMain's flush with its reason.
+void BufferStdout();
 // End of main(): flushes standard output and returns `rc`, or 3 (environment) with the reason on
 // stderr when a write failed (ENOSPC, EPIPE, EBADF) and rc was 0 or 1.
 int FinishMain(int rc);

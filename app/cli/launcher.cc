@@ -41,8 +41,7 @@ std::string FullToolPath() {
 
 int main(int argc, char** argv) {
   if (CommandName(argc, argv) == "linking") {
-    static char buffer[1 << 20];
-    std::setvbuf(stdout, buffer, isatty(STDOUT_FILENO) ? _IOLBF : _IOFBF, sizeof buffer);
+    app::BufferStdout();
     return app::FinishMain(app::RunCommands(argc, argv, {app::AddLinkingCommand}));
   }
   const std::string full = FullToolPath();

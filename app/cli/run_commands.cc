@@ -67,6 +67,11 @@ int RunCommands(int argc, char** argv, const std::vector<CommandRegistrar>& regi
   return kExitBadInput;
 }
 
+void BufferStdout() {
+  static char buffer[1 << 20];
+  std::setvbuf(stdout, buffer, isatty(STDOUT_FILENO) ? _IOLBF : _IOFBF, sizeof buffer);
+}
+
 int FinishMain(int rc) {
   // Every write is checked, standard output too: JSON sent to a full disk or a closed pipe is a
   // failure, not a success (exit 3, the reason named).
