@@ -5,9 +5,9 @@
 // Per frame (internal/renderer_passes.cc): 1. turn every shape, tube segment and bead into
 // instances of four shared unit meshes (or of a cached user mesh; internal/renderer_collect.cc);
 // 2. compute the scene's bounding sphere for clip planes and the shadow frustum; 3. depth pass
-// from light 0 into a 1024^2 shadow map; 4. lit pass: opaque instance batches, grid, translucent
-// instances back to front, lines; 5. (Render only) resolve MSAA and read back, flipping rows to
-// top-down.
+// from light 0 into a shadow map (RenderOptions::shadow_map_size, default 1024^2); 4. lit pass:
+// opaque instance batches, grid, translucent instances back to front, lines; 5. (Render only)
+// resolve MSAA and read back, flipping rows to top-down.
 #include "render/renderer.h"
 
 #include <algorithm>
@@ -104,7 +104,7 @@ Renderer::Impl::Impl(const GlProcLoader& load) {
   gl_.EnableVertexAttribArray(0);
   gl_.VertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 3 * sizeof(float), nullptr);
   gl_.BindVertexArray(0);
-  CreateShadowMap();
+  CreateShadowMap(RenderOptions{}.shadow_map_size);
 }
 
 Renderer::Impl::~Impl() {

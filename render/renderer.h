@@ -6,10 +6,11 @@
 // projected size: 12/20/32 slices below 6 px / 20 px / above), tubes (cylinder per segment +
 // bead spheres), GL lines, and a ground grid (procedural, in the fragment shader) with
 // Blinn-Phong lighting from up to 4 directional lights plus hemispheric ambient, and a soft
-// shadow (1024^2 shadow map, 4-tap bilinear PCF) from the first light onto everything. Spheres,
-// cylinders, capsules and boxes are closed and drawn with back faces culled (a near plane that
-// cuts into one shows through the cut). Renders are deterministic: the same Scene, Camera, size and
-// options give byte-identical pixels run to run (tessellation counts are fixed; no time).
+// shadow (shadow map of RenderOptions::shadow_map_size², default 1024², 4-tap bilinear PCF) from
+// the first light onto everything. Spheres, cylinders, capsules and boxes are closed and drawn with
+// back faces culled (a near plane that cuts into one shows through the cut). Renders are
+// deterministic: the same Scene, Camera, size and options give byte-identical pixels run to run
+// (tessellation counts are fixed; no time).
 //
 // Cost on the 2-core reference machine (tests/bench/bench_render.cc): see the README.
 #pragma once
@@ -28,6 +29,10 @@ namespace render {
 struct RenderOptions {
   int msaa_samples = 0;  // 0 or 1: none; 2/4: multisampled FBO resolved before readback
   bool shadows = true;   // shadow of the first light (off: plain Blinn-Phong)
+  // Texels on a side of the shadow map: a power of two in [64, 4096]. Its depth pass costs about
+  // size² fragments whatever the frame size, so small frames can take a smaller map (softer,
+  // coarser shadow edges); 1024 is what every golden image was rendered with.
+  int shadow_map_size = 1024;
 };
 
 // GL implementation strings of the current context (for logs and snapshots/README.md).

@@ -96,12 +96,19 @@ void Renderer::Impl::DrawInstances(const GpuMesh& mesh, const std::vector<Instan
   gl_.BindVertexArray(0);
 }
 
-void Renderer::Impl::CreateShadowMap() {
-  const int size = internal::kShadowMapSize;
+void Renderer::Impl::CreateShadowMap(int size) {
+  if (shadow_texture_ != 0) {  // resize: new storage, the framebuffer keeps its attachment
+    gl_.BindTexture(GL_TEXTURE_2D, shadow_texture_);
+    gl_.TexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT24, size, size, 0, GL_DEPTH_COMPONENT,
+                   GL_UNSIGNED_INT, nullptr);
+    shadow_size_ = size;
+    return;
+  }
   gl_.GenTextures(1, &shadow_texture_);
   gl_.BindTexture(GL_TEXTURE_2D, shadow_texture_);
   gl_.TexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT24, size, size, 0, GL_DEPTH_COMPONENT,
                  GL_UNSIGNED_INT, nullptr);
+  shadow_size_ = size;
   gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
   gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
   gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);

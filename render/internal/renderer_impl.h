@@ -21,13 +21,12 @@
 namespace render {
 namespace internal {
 
-constexpr int kShadowMapSize = 1024;  // texels on a side of the shadow map
-
 // Per-frame values every lit program variant receives (world frame).
 struct LitFrame {
   Eigen::Matrix4f view_proj;        // camera clip from world
   Eigen::Matrix4f light_view_proj;  // light 0's shadow-map clip from world (identity: no shadows)
   bool shadows = false;
+  int shadow_map_size = 0;  // texels on a side of the shadow map this frame
   // Pixel rectangle of the ground that light 0 can shadow (GroundShadowRect); the grid outside
   // it is drawn without shadow lookups.
   PixelRect ground_shadow_rect;
@@ -88,7 +87,7 @@ class Renderer::Impl {
   internal::Bounds FrameBounds(const internal::Bounds& opaque,
                                const std::vector<Lines>& lines) const;
   // Renders the opaque instances into the shadow map from `light_view_proj` (clip from world).
-  void ShadowPass(const Eigen::Matrix4f& light_view_proj);
+  void ShadowPass(const Eigen::Matrix4f& light_view_proj, int size);
   // Draws the opaque batches with the current program; `cull_back_faces`: cull those of the
   // batches that allow it (Batch::cull).
   void DrawOpaque(bool cull_back_faces);
@@ -126,7 +125,8 @@ class Renderer::Impl {
   void Release(GpuMesh* g);
   const GpuMesh* MeshFor(const std::shared_ptr<const TriangleMesh>& mesh);
   void DrawInstances(const GpuMesh& mesh, const std::vector<Instance>& items);
-  void CreateShadowMap();
+  // Creates the shadow-map texture and framebuffer (size x size), or resizes the texture.
+  void CreateShadowMap(int size);
   void MakeTarget(int width, int height, int samples, Target* t);
   void ReleaseTarget(Target* t);
   // Colour copy (same size; resolves a multisampled source). Unaffected by the scissor test,
@@ -148,6 +148,7 @@ class Renderer::Impl {
   std::map<const TriangleMesh*, CachedMesh> mesh_cache_;
   GLuint line_vao_ = 0, line_buffer_ = 0;
   GLuint shadow_fbo_ = 0, shadow_texture_ = 0;
+  int shadow_size_ = 0;   // texels on a side of shadow_texture_
   Target target_, msaa_;  // Render()'s read-back target and its multisampled twin
   int target_w_ = 0, target_h_ = 0, target_samples_ = 0;
   Target cache_;  // CacheScene()'s image

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -24,6 +25,11 @@ void Renderer::Impl::Draw(const Scene& scene, const Camera& camera, int width, i
                           GLuint fbo, const RenderOptions& options) {
   CheckSize(width, height);
   internal::CheckCamera(camera);
+  const int sm = options.shadow_map_size;
+  if (sm < 64 || sm > 4096 || (sm & (sm - 1)) != 0) {
+    throw std::invalid_argument("shadow_map_size " + std::to_string(sm) +
+                                " is not a power of two in 64..4096");
+  }
   focal_px_ = 0.5f * static_cast<float>(height) /
               std::tan(0.5f * camera.fovy_deg * 3.14159265358979f / 180.0f);
   lod_eye_ = camera.eye;
@@ -49,10 +55,11 @@ void Renderer::Impl::Draw(const Scene& scene, const Camera& camera, int width, i
   frame.light_view_proj = Eigen::Matrix4f::Identity();
   if (frame.shadows) {
     frame.light_view_proj = internal::LightViewProjection(sphere, lights[0].direction);
-    ShadowPass(frame.light_view_proj);
+    frame.shadow_map_size = options.shadow_map_size;
+    ShadowPass(frame.light_view_proj, frame.shadow_map_size);
     // Filter reach of a lookup (2 taps 0.75 texel off centre, bilinear, raster rounding):
-    // under 4 texels of 2 radius / kShadowMapSize; 5 for margin.
-    const float reach = 5.0f * 2.0f * sphere.radius / internal::kShadowMapSize;
+    // under 4 texels of 2 radius / shadow_map_size; 5 for margin.
+    const float reach = 5.0f * 2.0f * sphere.radius / static_cast<float>(frame.shadow_map_size);
     frame.ground_shadow_rect = internal::GroundShadowRect(
         casters, reach, lights[0].direction, scene.grid.height, frame.view_proj, width, height);
   }
@@ -95,9 +102,10 @@ Bounds Renderer::Impl::FrameBounds(const Bounds& opaque, const std::vector<Lines
   return bounds;
 }
 
-void Renderer::Impl::ShadowPass(const Eigen::Matrix4f& light_view_proj) {
+void Renderer::Impl::ShadowPass(const Eigen::Matrix4f& light_view_proj, int size) {
+  if (size != shadow_size_) CreateShadowMap(size);
   gl_.BindFramebuffer(GL_FRAMEBUFFER, shadow_fbo_);
-  gl_.Viewport(0, 0, internal::kShadowMapSize, internal::kShadowMapSize);
+  gl_.Viewport(0, 0, size, size);
   gl_.Enable(GL_DEPTH_TEST);
   gl_.DepthMask(GL_TRUE);
   gl_.Clear(GL_DEPTH_BUFFER_BIT);
@@ -180,7 +188,7 @@ void Renderer::Impl::UseLitProgram(const LitFrame& frame) {
   gl_.Uniform3fv(Uniform(p, "u_light_rgb"), 4, frame.light_rgb.data());
   gl_.Uniform3f(Uniform(p, "u_ambient"), frame.ambient[0], frame.ambient[1], frame.ambient[2]);
   gl_.Uniform1i(Uniform(p, "u_shadow_map"), 0);
-  gl_.Uniform1f(Uniform(p, "u_shadow_texel"), 1.0f / internal::kShadowMapSize);
+  gl_.Uniform1f(Uniform(p, "u_shadow_texel"), 1.0f / static_cast<float>(frame.shadow_map_size));
 }
 
 void Renderer::Impl::UseGridProgram(const Grid& g, const LitFrame& frame, bool shadows) {
@@ -195,7 +203,7 @@ void Renderer::Impl::UseGridProgram(const Grid& g, const LitFrame& frame, bool s
   gl_.Uniform4f(Uniform(p, "u_grid_line"), g.line_rgba[0], g.line_rgba[1], g.line_rgba[2],
                 g.line_rgba[3]);
   gl_.Uniform1i(Uniform(p, "u_shadow_map"), 0);
-  gl_.Uniform1f(Uniform(p, "u_shadow_texel"), 1.0f / internal::kShadowMapSize);
+  gl_.Uniform1f(Uniform(p, "u_shadow_texel"), 1.0f / static_cast<float>(frame.shadow_map_size));
   // The mesh shader's lighting for normal n = +z (seen from above) or -z, no highlight
   // (specular 0): ambient mix(0.6, 1, hemi) + sum of rgb max(n.l, 0).
   std::array<float, 6> unshadowed{}, key{};

@@ -95,7 +95,8 @@ Gl& SharedGl() {
   return gl;
 }
 
-// Render + readback of a 50k-triangle frame. Args: width, height, msaa samples, shadows (0/1).
+// Render + readback of a 50k-triangle frame. Args: width, height, msaa samples, shadows (0/1),
+// shadow-map size.
 void BM_RenderFrame(benchmark::State& state) {
   Gl& gl = SharedGl();
   int triangles = 0;
@@ -104,6 +105,7 @@ void BM_RenderFrame(benchmark::State& state) {
   render::RenderOptions options;
   options.msaa_samples = static_cast<int>(state.range(2));
   options.shadows = state.range(3) != 0;
+  options.shadow_map_size = static_cast<int>(state.range(4));
   benchmark::DoNotOptimize(gl.renderer.Render(scene, BenchCamera(), w, h, options));  // JIT warm-up
   const double cpu0 = ProcessCpuSeconds();
   for (auto _ : state) {
@@ -116,12 +118,15 @@ void BM_RenderFrame(benchmark::State& state) {
                                                     static_cast<double>(state.iterations()));
 }
 BENCHMARK(BM_RenderFrame)
-    ->ArgNames({"w", "h", "msaa", "shadows"})
-    ->Args({1280, 720, 0, 1})
-    ->Args({1280, 720, 0, 0})
-    ->Args({1280, 720, 4, 1})
-    ->Args({640, 480, 0, 1})
-    ->Args({320, 240, 0, 1})
+    ->ArgNames({"w", "h", "msaa", "shadows", "map"})
+    ->Args({1280, 720, 0, 1, 1024})
+    ->Args({1280, 720, 0, 0, 1024})
+    ->Args({1280, 720, 4, 1, 1024})
+    ->Args({640, 480, 0, 1, 1024})
+    ->Args({480, 360, 0, 1, 1024})  // the grasp frames: before and with their 512² map
+    ->Args({480, 360, 0, 1, 512})
+    ->Args({480, 360, 0, 0, 1024})
+    ->Args({320, 240, 0, 1, 1024})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 

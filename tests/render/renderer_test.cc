@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -202,6 +203,39 @@ TEST(RendererTest, EglMatchesOsmesa) {
   }
   egl.reset();
   EXPECT_TRUE(SameImage(a, b)) << CompareImages(a, b).changed_pixels << " pixels differ";
+}
+
+// Whether pixel k of a and b differ at all.
+bool PixelDiffers(const Image& a, const Image& b, size_t k) {
+  return !std::equal(a.rgba.begin() + 4 * k, a.rgba.begin() + 4 * k + 4, b.rgba.begin() + 4 * k);
+}
+
+// The shadow map's size changes shadow pixels only (pixels shadowed in one of the two renders),
+// renders at each size are deterministic, and going back to the default size gives the default
+// render again (the map is resized in place).
+TEST(RendererTest, ShadowMapSizeChangesShadowPixelsOnly) {
+  Renderer& r = testing::SharedRenderer();
+  const Scene s = BeadChain(-1);
+  RenderOptions small;
+  small.shadow_map_size = 256;
+  const Image big = r.Render(s, TestCamera(), kW, kH);
+  const Image coarse = r.Render(s, TestCamera(), kW, kH, small);
+  const Image none = r.Render(s, TestCamera(), kW, kH, NoShadows());
+  EXPECT_TRUE(SameImage(coarse, r.Render(s, TestCamera(), kW, kH, small)));
+  EXPECT_TRUE(SameImage(big, r.Render(s, TestCamera(), kW, kH)));
+  int changed = 0, outside_shadows = 0;
+  for (size_t k = 0; k < static_cast<size_t>(kW) * kH; ++k) {
+    if (!PixelDiffers(big, coarse, k)) continue;
+    ++changed;
+    outside_shadows += !PixelDiffers(big, none, k) && !PixelDiffers(coarse, none, k);
+  }
+  EXPECT_GT(changed, 0);  // the map's resolution shows in the beads' shadows on the grid
+  EXPECT_EQ(outside_shadows, 0);
+  for (int bad : {0, 32, 100, 8192}) {
+    RenderOptions o;
+    o.shadow_map_size = bad;
+    EXPECT_THROW(r.Render(s, TestCamera(), kW, kH, o), std::invalid_argument) << bad;
+  }
 }
 
 TEST(RendererTest, BadSizesAndCamerasThrow) {
