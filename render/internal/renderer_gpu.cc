@@ -97,18 +97,13 @@ void Renderer::Impl::DrawInstances(const GpuMesh& mesh, const std::vector<Instan
 }
 
 void Renderer::Impl::CreateShadowMap(int size) {
-  if (shadow_texture_ != 0) {  // resize: new storage, the framebuffer keeps its attachment
-    gl_.BindTexture(GL_TEXTURE_2D, shadow_texture_);
-    gl_.TexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT24, size, size, 0, GL_DEPTH_COMPONENT,
-                   GL_UNSIGNED_INT, nullptr);
-    shadow_size_ = size;
-    return;
-  }
-  gl_.GenTextures(1, &shadow_texture_);
+  const bool resize = shadow_texture_ != 0;
+  if (!resize) gl_.GenTextures(1, &shadow_texture_);
   gl_.BindTexture(GL_TEXTURE_2D, shadow_texture_);
   gl_.TexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT24, size, size, 0, GL_DEPTH_COMPONENT,
                  GL_UNSIGNED_INT, nullptr);
   shadow_size_ = size;
+  if (resize) return;  // new storage; the parameters and the framebuffer's attachment stay
   gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
   gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
   gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);

@@ -26,7 +26,7 @@ struct LitFrame {
   Eigen::Matrix4f view_proj;        // camera clip from world
   Eigen::Matrix4f light_view_proj;  // light 0's shadow-map clip from world (identity: no shadows)
   bool shadows = false;
-  int shadow_map_size = 0;  // texels on a side of the shadow map this frame
+  int shadow_map_size = 1024;  // texels on a side of the shadow map (RenderOptions)
   // Pixel rectangle of the ground that light 0 can shadow (GroundShadowRect); the grid outside
   // it is drawn without shadow lookups.
   PixelRect ground_shadow_rect;

@@ -53,9 +53,9 @@ void Renderer::Impl::Draw(const Scene& scene, const Camera& camera, int width, i
   // Shadow pass.
   frame.shadows = options.shadows && !bounds.empty() && lights[0].direction.norm() > 0.0f;
   frame.light_view_proj = Eigen::Matrix4f::Identity();
+  frame.shadow_map_size = options.shadow_map_size;
   if (frame.shadows) {
     frame.light_view_proj = internal::LightViewProjection(sphere, lights[0].direction);
-    frame.shadow_map_size = options.shadow_map_size;
     ShadowPass(frame.light_view_proj, frame.shadow_map_size);
     // Filter reach of a lookup (2 taps 0.75 texel off centre, bilinear, raster rounding):
     // under 4 texels of 2 radius / shadow_map_size; 5 for margin.
