@@ -1,9 +1,5 @@
 #include "app/viewer/viewer.h"
 
-#include "app/cli/io.h"
-
-#include <cstdlib>
-
 #include <GLFW/glfw3.h>
 #include <imgui.h>
 #include <imgui_impl_glfw.h>
@@ -15,6 +11,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <deque>
 #include <filesystem>
 #include <memory>
@@ -22,18 +19,19 @@
 #include <string>
 #include <vector>
 
-#include "base/assets.h"
+#include "app/cli/io.h"
 #include "app/viewer/frame.h"
-#include "app/viewer/session.h"
 #include "app/viewer/imgui_overlay.h"
 #include "app/viewer/panels.h"
 #include "app/viewer/scene_pacer.h"
+#include "app/viewer/session.h"
+#include "base/assets.h"
+#include "base/file_read.h"
+#include "base/numbers.h"
 #include "render/image.h"
 #include "render/offscreen_context.h"
 #include "render/overlay.h"
 #include "render/renderer.h"
-#include "base/file_read.h"
-#include "base/numbers.h"
 
 namespace app::ui {
 namespace {
@@ -41,8 +39,8 @@ namespace {
 std::vector<std::string> ListGrasps() {
   std::vector<std::string> names;
   std::error_code ec;
-  for (const auto& e :
-       std::filesystem::directory_iterator(std::filesystem::path(base::AssetRoot()) / "grasps", ec)) {
+  for (const auto& e : std::filesystem::directory_iterator(
+           std::filesystem::path(base::AssetRoot()) / "grasps", ec)) {
     if (e.path().extension() == ".json" && e.path().filename() != "objects.json") {
       names.push_back(e.path().stem().string());
     }
@@ -54,8 +52,8 @@ std::vector<std::string> ListGrasps() {
 std::vector<std::string> ListScenarios() {
   std::vector<std::string> names;
   std::error_code ec;
-  for (const auto& e :
-       std::filesystem::directory_iterator(std::filesystem::path(base::AssetRoot()) / "scenarios", ec)) {
+  for (const auto& e : std::filesystem::directory_iterator(
+           std::filesystem::path(base::AssetRoot()) / "scenarios", ec)) {
     if (e.path().extension() == ".json") names.push_back(e.path().stem().string());
   }
   std::sort(names.begin(), names.end());
@@ -103,10 +101,10 @@ class FrameClock {
 };
 
 // Runs `--script` lines one frame at a time: session commands immediately, `frames N` waits N
-// frames, plan/step/sim_step/grasp/wait keep drawing until the worker settles (`plan async`
-// does not wait), `click NAME` presses the named widget on the next frame and releases it on the
-// one after, `screenshot PATH` saves the frame drawn two frames later (ImGui windows size
-// themselves to new content one frame late).
+// frames, plan/step/sim_step/grasp/wait keep drawing until the worker settles and then draw one
+// frame of its result before the next line (`plan async` does not wait), `click NAME` presses the
+// named widget on the next frame and releases it on the one after, `screenshot PATH` saves the
+// frame drawn two frames later (ImGui windows size themselves to new content one frame late).
 class ScriptRunner {
  public:
   explicit ScriptRunner(std::vector<ScriptLine> lines) : lines_(std::move(lines)) {}
@@ -148,6 +146,11 @@ class ScriptRunner {
       session->Poll(settings);
       if (!session->settled()) return;  // keep drawing while the worker runs
       wait_worker_ = false;
+      // Draw the settled result once before the next line runs, as a user would see it. The
+      // frame shows what the result set up (a finished grasp test rewinds to frame 0 and frames
+      // the camera on it); without it, whether the next line (say `grasp_step 60`) ran before or
+      // after that frame would depend on which of this Poll and the frame's own found the result.
+      return;
     }
     // The first frame lays out the widgets that `click` aims at.
     if (rects.rects.empty()) return;
