@@ -8,6 +8,9 @@ function(topoplan_add_test)
   target_include_directories(${T_NAME} PRIVATE ${PROJECT_SOURCE_DIR})
   target_compile_definitions(${T_NAME} PRIVATE
     TOPOPLAN_SOURCE_DIR="${PROJECT_SOURCE_DIR}" TOPOPLAN_BINARY_DIR="${PROJECT_BINARY_DIR}")
+  # Test drivers compile at -O1 in Release (the libraries they test keep -O3): their time is in
+  # the front end and in the libraries, and -O1 compiles them about 20 % faster.
+  target_compile_options(${T_NAME} PRIVATE $<$<CONFIG:Release>:-O1>)
   # One label per executable (gtest_discover_tests cannot carry a list of labels); ENV entries
   # are joined the same way, so pass at most one.
   set(fixtures)
