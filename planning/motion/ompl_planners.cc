@@ -86,6 +86,8 @@ class OmplRun {
   // PlannerInputStates::nextGoal checks a sample right after sampleGoal writes it).
   void SetGoalValidity(ValidityFn goal_valid) { goal_valid_ = std::move(goal_valid); }
   void MarkGoalCheck() { goal_check_pending_ = true; }
+  // One goal candidate drawn; the run ends (budget) after options.max_checks draws.
+  void CountGoalDraw() { ++goal_draws_; }
   const ob::ProblemDefinitionPtr& pdef() const { return pdef_; }
   void Read(const ob::State* state, Eigen::VectorXd* q) const {
     const double* v = state->as<ob::RealVectorStateSpace::StateType>()->values;
@@ -120,8 +122,10 @@ class OmplRun {
     std::int64_t evaluations = 0;
     const ob::PlannerTerminationCondition ptc([&] {
       ++evaluations;
-      return checks_ >= options_.max_checks || evaluations > options_.max_iterations ||
-             (stop && stop());
+      // The draw cap: OMPL's nextGoal keeps sampling while no goal tree exists, and a candidate
+      // outside G costs no check, so without it a region the sampler cannot hit never ends.
+      return checks_ >= options_.max_checks || goal_draws_ >= options_.max_checks ||
+             evaluations > options_.max_iterations || (stop && stop());
     });
     const ob::PlannerStatus status = p->solve(ptc);
     RrtResult result;
@@ -151,6 +155,7 @@ class OmplRun {
   const RrtOptions options_;
   double range_ = 0.0;
   std::int64_t checks_ = 0;
+  std::int64_t goal_draws_ = 0;
   Eigen::VectorXd q_;
   ValidityFn goal_valid_;
   bool goal_check_pending_ = false;
@@ -188,6 +193,7 @@ class RegionGoal : public ob::GoalSampleableRegion {
       // accepts it. With none kept yet, a uniform state of the box.
       if (pool_.size() < kMaxGoalStates) {
         ++stats_.draws;
+        run_.CountGoalDraw();
         if (problem_.goal.sample(&rng_, &q_)) {
           ++stats_.in_region;
           OmplRun::Write(q_, state);
@@ -213,6 +219,7 @@ class RegionGoal : public ob::GoalSampleableRegion {
     // tree at it when valid.
     for (int k = 0; k < kOmplGoalDraws; ++k) {
       ++stats_.draws;
+      run_.CountGoalDraw();
       if (problem_.goal.sample(&rng_, &q_)) {
         ++stats_.in_region;
         ++stats_.samples;

@@ -51,6 +51,9 @@ RrtResult PlanOmpl(OmplPlanner planner, const RrtProblem& problem, const RrtOpti
 // The check of a goal candidate calls problem.goal.valid when set (it must answer as `valid`; the
 // scenario's books the cost to the goal sampler), every other check `valid`. result.goal: draws =
 // candidates drawn, in_region = those in G, samples = goal states handed to the planner.
+// Draws are capped by the budget: the run ends (kBudgetExhausted) once options.max_checks
+// candidates were drawn, so a region the sampler cannot hit (RRTConnect waits for a goal tree
+// and a candidate outside G costs no check) still ends.
 inline constexpr int kOmplGoalDraws = 8;
 RrtResult PlanOmplRegion(OmplPlanner planner, const GoalRegionProblem& problem,
                          const RrtOptions& options, const ValidityFn& valid, unsigned seed,

@@ -87,6 +87,38 @@ TEST(OmplPeers, BudgetEndsTheRunAsFailed) {
   }
 }
 
+TEST(OmplPeers, GoalRegionTheSamplerCannotHitEndsAtTheDrawCap) {
+  // The sampler never yields a goal state: RRTConnect waits for its first goal tree and every
+  // candidate outside G costs no check, so only the draw cap (max_checks draws) ends the run.
+  GoalRegionProblem p;
+  p.lower = Eigen::Vector2d(-1.0, -1.0);
+  p.upper = Eigen::Vector2d(1.0, 1.0);
+  p.start = Eigen::Vector2d(-0.9, 0.0);
+  long draws = 0;
+  p.goal.contains = [](const Eigen::VectorXd&) { return false; };
+  p.goal.sample = [&draws](std::mt19937*, Eigen::VectorXd* q) {
+    ++draws;
+    q->setZero();
+    return false;
+  };
+  RrtOptions o;
+  o.max_checks = 500;
+  const ValidityFn valid = [](const Eigen::VectorXd&) { return true; };
+  for (auto planner : {internal::OmplPlanner::kRrt, internal::OmplPlanner::kRrtConnect}) {
+    draws = 0;
+    const RrtResult r = internal::PlanOmplRegion(planner, p, o, valid, 1);
+    EXPECT_EQ(r.status, SolveStatus::kBudgetExhausted);
+    EXPECT_EQ(r.path.num_points(), 0);
+    EXPECT_EQ(r.goal.draws, draws);
+    EXPECT_LE(r.checks, o.max_checks);
+    // RRTConnect stops within one sampleGoal call (kOmplGoalDraws draws) of the cap.
+    EXPECT_LE(draws, o.max_checks + internal::kOmplGoalDraws);
+    if (planner == internal::OmplPlanner::kRrtConnect) {
+      EXPECT_GE(draws, o.max_checks);
+    }
+  }
+}
+
 TEST(OmplPeers, RrtConnectOnReachThroughRingIsCollisionFreeAndSeedsReproduce) {
   const auto s = LoadScenario(kAssets + "scenarios/reach_through_ring.json");
   const PlanResult a = RunPlanner(*s, Planner::kOmplRrtConnect, 3);
