@@ -88,6 +88,7 @@ class OmplRun {
   void MarkGoalCheck() { goal_check_pending_ = true; }
   // One goal candidate drawn; the run ends (budget) after options.max_checks draws.
   void CountGoalDraw() { ++goal_draws_; }
+  std::int64_t goal_draws() const { return goal_draws_; }
   const ob::ProblemDefinitionPtr& pdef() const { return pdef_; }
   void Read(const ob::State* state, Eigen::VectorXd* q) const {
     const double* v = state->as<ob::RealVectorStateSpace::StateType>()->values;
@@ -192,7 +193,6 @@ class RegionGoal : public ob::GoalSampleableRegion {
       // fewer than kMaxGoalStates are kept; a candidate in G is kept if the counted checker
       // accepts it. With none kept yet, a uniform state of the box.
       if (pool_.size() < kMaxGoalStates) {
-        ++stats_.draws;
         run_.CountGoalDraw();
         if (problem_.goal.sample(&rng_, &q_)) {
           ++stats_.in_region;
@@ -218,7 +218,6 @@ class RegionGoal : public ob::GoalSampleableRegion {
     // RRTConnect: fresh candidates; nextGoal checks the one written (counted) and roots a goal
     // tree at it when valid.
     for (int k = 0; k < kOmplGoalDraws; ++k) {
-      ++stats_.draws;
       run_.CountGoalDraw();
       if (problem_.goal.sample(&rng_, &q_)) {
         ++stats_.in_region;
@@ -232,6 +231,7 @@ class RegionGoal : public ob::GoalSampleableRegion {
   }
 
   unsigned int maxSampleCount() const override { return std::numeric_limits<unsigned>::max(); }
+  // draws: counted by the run (its budget), not here.
   const GoalSamplerStats& stats() const { return stats_; }
 
  private:
@@ -278,6 +278,7 @@ RrtResult PlanOmplRegion(OmplPlanner planner, const GoalRegionProblem& problem,
   run.pdef()->setGoal(goal);
   RrtResult r = run.Solve(planner, stop);
   r.goal = goal->stats();
+  r.goal.draws = run.goal_draws();
   return r;
 }
 
