@@ -160,10 +160,10 @@ void SetLogRange(render::PlotPanel* panel) {
   }
 }
 
-// The panel of measure `m` over the angle to unwrap, one series per planner; `legend` on the
-// first panel only.
+// The panel of measure `m` over the angle to unwrap, one series per planner, with the legend
+// where `legend` says.
 render::PlotPanel UnwrapPanel(const planning::UnwrapBenchmarkResult& result, const UnwrapMeasure& m,
-                              bool legend) {
+                              render::LegendPosition legend) {
   render::PlotPanel panel;
   for (size_t p = 0; p < result.planners.size(); ++p) {
     panel.series.push_back(UnwrapSeries(result, p, m));
@@ -172,7 +172,7 @@ render::PlotPanel UnwrapPanel(const planning::UnwrapBenchmarkResult& result, con
   panel.axes.x_label = "Angle to unwrap (deg)";
   panel.axes.y_label = m.y_label;
   panel.axes.log_y = true;
-  panel.axes.legend = legend ? render::LegendPosition::kTopLeft : render::LegendPosition::kNone;
+  panel.axes.legend = legend;
   SetLogRange(&panel);
   return panel;
 }
@@ -183,12 +183,21 @@ std::optional<render::Figure> UnwrapFigure(const planning::UnwrapBenchmarkResult
   if (result.runs.empty()) return std::nullopt;
   int seeds = 0;
   for (const planning::UnwrapRun& r : result.runs) seeds = std::max(seeds, r.seed + 1);
+  // Up to six planners the legend fits in the first panel's headroom above the data; more go in a
+  // column right of the last panel (the figure grows by about the legend's width), where the
+  // legend hides no failure marker.
+  const bool outside = result.planners.size() > 6;
   std::vector<render::PlotPanel> panels;
   for (const UnwrapMeasure& m : kUnwrapMeasures) {
-    panels.push_back(UnwrapPanel(result, m, /*legend=*/panels.empty()));
+    const bool first = panels.empty(), last = panels.size() + 1 == std::size(kUnwrapMeasures);
+    panels.push_back(UnwrapPanel(
+        result, m,
+        outside ? (last ? render::LegendPosition::kOutsideRight : render::LegendPosition::kNone)
+        : first ? render::LegendPosition::kTopLeft
+                : render::LegendPosition::kNone));
   }
   render::PanelLayout layout;
-  layout.width = 1380;
+  layout.width = outside ? 1700 : 1380;
   layout.height = 480;
   layout.columns = 3;
   layout.title = "Unwrapping (Fig. 4.5): median over the solved runs of " + std::to_string(seeds) +

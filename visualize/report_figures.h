@@ -31,7 +31,8 @@ render::Figure WritheCostFigure(const std::string& scenario_name, const std::vec
 // unwrap.png (Fig. 4.5): three panels over the angle to unwrap, log y: collision checks,
 // narrow-phase calls and wall time. Per planner (one colour each, result order): the median over
 // the seeds' successful runs, an interquartile band when an angle has at least two, and a cross
-// at each failed run's value. Empty when there is nothing to draw (no run at all).
+// at each failed run's value. Legend: in the first panel for up to six planners (1380 × 480 px),
+// else right of the last panel (1700 × 480 px). Empty when there is nothing to draw (no run at all).
 std::optional<render::Figure> UnwrapFigure(const planning::UnwrapBenchmarkResult& result);
 
 // Input of the grasp summary figure: one group of bars per grasp, one bar (colour) per method,
