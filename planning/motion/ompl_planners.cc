@@ -23,6 +23,8 @@
 #include <utility>
 #include <vector>
 
+#include "base/str_cat.h"
+
 namespace planning::internal {
 namespace {
 
@@ -166,15 +168,15 @@ class OmplRun {
 };
 
 // The goal region as OMPL sees it (see PlanOmplRegion in the header).
-constexpr size_t kMaxGoalStates = 32;  // as GoalRegionOptions::max_goal_states
 
 class RegionGoal : public ob::GoalSampleableRegion {
  public:
-  RegionGoal(OmplRun& run, const GoalRegionProblem& problem, unsigned seed,
+  RegionGoal(OmplRun& run, const GoalRegionProblem& problem, size_t max_goal_states, unsigned seed,
              bool out_of_box_on_failure)
       : ob::GoalSampleableRegion(run.si()),
         run_(run),
         problem_(problem),
+        max_goal_states_(max_goal_states),
         rng_(seed),
         out_of_box_(out_of_box_on_failure),
         q_(problem.start.size()) {
@@ -190,9 +192,9 @@ class RegionGoal : public ob::GoalSampleableRegion {
     if (!out_of_box_) {
       // RRT: goal states found lazily and kept, handed out in turn (OMPL's GoalLazySamples, whose
       // GoalStates::sampleGoal cycles through the states found so far), one draw per call while
-      // fewer than kMaxGoalStates are kept; a candidate in G is kept if the counted checker
+      // fewer than max_goal_states_ are kept; a candidate in G is kept if the counted checker
       // accepts it. With none kept yet, a uniform state of the box.
-      if (pool_.size() < kMaxGoalStates) {
+      if (pool_.size() < max_goal_states_) {
         run_.CountGoalDraw();
         if (problem_.goal.sample(&rng_, &q_)) {
           ++stats_.in_region;
@@ -237,6 +239,7 @@ class RegionGoal : public ob::GoalSampleableRegion {
  private:
   OmplRun& run_;
   const GoalRegionProblem& problem_;
+  const size_t max_goal_states_;  // RRT's pool
   mutable std::mt19937 rng_;
   const bool out_of_box_;
   mutable Eigen::VectorXd q_;
@@ -265,16 +268,22 @@ RrtResult PlanOmpl(OmplPlanner planner, const RrtProblem& problem, const RrtOpti
 }
 
 RrtResult PlanOmplRegion(OmplPlanner planner, const GoalRegionProblem& problem,
-                         const RrtOptions& options, const ValidityFn& valid, unsigned seed,
+                         const GoalRegionOptions& options, const ValidityFn& valid, unsigned seed,
                          const std::function<bool()>& stop) {
   CheckOmplProblem(problem.start, problem.lower, problem.upper);
   if (!problem.goal.contains || !problem.goal.sample) {
     throw std::invalid_argument("OMPL: the goal region needs contains and sample");
   }
-  OmplRun run(problem.lower, problem.upper, options, valid, seed);
+  if (options.max_goal_states < 1) {
+    throw std::invalid_argument(base::StrCat("OMPL: max_goal_states must be >= 1, got ",
+                                             std::to_string(options.max_goal_states)));
+  }
+  OmplRun run(problem.lower, problem.upper, options.rrt, valid, seed);
   run.SetStart(problem.start);
   run.SetGoalValidity(problem.goal.valid);
-  auto goal = std::make_shared<RegionGoal>(run, problem, seed, planner == OmplPlanner::kRrtConnect);
+  auto goal =
+      std::make_shared<RegionGoal>(run, problem, static_cast<size_t>(options.max_goal_states), seed,
+                                   planner == OmplPlanner::kRrtConnect);
   run.pdef()->setGoal(goal);
   RrtResult r = run.Solve(planner, stop);
   r.goal = goal->stats();

@@ -291,6 +291,7 @@ PlanResult RunPlanner(const Scenario& s, const PlanRequest& request) {
       const GoalRegionProblem gp = region_problem();
       GoalRegionOptions go;
       go.rrt = options;
+      go.max_goal_states = s.rrt_goal_states;
       GoalRegionSolver solver(gp, go, valid, seed, planner == Planner::kBiRrtRegion);
       r = step_to_end(solver);
       break;
@@ -298,10 +299,10 @@ PlanResult RunPlanner(const Scenario& s, const PlanRequest& request) {
     case Planner::kOmplRrtRegion:
     case Planner::kOmplRrtConnectRegion:
 #ifdef TOPOPLAN_HAVE_OMPL
-      r = internal::PlanOmplRegion(planner == Planner::kOmplRrtRegion
-                                       ? internal::OmplPlanner::kRrt
-                                       : internal::OmplPlanner::kRrtConnect,
-                                   region_problem(), options, valid, seed, out_of_time);
+      r = internal::PlanOmplRegion(
+          planner == Planner::kOmplRrtRegion ? internal::OmplPlanner::kRrt
+                                             : internal::OmplPlanner::kRrtConnect,
+          region_problem(), {options, s.rrt_goal_states}, valid, seed, out_of_time);
       break;
 #else
       throw std::invalid_argument(std::string("planner '") + PlannerName(planner) +

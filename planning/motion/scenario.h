@@ -111,6 +111,7 @@ struct Scenario {
   // Stop AICO at the first accepted sweep whose trajectory is a success (RunAicoAttempts).
   bool stop_when_solved = false;
   RrtOptions rrt;
+  int rrt_goal_states = 32;        // the goal-region trees' most goal states (max_goal_states)
   double check_resolution = 0.02;  // edge resolution for validating any output path
   Eigen::VectorXd goal_q;          // q̂_T (final-pose estimate): the RRT goal
   // The unwinding path (coil start and an "unwinding" target only, else empty): the start coil

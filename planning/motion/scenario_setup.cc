@@ -450,6 +450,7 @@ std::unique_ptr<Scenario> SetUpScenario(ScenarioSpec spec,
   s->aico = sp.aico;
   s->stop_when_solved = sp.aico_stop_when_solved;
   s->rrt = sp.rrt;
+  s->rrt_goal_states = sp.rrt_goal_states;
   s->check_resolution = sp.check_resolution;
   for (const AicoAttemptSpec& a : sp.aico_attempts) {
     AicoAttempt attempt;

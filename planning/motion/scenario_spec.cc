@@ -388,8 +388,8 @@ void ReadAico(const base::JsonNode& n, ScenarioSpec* spec) {
   spec->aico_attempts.push_back(retry);
 }
 
-RrtOptions ReadRrt(const base::JsonNode& n) {
-  n.CheckKeys({"range", "resolution", "goal_bias", "max_checks"});
+RrtOptions ReadRrt(const base::JsonNode& n, int* goal_states) {
+  n.CheckKeys({"range", "resolution", "goal_bias", "max_checks", "goal_states"});
   RrtOptions r;
   r.range = n.Number("range", r.range, 0.0, 1e3);
   r.resolution = n.Number("resolution", r.resolution, 0.0, 1e3);
@@ -398,6 +398,7 @@ RrtOptions ReadRrt(const base::JsonNode& n) {
   }
   r.goal_bias = n.Number("goal_bias", r.goal_bias, 0.0, 1.0);
   if (n.Has("max_checks")) r.max_checks = n.At("max_checks").Integer(1, kMaxChecks);
+  if (n.Has("goal_states")) *goal_states = static_cast<int>(n.At("goal_states").Integer(1, 10000));
   return r;
 }
 
@@ -500,7 +501,7 @@ ScenarioSpec ParseScenarioSpec(const std::string& path,
   s.aico_attempts.resize(1);
   s.aico_attempts[0].max_iterations = s.aico.max_iterations;
   if (root.Has("aico")) ReadAico(root.At("aico"), &s);
-  if (root.Has("rrt")) s.rrt = ReadRrt(root.At("rrt"));
+  if (root.Has("rrt")) s.rrt = ReadRrt(root.At("rrt"), &s.rrt_goal_states);
   s.check_resolution = root.Number(
       "check_resolution", s.rrt.resolution > 0 ? s.rrt.resolution : 0.02, kMinResolution, 10.0);
   return s;

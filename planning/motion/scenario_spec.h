@@ -119,7 +119,10 @@
 //                            criteria: precision_scale: {task name: factor > 0, ...} (default
 //                            {}); max_iterations: integer >= 1, default aico.max_iterations
 //   rrt             object   range: rad, default 0 (auto); resolution: rad, default 0 (auto);
-//                            goal_bias: default 0.1; max_checks: integer >= 1, default 100000
+//                            goal_bias: default 0.1; max_checks: integer >= 1, default 100000;
+//                            goal_states: integer 1..10000, default 32 (the goal-region trees'
+//                            most goal states: rrt-region's and ompl-rrt-region's pool,
+//                            birrt-region's goal roots; goal_region.h max_goal_states)
 //   check_resolution number  edge resolution (rad) for validating output paths, default
 //                            rrt.resolution if > 0, else 0.02
 //
@@ -354,6 +357,7 @@ struct ScenarioSpec {
   std::vector<AicoAttemptSpec> aico_attempts;  // [0]: plain; [1]: "aico.retry" when given
   bool aico_stop_when_solved = false;
   RrtOptions rrt;
+  int rrt_goal_states = 32;  // rrt.goal_states
   double check_resolution = 0.02;
 };
 

@@ -41,22 +41,23 @@ RrtResult PlanOmpl(OmplPlanner planner, const RrtProblem& problem, const RrtOpti
 // with `seed` (separate from OMPL's generator). OMPL's own rules then apply:
 //  - RRT steers toward a goal sample on goal-biased iterations and succeeds when a new node
 //    satisfies the goal. Its goal samples follow OMPL's GoalLazySamples: each call draws one
-//    candidate while fewer than 32 goal states are kept, keeps it when it is in G and the counted
-//    checker accepts it, and returns the kept states in turn (a uniform state of the box while
-//    none is kept).
+//    candidate while fewer than options.max_goal_states goal states are kept, keeps it when it is
+//    in G and the counted checker accepts it, and returns the kept states in turn (a uniform state
+//    of the box while none is kept).
 //  - RRTConnect roots goal trees at valid goal samples (PlannerInputStates::nextGoal checks
-//    bounds and validity through the counted checker, as long as OMPL's rule asks for more);
+//    bounds and validity through the counted checker, as long as OMPL's rule asks for more;
+//    max_goal_states does not cap them);
 //    each sample is the first in G of up to kOmplGoalDraws fresh candidates, or a state outside
 //    the box (skipped by nextGoal) when none was.
 // The check of a goal candidate calls problem.goal.valid when set (it must answer as `valid`; the
 // scenario's books the cost to the goal sampler), every other check `valid`. result.goal: draws =
 // candidates drawn, in_region = those in G, samples = goal states handed to the planner.
-// Draws are capped by the budget: the run ends (kBudgetExhausted) once options.max_checks
+// Draws are capped by the budget: the run ends (kBudgetExhausted) once options.rrt.max_checks
 // candidates were drawn, so a region the sampler cannot hit (RRTConnect waits for a goal tree
 // and a candidate outside G costs no check) still ends.
 inline constexpr int kOmplGoalDraws = 8;
 RrtResult PlanOmplRegion(OmplPlanner planner, const GoalRegionProblem& problem,
-                         const RrtOptions& options, const ValidityFn& valid, unsigned seed,
+                         const GoalRegionOptions& options, const ValidityFn& valid, unsigned seed,
                          const std::function<bool()>& stop = {});
 
 }  // namespace planning::internal

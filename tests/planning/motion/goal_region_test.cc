@@ -6,7 +6,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <random>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 
@@ -205,6 +208,45 @@ TEST(GoalRegionPlanners, BiRrtRegionUnwrapsFrom360Degrees) {
   EXPECT_EQ(again.counts, r.counts);
   EXPECT_EQ(again.goal_sampler_counts, r.goal_sampler_counts);
   EXPECT_EQ(again.goal_samples, r.goal_samples);
+}
+
+// rrt.goal_states in the scenario file caps the goal states of every goal-region tree that keeps a
+// pool or a goal forest (rrt-region, birrt-region, ompl-rrt-region): with 1, each run keeps one,
+// where the shipped 32 lets birrt-region root more at 360°.
+TEST(GoalRegionPlanners, ScenarioGoalStatesCapsTheGoalStates) {
+  std::ifstream in(kAssets + "scenarios/unwrap.json");
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string json = text.str();
+  const auto replace = [&json](const std::string& from, const std::string& to) {
+    const size_t at = json.find(from);
+    ASSERT_NE(at, std::string::npos) << from;
+    json.replace(at, from.size(), to);
+  };
+  replace("\"max_checks\": 100000}", "\"max_checks\": 100000, \"goal_states\": 1}");
+  for (const std::string dir : {"robots", "objects"}) {
+    for (size_t at; (at = json.find("\"../" + dir + "/")) != std::string::npos;) {
+      json.replace(at, dir.size() + 5, "\"" + kAssets + dir + "/");
+    }
+  }
+  const std::filesystem::path path =
+      std::filesystem::path(TOPOPLAN_BINARY_DIR) / "goal_region_test_goal_states_1.json";
+  std::ofstream(path) << json;
+  ScenarioOverrides o;
+  o.start_wrap_deg = 360.0;
+  const auto one = LoadScenario(path.string(), o);
+  const auto shipped = LoadScenario(kAssets + "scenarios/unwrap.json", o);
+  ASSERT_EQ(one->rrt_goal_states, 1);
+  ASSERT_EQ(shipped->rrt_goal_states, 32);
+  EXPECT_GT(RunPlanner(*shipped, Planner::kBiRrtRegion, 0).report.goal_samples, 1);
+  std::vector<Planner> planners = {Planner::kRrtRegion, Planner::kBiRrtRegion};
+  if (OmplAvailable()) planners.push_back(Planner::kOmplRrtRegion);
+  for (Planner planner : planners) {
+    SCOPED_TRACE(PlannerName(planner));
+    const PlanReport r = RunPlanner(*one, planner, 0).report;
+    EXPECT_EQ(r.goal_samples, 1);
+    EXPECT_GT(r.goal_sampler_draws, 0);
+  }
 }
 
 }  // namespace

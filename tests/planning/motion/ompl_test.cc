@@ -101,8 +101,8 @@ TEST(OmplPeers, GoalRegionTheSamplerCannotHitEndsAtTheDrawCap) {
     q->setZero();
     return false;
   };
-  RrtOptions o;
-  o.max_checks = 500;
+  GoalRegionOptions o;
+  o.rrt.max_checks = 500;
   const ValidityFn valid = [](const Eigen::VectorXd&) { return true; };
   for (auto planner : {internal::OmplPlanner::kRrt, internal::OmplPlanner::kRrtConnect}) {
     draws = 0;
@@ -110,11 +110,11 @@ TEST(OmplPeers, GoalRegionTheSamplerCannotHitEndsAtTheDrawCap) {
     EXPECT_EQ(r.status, SolveStatus::kBudgetExhausted);
     EXPECT_EQ(r.path.num_points(), 0);
     EXPECT_EQ(r.goal.draws, draws);
-    EXPECT_LE(r.checks, o.max_checks);
+    EXPECT_LE(r.checks, o.rrt.max_checks);
     // RRTConnect stops within one sampleGoal call (kOmplGoalDraws draws) of the cap.
-    EXPECT_LE(draws, o.max_checks + internal::kOmplGoalDraws);
+    EXPECT_LE(draws, o.rrt.max_checks + internal::kOmplGoalDraws);
     if (planner == internal::OmplPlanner::kRrtConnect) {
-      EXPECT_GE(draws, o.max_checks);
+      EXPECT_GE(draws, o.rrt.max_checks);
     }
   }
 }

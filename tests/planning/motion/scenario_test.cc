@@ -120,6 +120,13 @@ TEST(ScenarioLoader, NumbersOutOfRangeNameFileAndPath) {
       {"max_relocations", "0"},    {"max_relocations", "101"},     {"max_relocations", "2.5"},
       {"relocation_damping", "0"}, {"relocation_damping", "1.5"},  {"relocation_damping", "-0.3"},
       {"stop_when_solved", "1"},   {"stop_when_solved", "\"yes\""}};
+  for (const std::string value : {"0", "10001", "2.5"}) {
+    ExpectLoadError("goal_states.json",
+                    R"({"robot": ")" + kAssets + R"(robots/lwr4_sdh.urdf", "start": {"q": "zero"},
+                        "tasks": [], "rrt": {"goal_states": )" +
+                        value + "}}",
+                    "rrt.goal_states");
+  }
   for (const auto& [key, value] : bad_aico) {
     ExpectLoadError(key + ".json",
                     R"({"robot": ")" + kAssets + R"(robots/lwr4_sdh.urdf", "start": {"q": "zero"},
