@@ -183,18 +183,19 @@ std::optional<render::Figure> UnwrapFigure(const planning::UnwrapBenchmarkResult
   if (result.runs.empty()) return std::nullopt;
   int seeds = 0;
   for (const planning::UnwrapRun& r : result.runs) seeds = std::max(seeds, r.seed + 1);
-  // Up to six planners the legend fits in the first panel's headroom above the data; more go in a
-  // column right of the last panel (the figure grows by about the legend's width), where the
-  // legend hides no failure marker.
-  const bool outside = result.planners.size() > 6;
+  // Up to kMaxPanelLegendPlanners the legend fits in the first panel's headroom above the data;
+  // more go in a column right of the last panel (the figure grows by about the legend's width),
+  // where the legend hides no failure marker.
+  constexpr size_t kMaxPanelLegendPlanners = 6;
+  const bool outside = result.planners.size() > kMaxPanelLegendPlanners;
   std::vector<render::PlotPanel> panels;
   for (const UnwrapMeasure& m : kUnwrapMeasures) {
-    const bool first = panels.empty(), last = panels.size() + 1 == std::size(kUnwrapMeasures);
-    panels.push_back(UnwrapPanel(
-        result, m,
-        outside ? (last ? render::LegendPosition::kOutsideRight : render::LegendPosition::kNone)
-        : first ? render::LegendPosition::kTopLeft
-                : render::LegendPosition::kNone));
+    render::LegendPosition legend = render::LegendPosition::kNone;
+    if (!outside && panels.empty()) legend = render::LegendPosition::kTopLeft;
+    if (outside && panels.size() + 1 == std::size(kUnwrapMeasures)) {
+      legend = render::LegendPosition::kOutsideRight;
+    }
+    panels.push_back(UnwrapPanel(result, m, legend));
   }
   render::PanelLayout layout;
   layout.width = outside ? 1700 : 1380;

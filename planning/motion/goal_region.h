@@ -53,9 +53,12 @@ struct GoalRegionProblem {
   GoalRegion goal;
 };
 
+inline constexpr int kDefaultMaxGoalStates = 32;  // the scenario key rrt.goal_states' default
+
 struct GoalRegionOptions {
-  RrtOptions rrt;            // range, resolution, goal_bias, max_checks, max_iterations (rrt.h)
-  int max_goal_states = 32;  // >= 1: the pool (uni) / goal roots (bi) grow to at most this many
+  RrtOptions rrt;  // range, resolution, goal_bias, max_checks, max_iterations (rrt.h)
+  // >= 1: the pool (uni) / goal roots (bi) grow to at most this many
+  int max_goal_states = kDefaultMaxGoalStates;
 };
 
 // Resumable goal-region RRT / BiRRT (the interface of RrtSolver). The constructor checks the

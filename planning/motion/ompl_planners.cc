@@ -168,7 +168,6 @@ class OmplRun {
 };
 
 // The goal region as OMPL sees it (see PlanOmplRegion in the header).
-
 class RegionGoal : public ob::GoalSampleableRegion {
  public:
   RegionGoal(OmplRun& run, const GoalRegionProblem& problem, size_t max_goal_states, unsigned seed,

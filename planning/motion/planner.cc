@@ -279,6 +279,7 @@ PlanResult RunPlanner(const Scenario& s, const PlanRequest& request) {
     gp.goal = ScenarioGoalRegion(s, w, valid, coll, &sampler);
     return gp;
   };
+  const GoalRegionOptions region_options{options, s.rrt_goal_states};
   switch (planner) {
     case Planner::kRrt:
     case Planner::kBiRrt: {
@@ -289,20 +290,17 @@ PlanResult RunPlanner(const Scenario& s, const PlanRequest& request) {
     case Planner::kRrtRegion:
     case Planner::kBiRrtRegion: {
       const GoalRegionProblem gp = region_problem();
-      GoalRegionOptions go;
-      go.rrt = options;
-      go.max_goal_states = s.rrt_goal_states;
-      GoalRegionSolver solver(gp, go, valid, seed, planner == Planner::kBiRrtRegion);
+      GoalRegionSolver solver(gp, region_options, valid, seed, planner == Planner::kBiRrtRegion);
       r = step_to_end(solver);
       break;
     }
     case Planner::kOmplRrtRegion:
     case Planner::kOmplRrtConnectRegion:
 #ifdef TOPOPLAN_HAVE_OMPL
-      r = internal::PlanOmplRegion(
-          planner == Planner::kOmplRrtRegion ? internal::OmplPlanner::kRrt
-                                             : internal::OmplPlanner::kRrtConnect,
-          region_problem(), {options, s.rrt_goal_states}, valid, seed, out_of_time);
+      r = internal::PlanOmplRegion(planner == Planner::kOmplRrtRegion
+                                       ? internal::OmplPlanner::kRrt
+                                       : internal::OmplPlanner::kRrtConnect,
+                                   region_problem(), region_options, valid, seed, out_of_time);
       break;
 #else
       throw std::invalid_argument(std::string("planner '") + PlannerName(planner) +

@@ -25,6 +25,7 @@
 #include "planning/features/task.h"
 #include "planning/motion/aico.h"
 #include "planning/motion/final_pose.h"
+#include "planning/motion/goal_region.h"
 #include "planning/motion/rrt.h"
 #include "planning/motion/scenario_spec.h"
 #include "planning/robot/robot.h"
@@ -111,7 +112,8 @@ struct Scenario {
   // Stop AICO at the first accepted sweep whose trajectory is a success (RunAicoAttempts).
   bool stop_when_solved = false;
   RrtOptions rrt;
-  int rrt_goal_states = 32;        // the goal-region trees' most goal states (max_goal_states)
+  // The goal-region trees' GoalRegionOptions::max_goal_states (rrt.goal_states).
+  int rrt_goal_states = kDefaultMaxGoalStates;
   double check_resolution = 0.02;  // edge resolution for validating any output path
   Eigen::VectorXd goal_q;          // q̂_T (final-pose estimate): the RRT goal
   // The unwinding path (coil start and an "unwinding" target only, else empty): the start coil

@@ -170,6 +170,7 @@
 #include "planning/features/feature.h"
 #include "planning/motion/aico.h"
 #include "planning/motion/final_pose.h"
+#include "planning/motion/goal_region.h"
 #include "planning/motion/rrt.h"
 #include "planning/robot/chain_json.h"
 
@@ -357,7 +358,7 @@ struct ScenarioSpec {
   std::vector<AicoAttemptSpec> aico_attempts;  // [0]: plain; [1]: "aico.retry" when given
   bool aico_stop_when_solved = false;
   RrtOptions rrt;
-  int rrt_goal_states = 32;  // rrt.goal_states
+  int rrt_goal_states = kDefaultMaxGoalStates;  // rrt.goal_states
   double check_resolution = 0.02;
 };
 
