@@ -295,11 +295,14 @@ void AddBenchCommands(CLI::App* root, CommandList* commands) {
       "benchmark log format (one planner per topoplan planner, one run per seed).\n"
       "--geometry FILE: DIR/geometry.csv (geometry,split,angle_deg,planner,seed,start_wrap_deg,\n"
       "success,failure_reason,final_writhe_total,reach_error_m,final_winding_turns,\n"
-      "unwound_winding_turns,goal_meets_end_conditions,state_queries,cpu_time_s,setup_time_s):\n"
+      "unwound_winding_turns,goal_meets_end_conditions,state_queries,cpu_time_s,setup_time_s,\n"
+      "jumps_through_object,jumps_beyond_ends,jumps_unlocated):\n"
       "start_wrap_deg is the coil the start reached; unwound_winding_turns the winding of the\n"
       "segment base -> target about the pole's line (about where an arm that does not wrap the\n"
       "pole ends); goal_meets_end_conditions whether the set-up's goal (the RRTs') meets the\n"
-      "criterion's end conditions.\n"
+      "criterion's end conditions; the jumps count the resampled steps whose winding jumps by\n"
+      "the criterion's max_jump, by where the arm passes the pole's line: through the pole, only\n"
+      "beyond its ends, or not located.\n"
       "Shipped geometries: assets/scenarios/unwrap_geometries/ (README.md there).");
   commands->push_back(
       {unwrap, [ba, unwrap]() {

@@ -57,6 +57,12 @@ struct SuccessCriteria {
   // rounding: w_chain − w([first, last]). false: the open chain's winding (the jump check always
   // uses the open chain).
   bool winding_closed_by_chord = false;
+  // Which winding jumps are tunnelling. false ("tunnel": "line"): every jump >= winding_max_jump,
+  // wherever the chain passes the line (through the pole, or round its end: the coil slipping
+  // off). true ("object"): only a jump where a chain segment passes the line within the report
+  // object chain's extent (first to last point), or whose pass cannot be located
+  // (topology::LocateLineCrossings); a pass beyond the object's ends is then not a failure.
+  bool winding_tunnel_through_object_only = false;
   // The report chain passes through the report object's closed loop at the end
   // (ChainSegmentThroughLoop, planning/motion/success.h).
   bool through_loop = false;

@@ -477,6 +477,7 @@ std::unique_ptr<Scenario> SetUpScenario(ScenarioSpec spec,
   s->success.winding_max_jump = su.winding_max_jump;
   s->success.winding_final_below = su.winding_final_below;
   s->success.winding_closed_by_chord = su.winding_closed_by_chord;
+  s->success.winding_tunnel_through_object_only = su.winding_tunnel_through_object_only;
 
   // The goal's end conditions read the position/box targets of a problem built with goal q0.
   s->goal_q = start.q0;

@@ -328,7 +328,7 @@ SuccessSpec ReadSuccess(const base::JsonNode& n) {
   }
   if (n.Has("winding")) {
     const base::JsonNode wn = n.At("winding");
-    wn.CheckKeys({"max_jump", "final_below", "final_closure"});
+    wn.CheckKeys({"max_jump", "final_below", "final_closure", "tunnel"});
     s.winding_where = wn.Where();
     s.winding_max_jump = wn.Number("max_jump", 0.1);
     s.winding_final_below = wn.Number("final_below", 0.1);
@@ -338,6 +338,12 @@ SuccessSpec ReadSuccess(const base::JsonNode& n) {
                                                "\" is not \"open\" or \"chord\""));
     }
     s.winding_closed_by_chord = closure == "chord";
+    const std::string tunnel = wn.String("tunnel", "line");
+    if (tunnel != "line" && tunnel != "object") {
+      throw std::invalid_argument(
+          base::StrCat(wn.Where(), ".tunnel: \"", tunnel, "\" is not \"line\" or \"object\""));
+    }
+    s.winding_tunnel_through_object_only = tunnel == "object";
     if (!(s.winding_max_jump > 0.0) || !(s.winding_final_below > 0.0)) {
       throw std::invalid_argument(s.winding_where + ": max_jump and final_below must be > 0");
     }

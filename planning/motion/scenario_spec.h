@@ -95,11 +95,14 @@
 //                            feature to its final target; inside_box: name of a "box" task whose
 //                            point must end inside its box (centre ± half_extent; the task's
 //                            margin is for planning); winding (needs writhe_report): {max_jump:
-//                            turns > 0, default 0.1; final_below: turns > 0, default 0.1}: the
-//                            winding of the report chain about the line of the object chain (its
-//                            first to last point), along the resampled path, changes by less than
-//                            max_jump between neighbouring states (no tunnelling through the pole,
-//                            no coil slipping off its end) and ends below final_below in modulus;
+//                            turns > 0, default 0.1; final_below: turns > 0, default 0.1;
+//                            final_closure: "open" (default) | "chord"; tunnel: "line" (default)
+//                            | "object"}: the winding of the report chain about the line of the
+//                            object chain (its first to last point), along the resampled path,
+//                            changes by less than max_jump between neighbouring states (no
+//                            tunnelling through the pole, no coil slipping off its end; with
+//                            "object" only passes through the object chain's extent count) and
+//                            ends below final_below in modulus;
 //                            through_loop: bool (needs writhe_report with a closed object chain):
 //                            at the end the report chain passes through the object's loop (a
 //                            segment of the chain crosses the disc the loop bounds, success.h
@@ -321,12 +324,13 @@ struct SuccessSpec {
   std::optional<SpecName> position_task;
   double position_tolerance = 0.05;
   std::optional<SpecName> box_task;
-  double winding_max_jump = -1.0;        // turns; < 0: not checked
-  double winding_final_below = -1.0;     // turns; < 0: not checked
-  bool winding_closed_by_chord = false;  // "final_closure": "chord" (default "open")
-  std::string winding_where;             // of "success.winding" (empty: not given)
-  bool through_loop = false;             // the report chain must end through the report loop
-  std::string through_loop_where;        // of "success.through_loop" (empty: not given)
+  double winding_max_jump = -1.0;                   // turns; < 0: not checked
+  double winding_final_below = -1.0;                // turns; < 0: not checked
+  bool winding_closed_by_chord = false;             // "final_closure": "chord" (default "open")
+  bool winding_tunnel_through_object_only = false;  // "tunnel": "object" (default "line")
+  std::string winding_where;                        // of "success.winding" (empty: not given)
+  bool through_loop = false;       // the report chain must end through the report loop
+  std::string through_loop_where;  // of "success.through_loop" (empty: not given)
 };
 
 // One AICO attempt: task precisions scaled by name, and its iteration limit.

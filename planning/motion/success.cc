@@ -12,6 +12,7 @@
 #include "base/numbers.h"
 #include "planning/collision/collision.h"
 #include "planning/robot/kinematics.h"
+#include "topology/line_crossing.h"
 #include "topology/winding.h"
 
 namespace planning {
@@ -76,6 +77,30 @@ double EndWinding(const Scenario& s, const ScenarioState& w, const Eigen::Vector
   return turns;
 }
 
+// Where the report chain passes the report line while q moves linearly from qa to qb (one
+// resampled step with a winding jump): kThrough when a located pass meets the line within the
+// report object chain's extent (its first to last point), kBeyondEnds when every located pass
+// lies outside it, kUnlocated when none is found (a fast but continuous change, or two passes of
+// one segment).
+enum class JumpPlace { kThrough, kBeyondEnds, kUnlocated };
+JumpPlace LocateJump(const Scenario& s, const ScenarioState& w, const Eigen::VectorXd& qa,
+                     const Eigen::VectorXd& qb) {
+  KinematicsData kin(s.robot);
+  Eigen::VectorXd q(qa.size());
+  const topology::ChainMotion motion = [&](double t, topology::Chain* points) {
+    q = qa + t * (qb - qa);
+    ForwardKinematics(s.robot, q, &kin);
+    ChainPoints(s.robot, kin, s.report_chain, points);
+  };
+  const Eigen::Matrix3Xd& O = w.report_object_chain;
+  const auto crossings = topology::LocateLineCrossings(motion, O.col(0), O.col(O.cols() - 1));
+  if (crossings.empty()) return JumpPlace::kUnlocated;
+  for (const topology::LineCrossing& x : crossings) {
+    if (x.line_param >= 0.0 && x.line_param <= 1.0) return JumpPlace::kThrough;
+  }
+  return JumpPlace::kBeyondEnds;
+}
+
 }  // namespace
 
 PlanVerdict JudgePlan(const Scenario& s, const ScenarioState& w, const Trajectory& path,
@@ -125,14 +150,21 @@ PlanVerdict JudgePlan(const Scenario& s, const ScenarioState& w, const Trajector
     }
     if (!winding) continue;
     ChainPoints(s.robot, kin, s.report_chain, &points);
-    const double w = topology::WindingNumber(points, axis);
+    const double turns = topology::WindingNumber(points, axis);
     if (k > 0) {
-      const double jump = std::abs(w - w_prev);
+      const double jump = std::abs(turns - w_prev);
       v.max_winding_jump_turns = std::max(v.max_winding_jump_turns, jump);
-      if (c.winding_max_jump > 0.0 && jump >= c.winding_max_jump && tunnel_step < 0)
-        tunnel_step = k;
+      if (c.winding_max_jump > 0.0 && jump >= c.winding_max_jump) {
+        const JumpPlace place = LocateJump(s, w, dense.q.col(k - 1), dense.q.col(k));
+        ++(place == JumpPlace::kThrough      ? v.jumps_through_object
+           : place == JumpPlace::kBeyondEnds ? v.jumps_beyond_ends
+                                             : v.jumps_unlocated);
+        const bool tunnel =
+            !c.winding_tunnel_through_object_only || place != JumpPlace::kBeyondEnds;
+        if (tunnel && tunnel_step < 0) tunnel_step = k;
+      }
     }
-    w_prev = w;
+    w_prev = turns;
   }
   // A winding jump means the arm passed through the pole (or off its end): name that, not the
   // collision of the states on the way through.

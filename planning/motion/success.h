@@ -16,7 +16,8 @@ enum class FailureReason {
   kJointLimits,       // a resampled state outside the joint limits (failure_step)
   kCollision,         // a resampled state in collision (failure_step)
   kTunnelled,         // winding jump >= max_jump between resampled states (failure_step and
-                      // max_winding_jump_turns): through the pole, or off its end
+                      // max_winding_jump_turns): through the pole, or off its end (with
+                      // winding_tunnel_through_object_only: through the pole)
   kWritheNotReached,  // |final writhe| or |final winding| not below its bound
   kReachError,        // the position task's final distance (reach_error_m) above its tolerance,
                       // or the box task's value not 0
@@ -65,6 +66,10 @@ struct PlanVerdict {
   FailureReason reason = FailureReason::kNone;
   int step = -1;  // index into Densify(path, check_resolution) of the first violation, or −1
   double max_winding_jump_turns = 0.0;
+  // The resampled steps whose winding jump is >= winding_max_jump, by where the report chain
+  // passes the line (topology::LocateLineCrossings over the step): within the report object
+  // chain's extent (through the pole), only beyond its ends (round the end), or not located.
+  int jumps_through_object = 0, jumps_beyond_ends = 0, jumps_unlocated = 0;
   double final_winding_turns = 0.0;  // the end condition's winding (EndState::winding_turns)
   double final_writhe_total = 0.0;
   int writhe_peak_row = -1, writhe_peak_col = -1;  // see PlanReport
@@ -87,13 +92,14 @@ struct PlanVerdict {
 // (uncounted queries on a collision state of its own). The path is resampled with
 // Densify(path, check_resolution); walking its states k = 0, 1, ...: outside the joint limits ->
 // kJointLimits, InCollision -> kCollision, |w_k − w_{k−1}| >= winding_max_jump -> kTunnelled (w =
-// ReportWinding, turns; only with the winding criterion); the first of these is the reason, except
-// that a winding jump replaces a collision (the states passing through the pole collide;
-// failure_step is then the jump's). At the end (CheckEndState of the last state): |w| >=
-// winding_final_below (w of the chain closed by its chord with winding_closed_by_chord) or |total
-// writhe| >= writhe_total_below -> kWritheNotReached; position error > position_tolerance or the
-// box task's point outside its box (margin 0) -> kReachError; with through_loop, the report chain
-// not through the report object's loop -> kNotThroughLoop. The one judge of success: `plan`,
+// ReportWinding, turns; only with the winding criterion; with winding_tunnel_through_object_only
+// not when every pass of the line in that step lies beyond the object's ends); the first of these
+// is the reason, except that a winding jump replaces a collision (the states passing through the
+// pole collide; failure_step is then the jump's). At the end (CheckEndState of the last state): |w|
+// >= winding_final_below (w of the chain closed by its chord with winding_closed_by_chord) or
+// |total writhe| >= writhe_total_below -> kWritheNotReached; position error > position_tolerance or
+// the box task's point outside its box (margin 0) -> kReachError; with through_loop, the report
+// chain not through the report object's loop -> kNotThroughLoop. The one judge of success: `plan`,
 // `bench`, the re-planner, the viewer and Python all use it. With the objects of `state` and the
 // criteria `criteria` (the re-planner adds through_loop when the moving object is the report loop);
 // the shorter overloads use scenario.initial and scenario.success.

@@ -337,8 +337,8 @@ std::string UnwrapGeometryCsv(const UnwrapGeometry& geometry, const UnwrapBenchm
   csv.precision(12);
   csv << "geometry,split,angle_deg,planner,seed,start_wrap_deg,success,failure_reason,"
          "final_writhe_total,reach_error_m,final_winding_turns,unwound_winding_turns,"
-         "goal_meets_end_conditions,"
-         "state_queries,cpu_time_s,setup_time_s\n";
+         "goal_meets_end_conditions,state_queries,cpu_time_s,setup_time_s,"
+         "jumps_through_object,jumps_beyond_ends,jumps_unlocated\n";
   for (const UnwrapRun& r : result.runs) {
     const PlanReport& p = r.report;
     csv << geometry.name << "," << geometry.split << "," << r.angle_deg << ","
@@ -346,7 +346,8 @@ std::string UnwrapGeometryCsv(const UnwrapGeometry& geometry, const UnwrapBenchm
         << "," << (p.success ? 1 : 0) << "," << FailureReasonName(p.failure_reason) << ","
         << p.final_writhe_total << "," << p.reach_error_m << "," << p.final_winding_turns << ","
         << r.unwound_winding_turns << "," << (r.goal_meets_end_conditions ? 1 : 0) << ","
-        << p.counts.state_queries << "," << p.cpu_time_s << "," << p.setup_time_s << "\n";
+        << p.counts.state_queries << "," << p.cpu_time_s << "," << p.setup_time_s << ","
+        << p.jumps_through_object << "," << p.jumps_beyond_ends << "," << p.jumps_unlocated << "\n";
   }
   return csv.str();
 }

@@ -182,10 +182,11 @@ std::string UnwrapAblationCsv(const UnwrapBenchmarkResult& result);
 
 // "geometry,split,angle_deg,planner,seed,start_wrap_deg,success,failure_reason,
 // final_writhe_total,reach_error_m,final_winding_turns,unwound_winding_turns,
-// goal_meets_end_conditions,state_queries,cpu_time_s,setup_time_s" rows
-// of a benchmark run on `geometry` (bench unwrap --geometry): start_wrap_deg = 360°·|start writhe|
-// is the coil the start continuation reached (it can fall short of angle_deg on a geometry where
-// the arm cannot coil that far), reach_error_m in m, final_winding_turns in turns.
+// goal_meets_end_conditions,state_queries,cpu_time_s,setup_time_s,jumps_through_object,
+// jumps_beyond_ends,jumps_unlocated" rows of a benchmark run on `geometry` (bench unwrap
+// --geometry; the jumps: PlanReport's, by where the arm passes the pole's line): start_wrap_deg =
+// 360°·|start writhe| is the coil the start continuation reached (it can fall short of angle_deg on
+// a geometry where the arm cannot coil that far), reach_error_m in m, final_winding_turns in turns.
 std::string UnwrapGeometryCsv(const UnwrapGeometry& geometry, const UnwrapBenchmarkResult& result);
 
 }  // namespace planning

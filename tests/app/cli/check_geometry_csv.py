@@ -12,8 +12,8 @@ import sys
 
 HEADER = ("geometry,split,angle_deg,planner,seed,start_wrap_deg,success,failure_reason,"
           "final_writhe_total,reach_error_m,final_winding_turns,unwound_winding_turns,"
-          "goal_meets_end_conditions,"
-          "state_queries,cpu_time_s,setup_time_s")
+          "goal_meets_end_conditions,state_queries,cpu_time_s,setup_time_s,"
+          "jumps_through_object,jumps_beyond_ends,jumps_unlocated")
 
 
 def main():
@@ -40,6 +40,8 @@ def main():
         # The arm unwrapped: its final winding is near that of the straight base -> target segment.
         assert abs(float(r["final_winding_turns"]) - float(r["unwound_winding_turns"])) < 0.1, r
     assert int(r["state_queries"]) > 0, r
+    # A success has no winding jump that counts as tunnelling: none through the pole or unlocated.
+    assert r["jumps_through_object"] == "0" and r["jumps_unlocated"] == "0", r
     with open(os.path.join(out, "unwrap.csv")) as f:
         assert len(f.read().splitlines()) == 2, "unwrap.csv: expected a header and one row"
     print("ok:", name, angle, "deg,", r["state_queries"], "state queries")

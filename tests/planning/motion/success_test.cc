@@ -10,6 +10,7 @@
 #include <iterator>
 #include <string>
 
+#include "base/str_cat.h"
 #include "planning/features/feature.h"
 #include "planning/motion/planner.h"
 #include "planning/motion/scenario.h"
@@ -37,37 +38,70 @@ std::unique_ptr<Scenario> Unwrap(double wrap_deg) {
   return LoadScenario(kAssets + "scenarios/unwrap.json", o);
 }
 
+// Two slices: the start of `coiled` and the unwrapped start (0°). Straight-line interpolation in
+// joint space pulls the arm through the pole instead of around its end.
+Trajectory PullStraight(const Scenario& coiled) {
+  Trajectory path;
+  path.q.resize(coiled.initial.problem.q0.size(), 2);
+  path.q.col(0) = coiled.initial.problem.q0;
+  path.q.col(1) = Unwrap(0.0)->initial.problem.q0;
+  return path;
+}
+
 TEST(JudgePlan, APathThatTunnelsThroughThePoleBetweenSlicesIsRejected) {
   const auto s = Unwrap(360.0);
-  const auto unwrapped = Unwrap(0.0);
   // Judged without the collision checker, so that only the winding criterion can see the arm
   // passing through the pole (as it cannot when the pass falls between resampled states).
   s->collision.self_collision = false;
   s->collision.environment = false;
-  // Two slices: the coil (one turn about the pole) and the unwrapped pose. Straight-line
-  // interpolation in joint space pulls the arm through the pole instead of around its end.
-  Trajectory path;
-  path.q.resize(s->initial.problem.q0.size(), 2);
-  path.q.col(0) = s->initial.problem.q0;
-  path.q.col(1) = unwrapped->initial.problem.q0;
+  const Trajectory path = PullStraight(*s);
   EXPECT_NEAR(std::abs(ReportWinding(*s, path.q.col(0))), 1.0, 0.2);
   EXPECT_LT(std::abs(ReportWinding(*s, path.q.col(1))), 0.2);
   const PlanVerdict v = JudgePlan(*s, path);
   EXPECT_EQ(v.reason, FailureReason::kTunnelled) << FailureReasonName(v.reason);
   EXPECT_GT(v.step, 0);
   EXPECT_GT(v.max_winding_jump_turns, 0.5);  // a whole turn lost in one resampled step
+  // The pass is located on the pole: tunnelling with either rule.
+  EXPECT_GE(v.jumps_through_object, 1);
+  EXPECT_EQ(v.jumps_beyond_ends, 0);
+  SuccessCriteria object_rule = s->success;
+  object_rule.winding_tunnel_through_object_only = true;
+  EXPECT_EQ(JudgePlan(*s, s->initial, path, object_rule).reason, FailureReason::kTunnelled);
+}
+
+// The same pass with the report object moved along its own line, beyond the place where the arm
+// passes it (the line, and so every winding, unchanged): a pass round the object's end. The shipped
+// rule ("tunnel": "line") still calls it tunnelling; "object" does not.
+TEST(JudgePlan, APassBeyondTheObjectsEndIsTunnellingOnlyByTheLineRule) {
+  const auto s = Unwrap(360.0);
+  s->collision.self_collision = false;
+  s->collision.environment = false;
+  const Trajectory path = PullStraight(*s);
+  const auto moved = MakeScenarioState(*s);
+  const Eigen::Matrix3Xd pole = moved->report_object_chain;
+  ASSERT_EQ(pole.cols(), 2);
+  const Eigen::Vector3d along = pole.col(1) - pole.col(0);
+  // Both ends moved past the far end by half and one and a half pole lengths.
+  moved->report_object_chain.col(0) = pole.col(1) + 0.5 * along;
+  moved->report_object_chain.col(1) = pole.col(1) + 1.5 * along;
+  const PlanVerdict line = JudgePlan(*s, *moved, path, s->success);
+  EXPECT_EQ(line.reason, FailureReason::kTunnelled) << FailureReasonName(line.reason);
+  EXPECT_EQ(line.jumps_through_object, 0);
+  EXPECT_GE(line.jumps_beyond_ends, 1);
+  EXPECT_EQ(line.jumps_unlocated, 0);
+  SuccessCriteria object_rule = s->success;
+  object_rule.winding_tunnel_through_object_only = true;
+  const PlanVerdict object = JudgePlan(*s, *moved, path, object_rule);
+  EXPECT_NE(object.reason, FailureReason::kTunnelled) << FailureReasonName(object.reason);
+  EXPECT_EQ(object.jumps_beyond_ends, line.jumps_beyond_ends);
+  EXPECT_DOUBLE_EQ(object.max_winding_jump_turns, line.max_winding_jump_turns);
 }
 
 // With the collision checker on, the resampled states inside the pole collide, but the verdict
 // names the cause: the winding jump (tunnelled), not the collision.
 TEST(JudgePlan, TunnellingIsNamedBeforeTheCollisionOnTheWayThrough) {
   const auto s = Unwrap(360.0);
-  const auto unwrapped = Unwrap(0.0);
-  Trajectory path;
-  path.q.resize(s->initial.problem.q0.size(), 2);
-  path.q.col(0) = s->initial.problem.q0;
-  path.q.col(1) = unwrapped->initial.problem.q0;
-  const PlanVerdict v = JudgePlan(*s, path);
+  const PlanVerdict v = JudgePlan(*s, PullStraight(*s));
   EXPECT_FALSE(v.collision_free);
   EXPECT_EQ(v.reason, FailureReason::kTunnelled) << FailureReasonName(v.reason);
   EXPECT_GT(v.step, 0);
@@ -159,31 +193,50 @@ TEST(JudgePlan, ChordClosureCountsWholeTurnsAboutThePole) {
 }
 
 // The closure key: "open" (the default) or "chord"; anything else names the key.
-TEST(JudgePlan, ChordClosureKeyIsChecked) {
-  const std::string text = [] {
-    std::ifstream in(kAssets + "scenarios/unwrap.json");
-    return std::string(std::istreambuf_iterator<char>(in), {});
-  }();
-  const std::string key = R"("final_below": 0.1)";
-  ASSERT_NE(text.find(key), std::string::npos);
-  for (const std::string closure : {"chord", "loop"}) {
-    std::string edited = text;
-    edited.replace(edited.find(key), key.size(), key + R"(, "final_closure": ")" + closure + "\"");
-    const std::string path = WriteTemp("closure.json", edited);
-    if (closure == "chord") {
-      EXPECT_TRUE(ParseScenarioSpec(path, {kAssets}).success.winding_closed_by_chord);
-      continue;
-    }
-    try {
-      ParseScenarioSpec(path, {kAssets});
-      ADD_FAILURE() << "expected an error for " << closure;
-    } catch (const std::invalid_argument& e) {
-      EXPECT_NE(std::string(e.what()).find("success.winding.final_closure"), std::string::npos)
-          << e.what();
-    }
+// The path of a copy of the shipped unwrap.json with `key` ("name": "value") added to its
+// success.winding object.
+std::string UnwrapWithWindingKey(const std::string& name, const std::string& value) {
+  std::ifstream in(kAssets + "scenarios/unwrap.json");
+  std::string text(std::istreambuf_iterator<char>(in), {});
+  const std::string anchor = R"("final_below": 0.1)";
+  const size_t at = text.find(anchor);
+  EXPECT_NE(at, std::string::npos);
+  text.insert(at + anchor.size(), base::StrCat(", \"", name, "\": \"", value, "\""));
+  return WriteTemp(name + "_" + value + ".json", text);
+}
+
+// ParseScenarioSpec of `path` throws std::invalid_argument naming `where`.
+void ExpectSpecErrorNaming(const std::string& path, const std::string& where) {
+  try {
+    ParseScenarioSpec(path, {kAssets});
+    ADD_FAILURE() << "expected an error naming " << where;
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find(where), std::string::npos) << e.what();
   }
+}
+
+TEST(JudgePlan, ChordClosureKeyIsChecked) {
+  EXPECT_TRUE(ParseScenarioSpec(UnwrapWithWindingKey("final_closure", "chord"), {kAssets})
+                  .success.winding_closed_by_chord);
+  ExpectSpecErrorNaming(UnwrapWithWindingKey("final_closure", "loop"),
+                        "success.winding.final_closure");
   EXPECT_FALSE(
       ParseScenarioSpec(kAssets + "scenarios/unwrap.json").success.winding_closed_by_chord);
+}
+
+TEST(JudgePlan, TunnelRuleKeyIsChecked) {
+  for (const std::string rule : {"object", "line"}) {
+    const std::string path = UnwrapWithWindingKey("tunnel", rule);
+    EXPECT_EQ(ParseScenarioSpec(path, {kAssets}).success.winding_tunnel_through_object_only,
+              rule == "object");
+    ScenarioOverrides o;
+    o.search_roots = {kAssets};
+    o.start_wrap_deg = 0.0;
+    EXPECT_EQ(LoadScenario(path, o)->success.winding_tunnel_through_object_only, rule == "object");
+  }
+  ExpectSpecErrorNaming(UnwrapWithWindingKey("tunnel", "pole"), "success.winding.tunnel");
+  EXPECT_FALSE(ParseScenarioSpec(kAssets + "scenarios/unwrap.json")
+                   .success.winding_tunnel_through_object_only);
 }
 
 // The goal q̂_T (the RRT baselines' goal, the end of AICO's final-pose targets) meets the same end
