@@ -54,6 +54,10 @@ struct GoalRegionProblem {
 };
 
 inline constexpr int kDefaultMaxGoalStates = 32;  // the scenario key rrt.goal_states' default
+// The scenarios' goal sampler (scenario_goal_region.h): IK iterations per start and uniform starts
+// per draw (the keys rrt.goal_ik_iterations and rrt.goal_ik_starts).
+inline constexpr int kDefaultGoalIkIterations = 200;
+inline constexpr int kDefaultGoalIkStarts = 1;
 
 struct GoalRegionOptions {
   RrtOptions rrt;  // range, resolution, goal_bias, max_checks, max_iterations (rrt.h)

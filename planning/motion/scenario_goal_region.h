@@ -4,12 +4,15 @@
 //   G = { q : CheckEndState(scenario, state, q, false).ok() }  (success.h: reach within the
 //       position tolerance, box point inside its box, |final writhe| and |final winding| below
 //       their bounds); validity (joint limits, collision) is the planner's counted check.
-//   Sampler, one draw: q_u uniform in the joint box of ScenarioRrtProblem (u = UniformUnit of the
-//       planner's generator, one per dof); q̃ = SolveIk from the single start q_u (damped least
-//       squares inside the joint limits, kIkIterations iterations, position tolerance
-//       kIkToleranceFraction × the criterion's) toward the reach target y*_T of the position task
-//       and the centre of the box task (whichever the criterion has; neither: q̃ = q_u);
-//       returns G(q̃). Rejection: the planner keeps q̃ only if it is also valid.
+//   Sampler, one draw: up to K = scenario.rrt_goal_ik_starts times (rrt.goal_ik_starts, default
+//       1): q_u uniform in the joint box of ScenarioRrtProblem (u = UniformUnit of the planner's
+//       generator, one per dof); q̃ = SolveIk from the single start q_u (damped least squares
+//       inside the joint limits, scenario.rrt_goal_ik_iterations iterations
+//       (rrt.goal_ik_iterations, default 200), position tolerance kIkToleranceFraction × the
+//       criterion's) toward the reach target y*_T of the position task and the centre of the box
+//       task (whichever the criterion has; neither: q̃ = q_u); the draw ends at the first q̃ with
+//       G(q̃) and returns it, else the K-th q̃ and false. Rejection: the planner keeps q̃ only if it
+//       is also valid.
 #pragma once
 
 #include "planning/collision/collision.h"
@@ -18,7 +21,6 @@
 
 namespace planning {
 
-inline constexpr int kIkIterations = 200;
 inline constexpr double kIkToleranceFraction = 0.1;
 
 // What the sampler spent, in the planner's cost units: the validity checks of its candidates

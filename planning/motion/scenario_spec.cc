@@ -394,8 +394,9 @@ void ReadAico(const base::JsonNode& n, ScenarioSpec* spec) {
   spec->aico_attempts.push_back(retry);
 }
 
-RrtOptions ReadRrt(const base::JsonNode& n, int* goal_states) {
-  n.CheckKeys({"range", "resolution", "goal_bias", "max_checks", "goal_states"});
+RrtOptions ReadRrt(const base::JsonNode& n, ScenarioSpec* spec) {
+  n.CheckKeys({"range", "resolution", "goal_bias", "max_checks", "goal_states",
+               "goal_ik_iterations", "goal_ik_starts"});
   RrtOptions r;
   r.range = n.Number("range", r.range, 0.0, 1e3);
   r.resolution = n.Number("resolution", r.resolution, 0.0, 1e3);
@@ -404,7 +405,12 @@ RrtOptions ReadRrt(const base::JsonNode& n, int* goal_states) {
   }
   r.goal_bias = n.Number("goal_bias", r.goal_bias, 0.0, 1.0);
   if (n.Has("max_checks")) r.max_checks = n.At("max_checks").Integer(1, kMaxChecks);
-  if (n.Has("goal_states")) *goal_states = static_cast<int>(n.At("goal_states").Integer(1, 10000));
+  const auto integer = [&n](const char* key, int lo, int hi, int* value) {
+    if (n.Has(key)) *value = static_cast<int>(n.At(key).Integer(lo, hi));
+  };
+  integer("goal_states", 1, 10000, &spec->rrt_goal_states);
+  integer("goal_ik_iterations", 1, 100000, &spec->rrt_goal_ik_iterations);
+  integer("goal_ik_starts", 1, 100, &spec->rrt_goal_ik_starts);
   return r;
 }
 
@@ -507,7 +513,7 @@ ScenarioSpec ParseScenarioSpec(const std::string& path,
   s.aico_attempts.resize(1);
   s.aico_attempts[0].max_iterations = s.aico.max_iterations;
   if (root.Has("aico")) ReadAico(root.At("aico"), &s);
-  if (root.Has("rrt")) s.rrt = ReadRrt(root.At("rrt"), &s.rrt_goal_states);
+  if (root.Has("rrt")) s.rrt = ReadRrt(root.At("rrt"), &s);
   s.check_resolution = root.Number(
       "check_resolution", s.rrt.resolution > 0 ? s.rrt.resolution : 0.02, kMinResolution, 10.0);
   return s;

@@ -125,7 +125,11 @@
 //                            goal_bias: default 0.1; max_checks: integer >= 1, default 100000;
 //                            goal_states: integer 1..10000, default 32 (the goal-region trees'
 //                            most goal states: rrt-region's and ompl-rrt-region's pool,
-//                            birrt-region's goal roots; goal_region.h max_goal_states)
+//                            birrt-region's goal roots; goal_region.h max_goal_states);
+//                            goal_ik_iterations: integer 1..100000, default 200, and
+//                            goal_ik_starts: integer 1..100, default 1 (the goal sampler's IK
+//                            iterations per start and uniform starts per draw, for every
+//                            goal-region planner; scenario_goal_region.h)
 //   check_resolution number  edge resolution (rad) for validating output paths, default
 //                            rrt.resolution if > 0, else 0.02
 //
@@ -362,7 +366,9 @@ struct ScenarioSpec {
   std::vector<AicoAttemptSpec> aico_attempts;  // [0]: plain; [1]: "aico.retry" when given
   bool aico_stop_when_solved = false;
   RrtOptions rrt;
-  int rrt_goal_states = kDefaultMaxGoalStates;  // rrt.goal_states
+  int rrt_goal_states = kDefaultMaxGoalStates;            // rrt.goal_states
+  int rrt_goal_ik_iterations = kDefaultGoalIkIterations;  // rrt.goal_ik_iterations
+  int rrt_goal_ik_starts = kDefaultGoalIkStarts;          // rrt.goal_ik_starts
   double check_resolution = 0.02;
 };
 

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <random>
 #include <sstream>
 #include <stdexcept>
@@ -16,6 +17,7 @@
 #include "base/random.h"
 #include "planning/motion/planner.h"
 #include "planning/motion/scenario.h"
+#include "planning/motion/scenario_goal_region.h"
 #include "planning/motion/success.h"
 
 namespace planning {
@@ -210,31 +212,39 @@ TEST(GoalRegionPlanners, BiRrtRegionUnwrapsFrom360Degrees) {
   EXPECT_EQ(again.goal_samples, r.goal_samples);
 }
 
-// rrt.goal_states in the scenario file caps the goal states of every goal-region tree that keeps a
-// pool or a goal forest (rrt-region, birrt-region, ompl-rrt-region): with 1, each run keeps one,
-// where the shipped 32 lets birrt-region root more at 360°.
-TEST(GoalRegionPlanners, ScenarioGoalStatesCapsTheGoalStates) {
+// The shipped unwrap.json at 360° with `rrt_keys` (", \"key\": value" ...) added to its rrt object
+// (after max_checks, which `max_checks` replaces), written next to the tests with absolute asset
+// paths.
+std::unique_ptr<Scenario> UnwrapWithRrtKeys(const std::string& name, const std::string& max_checks,
+                                            const std::string& rrt_keys) {
   std::ifstream in(kAssets + "scenarios/unwrap.json");
   std::stringstream text;
   text << in.rdbuf();
   std::string json = text.str();
-  const auto replace = [&json](const std::string& from, const std::string& to) {
-    const size_t at = json.find(from);
-    ASSERT_NE(at, std::string::npos) << from;
-    json.replace(at, from.size(), to);
-  };
-  replace("\"max_checks\": 100000}", "\"max_checks\": 100000, \"goal_states\": 1}");
+  const std::string from = "\"max_checks\": 100000}";
+  const size_t at = json.find(from);
+  if (at == std::string::npos) throw std::runtime_error("unwrap.json: no rrt.max_checks");
+  json.replace(at, from.size(), "\"max_checks\": " + max_checks + rrt_keys + "}");
   for (const std::string dir : {"robots", "objects"}) {
-    for (size_t at; (at = json.find("\"../" + dir + "/")) != std::string::npos;) {
-      json.replace(at, dir.size() + 5, "\"" + kAssets + dir + "/");
+    for (size_t p; (p = json.find("\"../" + dir + "/")) != std::string::npos;) {
+      json.replace(p, dir.size() + 5, "\"" + kAssets + dir + "/");
     }
   }
   const std::filesystem::path path =
-      std::filesystem::path(TOPOPLAN_BINARY_DIR) / "goal_region_test_goal_states_1.json";
+      std::filesystem::path(TOPOPLAN_BINARY_DIR) / ("goal_region_test_" + name + ".json");
   std::ofstream(path) << json;
   ScenarioOverrides o;
   o.start_wrap_deg = 360.0;
-  const auto one = LoadScenario(path.string(), o);
+  return LoadScenario(path.string(), o);
+}
+
+// rrt.goal_states in the scenario file caps the goal states of every goal-region tree that keeps a
+// pool or a goal forest (rrt-region, birrt-region, ompl-rrt-region): with 1, each run keeps one,
+// where the shipped 32 lets birrt-region root more at 360°.
+TEST(GoalRegionPlanners, ScenarioGoalStatesCapsTheGoalStates) {
+  const auto one = UnwrapWithRrtKeys("goal_states_1", "100000", ", \"goal_states\": 1");
+  ScenarioOverrides o;
+  o.start_wrap_deg = 360.0;
   const auto shipped = LoadScenario(kAssets + "scenarios/unwrap.json", o);
   ASSERT_EQ(one->rrt_goal_states, 1);
   ASSERT_EQ(shipped->rrt_goal_states, 32);
@@ -247,6 +257,45 @@ TEST(GoalRegionPlanners, ScenarioGoalStatesCapsTheGoalStates) {
     EXPECT_EQ(r.goal_samples, 1);
     EXPECT_GT(r.goal_sampler_draws, 0);
   }
+}
+
+// rrt.goal_ik_iterations and rrt.goal_ik_starts set the sampler's effort: with one IK iteration a
+// uniform start never comes within the reach tolerance, so no draw is a goal state; with 8 starts
+// per draw more of the same number of draws are in the region than with the shipped 1.
+TEST(GoalRegionPlanners, ScenarioIkKeysSetTheSamplersEffort) {
+  const auto one_iteration =
+      UnwrapWithRrtKeys("goal_ik_iterations_1", "3000", ", \"goal_ik_iterations\": 1");
+  ASSERT_EQ(one_iteration->rrt_goal_ik_iterations, 1);
+  ASSERT_EQ(one_iteration->rrt_goal_ik_starts, 1);
+  for (Planner planner : {Planner::kRrtRegion, Planner::kBiRrtRegion}) {
+    SCOPED_TRACE(PlannerName(planner));
+    const PlanReport r = RunPlanner(*one_iteration, planner, 0).report;
+    EXPECT_FALSE(r.success);
+    EXPECT_GT(r.goal_sampler_draws, 0);
+    EXPECT_EQ(r.goal_samples, 0);
+  }
+  const auto shipped = UnwrapWithRrtKeys("goal_ik_shipped", "3000", "");
+  const auto eight = UnwrapWithRrtKeys("goal_ik_starts_8", "3000", ", \"goal_ik_starts\": 8");
+  ASSERT_EQ(shipped->rrt_goal_ik_iterations, 200);
+  ASSERT_EQ(eight->rrt_goal_ik_starts, 8);
+  const auto in_region = [](const Scenario& s) {
+    CollisionData coll(s.robot, s.initial.env, s.collision);
+    GoalSamplerCost cost;
+    const GoalRegion region = ScenarioGoalRegion(
+        s, s.initial, [](const Eigen::VectorXd&) { return true; }, coll, &cost);
+    std::mt19937 rng(7);
+    Eigen::VectorXd q;
+    int in = 0;
+    for (int k = 0; k < 12; ++k) {
+      const bool drawn_in = region.sample(&rng, &q);
+      EXPECT_EQ(drawn_in, region.contains(q));
+      in += drawn_in ? 1 : 0;
+    }
+    return in;
+  };
+  const int in_one = in_region(*shipped), in_eight = in_region(*eight);
+  EXPECT_GT(in_eight, in_one) << in_one << " vs " << in_eight;
+  EXPECT_GE(in_eight, 6);
 }
 
 }  // namespace

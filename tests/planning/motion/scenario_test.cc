@@ -120,12 +120,16 @@ TEST(ScenarioLoader, NumbersOutOfRangeNameFileAndPath) {
       {"max_relocations", "0"},    {"max_relocations", "101"},     {"max_relocations", "2.5"},
       {"relocation_damping", "0"}, {"relocation_damping", "1.5"},  {"relocation_damping", "-0.3"},
       {"stop_when_solved", "1"},   {"stop_when_solved", "\"yes\""}};
-  for (const std::string value : {"0", "10001", "2.5"}) {
-    ExpectLoadError("goal_states.json",
+  const std::vector<std::pair<std::string, std::string>> bad_rrt = {
+      {"goal_states", "0"},        {"goal_states", "10001"},         {"goal_states", "2.5"},
+      {"goal_ik_iterations", "0"}, {"goal_ik_iterations", "100001"}, {"goal_ik_starts", "0"},
+      {"goal_ik_starts", "101"},   {"goal_ik_starts", "1.5"}};
+  for (const auto& [key, value] : bad_rrt) {
+    ExpectLoadError(key + ".json",
                     R"({"robot": ")" + kAssets + R"(robots/lwr4_sdh.urdf", "start": {"q": "zero"},
-                        "tasks": [], "rrt": {"goal_states": )" +
-                        value + "}}",
-                    "rrt.goal_states");
+                        "tasks": [], "rrt": {")" +
+                        key + "\": " + value + "}}",
+                    "rrt." + key);
   }
   for (const auto& [key, value] : bad_aico) {
     ExpectLoadError(key + ".json",
