@@ -62,6 +62,7 @@ struct PlanArgs {
   unsigned seed = 0;
   double start_wrap = std::numeric_limits<double>::quiet_NaN();  // NaN: not given
   std::string aico_stop;  // --aico-stop solved|converged ("": the scenario's)
+  std::string geometry;   // --geometry FILE ("": the scenario's own scene)
   double timeout = 0.0;
   bool frames = false, json = false;
   bool no_stamp = false;                      // --no-stamp: frames without scenario name and time
@@ -90,6 +91,7 @@ std::string ObjectPositionsCsv(const planning::ReplanResult& r) {
 // the argument names one) and the object path.
 std::vector<std::string> PlanInputs(const PlanArgs& pa) {
   std::vector<std::string> inputs{pa.scenario};
+  if (!pa.geometry.empty()) inputs.push_back(pa.geometry);
   if (!pa.object_path.empty()) inputs.push_back(pa.object_path);
   return inputs;
 }
@@ -224,6 +226,9 @@ void AddPlanCommands(CLI::App* root, CommandList* commands) {
       ->check(FiniteIn(0.0, 2000.0));
   plan->add_option("--aico-stop", pa->aico_stop, kAicoStopHelp)
       ->check(CLI::IsMember({"solved", "converged"}));
+  plan->add_option("--geometry", pa->geometry,
+                   "plan on the unwrap geometry of FILE (pole tilt, radius, translation, target "
+                   "offset, arm; as bench unwrap --geometry; assets/scenarios/unwrap_geometries/)");
   AddTimeoutFlag(plan, &pa->timeout);
   plan->add_option("-o,--output", pa->output, "output folder")->required();
   AddRobotInputFlags(plan, &pa->robot_input, nullptr);
@@ -258,7 +263,7 @@ void AddPlanCommands(CLI::App* root, CommandList* commands) {
       "second), wall_rate_hz (per wall second), median_ms, max_ms (CPU), median_wall_ms,\n"
       "max_wall_ms, passed_through, ...}; --frames shows the object moving.");
   commands->push_back(
-      {plan, [pa]() {
+      {plan, [pa, plan]() {
          planning::ScenarioOverrides overrides;
          if (!std::isnan(pa->start_wrap)) overrides.start_wrap_deg = pa->start_wrap;
          overrides.stop_when_solved = ParseAicoStop(pa->aico_stop);
@@ -266,6 +271,10 @@ void AddPlanCommands(CLI::App* root, CommandList* commands) {
              ParseFlag("--planner", [&] { return planning::ParsePlanner(pa->planner); });
          overrides.package_paths = planning::PackagePaths(pa->robot_input.package_paths);
          overrides.srdf = pa->robot_input.srdf;
+         if (plan->count("--geometry") > 0) {
+           if (pa->geometry.empty()) throw std::invalid_argument("--geometry: empty path");
+           overrides.geometry = pa->geometry;
+         }
          if (!pa->moving_object.empty() || !pa->object_path.empty()) {
            return RunMovingObjectPlan(*pa, overrides, planner);
          }

@@ -1,5 +1,4 @@
 #include "planning/motion/scenario.h"
-#include "planning/motion/internal/scenario_build.h"
 
 #include <Eigen/Geometry>
 #include <algorithm>
@@ -11,7 +10,9 @@
 #include <vector>
 
 #include "base/assets.h"
+#include "planning/motion/internal/scenario_build.h"
 #include "planning/motion/success.h"
+#include "planning/motion/unwrap_geometry.h"
 #include "planning/robot/kinematics.h"
 #include "planning/robot/pose.h"
 #include "planning/robot/robot_io.h"
@@ -150,8 +151,7 @@ size_t SpecObjectIndex(const Scenario& s, const std::string& name) {
 
 }  // namespace
 
-Eigen::Vector3d ObjectPosition(const Scenario& s, const ScenarioState& w,
-                               const std::string& name) {
+Eigen::Vector3d ObjectPosition(const Scenario& s, const ScenarioState& w, const std::string& name) {
   SpecObjectIndex(s, name);
   return w.objects.objects[FindObject(w.objects, name)].world_from_object.translation();
 }
@@ -180,11 +180,13 @@ std::unique_ptr<Scenario> LoadScenario(const std::string& path,
                             overrides.package_paths.end());
   if (!overrides.srdf.empty()) spec.srdf = overrides.srdf;
   if (overrides.stop_when_solved) spec.aico_stop_when_solved = *overrides.stop_when_solved;
+  if (!overrides.geometry.empty()) {
+    ApplyUnwrapGeometry(ReadUnwrapGeometry(overrides.geometry, overrides.search_roots), &spec);
+  }
   return SetUpScenario(std::move(spec), overrides.start_wrap_deg);
 }
 
-std::unique_ptr<Scenario> LoadScenarioArg(const std::string& arg,
-                                                ScenarioOverrides overrides) {
+std::unique_ptr<Scenario> LoadScenarioArg(const std::string& arg, ScenarioOverrides overrides) {
   overrides.search_roots = {base::AssetRoot()};
   return LoadScenario(base::ResolveScenarioPath(arg), overrides);
 }

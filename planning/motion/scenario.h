@@ -41,6 +41,10 @@ struct ScenarioOverrides {
   // the file's "srdf" (planning/robot/srdf.h) when not empty.
   std::vector<std::string> package_paths;
   std::string srdf;
+  // An unwrap geometry file (planning/motion/unwrap_geometry.h: pole tilt, radius, translation,
+  // target offset, arm) applied to the spec before the set-up, as `bench unwrap --geometry`;
+  // empty: none. Its relative arm path is looked up next to it, then under search_roots.
+  std::string geometry;
 };
 
 struct SuccessCriteria {

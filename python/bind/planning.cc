@@ -146,7 +146,8 @@ std::optional<planning::ResolvedPoses> ResolvedPosesFromPython(const py::object&
 // load_scenario: checks the overrides, parses and moves, then sets up without the GIL.
 PyScenario LoadScenarioPy(const fs::path& arg_path, std::optional<double> start_wrap,
                           long rrt_budget, const std::map<std::string, py::object>& move_objects,
-                          const py::object& resolved, std::optional<bool> stop_when_solved) {
+                          const py::object& resolved, std::optional<bool> stop_when_solved,
+                          const std::optional<fs::path>& geometry) {
   const std::string arg = arg_path.string();
   if (start_wrap && !std::isfinite(*start_wrap)) ThrowValue("start_wrap: must be finite");
   if (start_wrap && !(*start_wrap >= 0.0 && *start_wrap <= 2000.0)) {
@@ -159,6 +160,15 @@ PyScenario LoadScenarioPy(const fs::path& arg_path, std::optional<double> start_
   overrides.search_roots = {base::AssetRoot()};
   const std::map<std::string, Eigen::Vector3d> offsets = ObjectOffsets(move_objects);
   planning::ScenarioSpec spec = planning::ParseScenarioSpec(path, overrides.search_roots);
+  if (geometry) {
+    if (!fs::is_regular_file(*geometry)) {
+      ThrowPy(PyExc_FileNotFoundError, "geometry: no such file: " + geometry->string());
+    }
+    const planning::UnwrapGeometry g = Named("geometry", [&] {
+      return planning::ReadUnwrapGeometry(geometry->string(), overrides.search_roots);
+    });
+    Named("geometry", [&] { planning::ApplyUnwrapGeometry(g, &spec); });
+  }
   MoveScenarioObjects(offsets, &spec);
   // Options go into the spec: the set-up scenario is the model, not changed afterwards.
   if (rrt_budget > 0) spec.rrt.max_checks = rrt_budget;
@@ -496,13 +506,16 @@ void BindScenarioLoading(py::module_& m) {
       "load_scenario", &LoadScenarioPy, py::arg("path_or_name"), py::arg("start_wrap") = py::none(),
       py::arg("rrt_budget") = -1, py::arg("move_objects") = std::map<std::string, py::object>{},
       py::arg("resolved") = py::none(), py::arg("stop_when_solved") = py::none(),
+      py::arg("geometry") = py::none(),
       "Loads a scenario file, or a name in the shipped assets/scenarios (e.g. 'unwrap'), and\n"
       "sets it up (start coil, final-pose estimate). start_wrap overrides the coil's angle to\n"
       "unwrap [deg]; rrt_budget > 0 replaces the RRTs' collision-check budget; move_objects\n"
       "{name: (3,) offset [m]} moves objects of the scenario before it is set up; resolved (a\n"
       "dict from Scenario.resolved_poses() of the same set-up) skips the expensive part;\n"
       "stop_when_solved (bool) replaces the scenario's aico.stop_when_solved (True: AICO stops at\n"
-      "the first accepted sweep whose trajectory meets the success criteria, status 'solved').");
+      "the first accepted sweep whose trajectory meets the success criteria, status 'solved');\n"
+      "geometry (a file of assets/scenarios/unwrap_geometries/) applies an unwrap geometry (pole\n"
+      "tilt, radius, translation, target offset, arm) first, as `topoplan plan --geometry`.");
   m.def("unwrap_perturbation", &UnwrapPerturbationPy, py::arg("path_or_name"), py::arg("seeds"),
         py::arg("pole_offset") = 0.0, py::kw_only(), py::arg("perturb") = py::none(),
         "The pole perturbation of `topoplan bench unwrap --pole-offset M --seeds N`: dict with\n"

@@ -2,6 +2,7 @@
 see every AICO sweep and can cancel."""
 
 import json
+import pathlib
 
 import numpy as np
 import pytest
@@ -120,3 +121,22 @@ def test_resolved_poses_are_checked(unwrap360):
         topoplan.load_scenario("unwrap", resolved=[1, 2])
     with pytest.raises(ValueError, match="resolved: unwinding: expected none"):
         topoplan.load_scenario("unwrap", resolved={**poses, "unwinding": np.zeros((n, 51))})
+
+
+def test_geometry_sets_up_the_held_out_scene_as_the_cli_does(cli, tmp_path):
+    geometry = (pathlib.Path(topoplan.asset_root())
+                / "scenarios/unwrap_geometries/test/test_09_arm30.json")
+    s = topoplan.load_scenario("unwrap", start_wrap=90, geometry=geometry)
+    assert "arm_joint_30" in s.joint_names  # the geometry's 30-link arm, not the shipped 20
+    trajectory, report = s.plan("aico")
+    cli("plan", "unwrap", "--geometry", geometry, "--start-wrap", 90, "-o", tmp_path)
+    expected = json.loads((tmp_path / "report.json").read_text())
+    for key in ("success", "failure_reason", "start_wrap_deg", "final_writhe_total",
+                "reach_error_m", "winding_jumps"):
+        assert report[key] == expected[key], key
+    with pytest.raises(FileNotFoundError, match="geometry"):
+        topoplan.load_scenario("unwrap", start_wrap=90, geometry=tmp_path / "missing.json")
+    bad = tmp_path / "bad.json"
+    bad.write_text('{"tilt": [1, 2]}')
+    with pytest.raises(ValueError, match="geometry: .*unknown key 'tilt'"):
+        topoplan.load_scenario("unwrap", start_wrap=90, geometry=bad)
