@@ -36,6 +36,9 @@ std::vector<LineCrossing> LocateLineCrossings(const ChainMotion& motion, const E
   if (!a.allFinite() || !b.allFinite() || ab.squaredNorm() == 0.0) {
     throw std::invalid_argument("LocateLineCrossings: the line needs two distinct finite points");
   }
+  if (!(s_tolerance > 0.0 && s_tolerance < 1.0)) {
+    throw std::invalid_argument("LocateLineCrossings: s_tolerance must be in (0, 1)");
+  }
   const Eigen::Vector3d d = ab.normalized();
   Chain p0, p1, p;
   motion(0.0, &p0);

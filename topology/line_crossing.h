@@ -8,7 +8,6 @@
 #include <vector>
 
 #include "topology/polyline.h"
-#include "topology/winding.h"
 
 namespace topology {
 
@@ -29,9 +28,13 @@ using ChainMotion = std::function<void(double s, Chain* points)>;
 // segment's ends). For every j with sign f_j(0) ≠ sign f_j(1) the root is found by bisection in s
 // (to |Δs| ≤ s_tolerance, at most 64 halvings) and kept when u_j·u_{j+1} < 0 there; the meeting
 // point is p_j + λ (p_{j+1} − p_j), λ = |u_j| / (|u_j| + |u_{j+1}|), and line_param its
-// coordinate along the line. A segment crossing twice within [0, 1] (no sign change) is not seen;
-// callers take steps small enough for one pass per segment. Result sorted by s. Throws
-// std::invalid_argument when a = b, a point is not finite, or N changes with s.
+// coordinate along the line. One root of f_j per segment per call: a segment passing twice within
+// [0, 1] (no sign change) is not seen, and when f_j also has a root where only the segment's
+// extension meets the line, bisection may settle there and the pass is dropped (the caller then
+// sees a winding jump with no located pass); callers take steps small enough for one root per
+// segment. A root exactly at s = 0 or 1 is found at that end. Result sorted by s. Throws
+// std::invalid_argument when a = b, a point is not finite, N changes with s, or s_tolerance is
+// not in (0, 1).
 std::vector<LineCrossing> LocateLineCrossings(const ChainMotion& motion, const Eigen::Vector3d& a,
                                               const Eigen::Vector3d& b, double s_tolerance = 1e-10);
 

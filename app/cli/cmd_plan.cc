@@ -91,7 +91,7 @@ std::string ObjectPositionsCsv(const planning::ReplanResult& r) {
 // the argument names one) and the object path.
 std::vector<std::string> PlanInputs(const PlanArgs& pa) {
   std::vector<std::string> inputs{pa.scenario};
-  if (!pa.geometry.empty()) inputs.push_back(pa.geometry);
+  if (!pa.geometry.empty()) inputs.push_back(pa.geometry);  // --geometry FILE
   if (!pa.object_path.empty()) inputs.push_back(pa.object_path);
   return inputs;
 }

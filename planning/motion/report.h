@@ -16,9 +16,9 @@ namespace planning {
 // goal_samples, goal_sampler_{state_queries, bool_pair_tests, distance_pair_tests, cpu_time_s},
 // iterations, attempts, cost, path_length [rad], time_s, start_wrap_deg,
 // start/final_writhe_total, min_clearance_m, path_collision_free, cost_history, failure_reason
-// (FailureReasonName), failure_step, reach_error_m, max_winding_jump_turns,
-// final_winding_turns, and writhe_peak {row, col, value} (largest |entry| of the final writhe
-// matrix of the report pair; only with a report pair).
+// (FailureReasonName), failure_step, reach_error_m, max_winding_jump_turns, winding_jumps
+// {through_object, beyond_ends, unlocated}, final_winding_turns, and writhe_peak {row, col, value}
+// (largest |entry| of the final writhe matrix of the report pair; only with a report pair).
 nlohmann::json PlanReportJson(const Scenario& scenario, const PlanReport& report, unsigned seed);
 
 // trajectory.csv: "step,time_s,<joint names in robot order>", one row per slice, 17 digits.

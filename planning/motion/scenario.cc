@@ -176,13 +176,15 @@ void MoveObject(const Scenario& s, ScenarioState* w, const std::string& name,
 std::unique_ptr<Scenario> LoadScenario(const std::string& path,
                                        const ScenarioOverrides& overrides) {
   ScenarioSpec spec = ParseScenarioSpec(path, overrides.search_roots);
+  // The geometry first: it may replace the robot (and clear the file's SRDF), which the
+  // command-line package paths and SRDF below then apply to.
+  if (!overrides.geometry.empty()) {
+    ApplyUnwrapGeometry(ReadUnwrapGeometry(overrides.geometry, overrides.search_roots), &spec);
+  }
   spec.package_paths.insert(spec.package_paths.begin(), overrides.package_paths.begin(),
                             overrides.package_paths.end());
   if (!overrides.srdf.empty()) spec.srdf = overrides.srdf;
   if (overrides.stop_when_solved) spec.aico_stop_when_solved = *overrides.stop_when_solved;
-  if (!overrides.geometry.empty()) {
-    ApplyUnwrapGeometry(ReadUnwrapGeometry(overrides.geometry, overrides.search_roots), &spec);
-  }
   return SetUpScenario(std::move(spec), overrides.start_wrap_deg);
 }
 

@@ -101,7 +101,8 @@
 //                            object chain (its first to last point), along the resampled path,
 //                            changes by less than max_jump between neighbouring states (no
 //                            tunnelling through the pole, no coil slipping off its end; with
-//                            "object" only passes through the object chain's extent count) and
+//                            "object" only passes through the object chain's extent, and jumps
+//                            with no located pass, count) and
 //                            ends below final_below in modulus;
 //                            through_loop: bool (needs writhe_report with a closed object chain):
 //                            at the end the report chain passes through the object's loop (a
@@ -129,7 +130,8 @@
 //                            goal_ik_iterations: integer 1..100000, default 200, and
 //                            goal_ik_starts: integer 1..100, default 1 (the goal sampler's IK
 //                            iterations per start and uniform starts per draw, for every
-//                            goal-region planner; scenario_goal_region.h)
+//                            goal-region planner; scenario_goal_region.h; OMPL's goal-draw cap
+//                            counts draws, so one draw may cost up to goal_ik_starts IK solves)
 //   check_resolution number  edge resolution (rad) for validating output paths, default
 //                            rrt.resolution if > 0, else 0.02
 //

@@ -156,9 +156,17 @@ PlanVerdict JudgePlan(const Scenario& s, const ScenarioState& w, const Trajector
       v.max_winding_jump_turns = std::max(v.max_winding_jump_turns, jump);
       if (c.winding_max_jump > 0.0 && jump >= c.winding_max_jump) {
         const JumpPlace place = LocateJump(s, w, dense.q.col(k - 1), dense.q.col(k));
-        ++(place == JumpPlace::kThrough      ? v.jumps_through_object
-           : place == JumpPlace::kBeyondEnds ? v.jumps_beyond_ends
-                                             : v.jumps_unlocated);
+        switch (place) {
+          case JumpPlace::kThrough:
+            ++v.jumps_through_object;
+            break;
+          case JumpPlace::kBeyondEnds:
+            ++v.jumps_beyond_ends;
+            break;
+          case JumpPlace::kUnlocated:
+            ++v.jumps_unlocated;
+            break;
+        }
         const bool tunnel =
             !c.winding_tunnel_through_object_only || place != JumpPlace::kBeyondEnds;
         if (tunnel && tunnel_step < 0) tunnel_step = k;

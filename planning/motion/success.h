@@ -17,7 +17,7 @@ enum class FailureReason {
   kCollision,         // a resampled state in collision (failure_step)
   kTunnelled,         // winding jump >= max_jump between resampled states (failure_step and
                       // max_winding_jump_turns): through the pole, or off its end (with
-                      // winding_tunnel_through_object_only: through the pole)
+                      // winding_tunnel_through_object_only: through the pole, or not located)
   kWritheNotReached,  // |final writhe| or |final winding| not below its bound
   kReachError,        // the position task's final distance (reach_error_m) above its tolerance,
                       // or the box task's value not 0

@@ -70,6 +70,11 @@ UnwrapGeometry ReadUnwrapGeometry(const std::string& path,
 
 void ApplyUnwrapGeometry(const UnwrapGeometry& g, ScenarioSpec* spec) {
   const std::string where = base::StrCat(g.source, ": ");
+  if (spec->start.kind != StartKind::kCoil) {
+    throw std::invalid_argument(
+        base::StrCat(where, "the scenario ", spec->source,
+                     " is not an unwrap scenario (no coil start, start.coil)"));
+  }
   if (!spec->writhe_report) {
     throw std::invalid_argument(
         base::StrCat(where, "the scenario ", spec->source, " has no writhe_report (the pole)"));

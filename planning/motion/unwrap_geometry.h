@@ -53,7 +53,8 @@ UnwrapGeometry ReadUnwrapGeometry(const std::string& path,
 
 // `spec` (an unwrap scenario: its writhe_report object is the pole) with geometry `g` applied:
 // the pole's rpy tilted and xyz translated, its collision radius set, the reach target moved, the
-// robot replaced. Throws std::invalid_argument when the scenario has no writhe_report object, and
+// robot replaced. Throws std::invalid_argument when the scenario has no coil start (not an unwrap
+// scenario) or no writhe_report object, and
 // for a target_offset when the success criterion's position task has no target placed in the
 // pole's frame (directly or through an object placed in it).
 void ApplyUnwrapGeometry(const UnwrapGeometry& g, ScenarioSpec* spec);

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
 #include <cmath>
 #include <stdexcept>
 
@@ -37,9 +38,12 @@ TEST(LineCrossing, LocatesTheSegmentTheMomentAndThePointOnTheLine) {
 
 TEST(LineCrossing, TheCrossingIsWhereTheWindingJumpsByATurn) {
   const Axis axis{kA, kB - kA};
+  const auto crossings = LocateLineCrossings(Sweep(0.5), kA, kB);
+  ASSERT_EQ(crossings.size(), 1u);
+  const double s = crossings[0].s;
   Chain before, after;
-  Sweep(0.5)(0.3 - 1e-6, &before);
-  Sweep(0.5)(0.3 + 1e-6, &after);
+  Sweep(0.5)(s - 1e-6, &before);
+  Sweep(0.5)(s + 1e-6, &after);
   EXPECT_NEAR(std::abs(WindingNumber(after, axis) - WindingNumber(before, axis)), 1.0, 1e-4);
   // Away from the crossing the winding changes continuously.
   Chain early, later;
@@ -56,7 +60,9 @@ TEST(LineCrossing, NoPassNoCrossing) {
     p->col(1) << 0.2, 0.5, s;
   };
   EXPECT_TRUE(LocateLineCrossings(along, kA, kB).empty());
-  // A segment that turns about its own end 0.2 m from the line sweeps a disc that misses it.
+  // A 0.3 m segment turning about its end 0.5 m from the line sweeps a disc that misses the line
+  // by 0.2 m. At s = 0 it points away from the line along the same ray, so f = 0 there: a zero
+  // at an end that is no pass.
   const ChainMotion turn = [](double s, Chain* p) {
     p->resize(3, 2);
     p->col(0) << 0.5, 0, 1;
@@ -88,6 +94,23 @@ TEST(LineCrossing, TwoSegmentsPassingAtDifferentMomentsAreSortedByS) {
   EXPECT_NEAR(c[1].line_param, 0.75, 1e-9);
 }
 
+TEST(LineCrossing, ALineAnywhereIsMeasuredFromItsFirstPoint) {
+  // The z-axis case moved and turned: the line through a = (1, 2, 3) along a unit direction d, a
+  // segment perpendicular to d through the point a + 0.7 (b − a) at s = 0.4, swept along n.
+  const Eigen::Vector3d a(1, 2, 3), d = Eigen::Vector3d(1, -2, 2) / 3.0, b = a + 1.5 * d;
+  const Eigen::Vector3d n = d.unitOrthogonal(), m = d.cross(n);
+  const Eigen::Vector3d centre = a + 0.7 * (b - a);
+  const ChainMotion motion = [&](double s, Chain* p) {
+    p->resize(3, 2);
+    p->col(0) = centre + (s - 0.4) * n - 0.5 * m;
+    p->col(1) = centre + (s - 0.4) * n + 0.5 * m;
+  };
+  const auto c = LocateLineCrossings(motion, a, b);
+  ASSERT_EQ(c.size(), 1u);
+  EXPECT_NEAR(c[0].s, 0.4, 1e-9);
+  EXPECT_NEAR(c[0].line_param, 0.7, 1e-9);
+}
+
 TEST(LineCrossing, RejectsADegenerateLineAndAChainThatChangesSize) {
   EXPECT_THROW(LocateLineCrossings(Sweep(0.5), kA, kA), std::invalid_argument);
   const ChainMotion grows = [](double s, Chain* p) {
@@ -95,6 +118,14 @@ TEST(LineCrossing, RejectsADegenerateLineAndAChainThatChangesSize) {
     p->setOnes();
   };
   EXPECT_THROW(LocateLineCrossings(grows, kA, kB), std::invalid_argument);
+  const ChainMotion nan_inside = [](double s, Chain* p) {
+    Sweep(0.5)(s, p);
+    if (s > 0.0 && s < 1.0) (*p)(0, 1) = std::nan("");
+  };
+  EXPECT_THROW(LocateLineCrossings(nan_inside, kA, kB), std::invalid_argument);
+  for (double tolerance : {0.0, 1.0, std::nan("")}) {
+    EXPECT_THROW(LocateLineCrossings(Sweep(0.5), kA, kB, tolerance), std::invalid_argument);
+  }
 }
 
 }  // namespace

@@ -27,6 +27,7 @@ def main():
     jumps = report["winding_jumps"]
     assert jumps["through_object"] == int(row["jumps_through_object"]), (jumps, row)
     assert jumps["beyond_ends"] == int(row["jumps_beyond_ends"]), (jumps, row)
+    assert jumps["unlocated"] == int(row["jumps_unlocated"]), (jumps, row)
     with open(os.path.join(plan, "trajectory.csv")) as f:
         header = f.readline().strip().split(",")
     assert "arm_joint_30" in header, "trajectory.csv is not the 30-link arm's: %s" % header[:5]

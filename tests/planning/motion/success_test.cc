@@ -8,13 +8,18 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <map>
+#include <sstream>
 #include <string>
+#include <vector>
 
 #include "base/str_cat.h"
 #include "planning/features/feature.h"
 #include "planning/motion/planner.h"
+#include "planning/motion/report.h"
 #include "planning/motion/scenario.h"
 #include "planning/motion/scenario_spec.h"
+#include "planning/motion/unwrap_benchmark.h"
 #include "planning/motion/unwrap_geometry.h"
 #include "planning/robot/kinematics.h"
 
@@ -95,6 +100,49 @@ TEST(JudgePlan, APassBeyondTheObjectsEndIsTunnellingOnlyByTheLineRule) {
   EXPECT_NE(object.reason, FailureReason::kTunnelled) << FailureReasonName(object.reason);
   EXPECT_EQ(object.jumps_beyond_ends, line.jumps_beyond_ends);
   EXPECT_DOUBLE_EQ(object.max_winding_jump_turns, line.max_winding_jump_turns);
+}
+
+// The located jumps reach the planner's report, report.json and geometry.csv: AICO without the
+// writhe term at 540° pulls the arm through the pole (docs/results/unwrap.md), and a report with
+// three distinct counts keeps each in its own field and column.
+TEST(JudgePlan, WindingJumpCountsReachTheReportJsonAndGeometryCsv) {
+  const auto s = Unwrap(540.0);
+  const PlanReport tunnel = RunPlanner(*s, Planner::kAicoGoal, 0).report;
+  EXPECT_EQ(tunnel.failure_reason, FailureReason::kTunnelled)
+      << FailureReasonName(tunnel.failure_reason);
+  EXPECT_GE(tunnel.jumps_through_object, 1);
+  EXPECT_EQ(PlanReportJson(*s, tunnel, 0)["winding_jumps"]["through_object"].get<int>(),
+            tunnel.jumps_through_object);
+
+  PlanReport r;
+  r.jumps_through_object = 3;
+  r.jumps_beyond_ends = 5;
+  r.jumps_unlocated = 7;
+  const nlohmann::json j = PlanReportJson(*s, r, 0)["winding_jumps"];
+  EXPECT_EQ(j["through_object"].get<int>(), 3);
+  EXPECT_EQ(j["beyond_ends"].get<int>(), 5);
+  EXPECT_EQ(j["unlocated"].get<int>(), 7);
+  UnwrapGeometry geometry;
+  geometry.name = "g";
+  UnwrapBenchmarkResult result;
+  result.runs.resize(1);
+  result.runs[0].report = r;
+  std::istringstream csv(UnwrapGeometryCsv(geometry, result));
+  std::string header, row;
+  ASSERT_TRUE(std::getline(csv, header) && std::getline(csv, row));
+  const auto split = [](const std::string& line) {
+    std::vector<std::string> cells;
+    std::istringstream in(line);
+    for (std::string cell; std::getline(in, cell, ',');) cells.push_back(cell);
+    return cells;
+  };
+  const std::vector<std::string> names = split(header), cells = split(row);
+  ASSERT_EQ(names.size(), cells.size());
+  std::map<std::string, std::string> by_name;
+  for (size_t i = 0; i < names.size(); ++i) by_name[names[i]] = cells[i];
+  EXPECT_EQ(by_name["jumps_through_object"], "3");
+  EXPECT_EQ(by_name["jumps_beyond_ends"], "5");
+  EXPECT_EQ(by_name["jumps_unlocated"], "7");
 }
 
 // With the collision checker on, the resampled states inside the pole collide, but the verdict
