@@ -301,9 +301,8 @@ void AddBenchCommands(CLI::App* root, CommandList* commands) {
       "segment base -> target about the pole's line (about where an arm that does not wrap the\n"
       "pole ends); goal_meets_end_conditions whether the set-up's goal (the RRTs') meets the\n"
       "criterion's end conditions; the jumps count the resampled steps whose winding jumps by\n"
-      "at least the criterion's max_jump, by where the arm passes the pole's line: through the "
-      "pole, only\n"
-      "beyond its ends, or not located.\n"
+      "at least the criterion's max_jump, by where the arm passes the pole's line: through the\n"
+      "pole, only beyond its ends, or not located.\n"
       "Shipped geometries: assets/scenarios/unwrap_geometries/ (README.md there).");
   commands->push_back(
       {unwrap, [ba, unwrap]() {

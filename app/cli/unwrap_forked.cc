@@ -52,9 +52,7 @@ void Fields(Io& io, R& r) {
   io(r.failure_step);
   io(r.reach_error_m);
   io(r.max_winding_jump_turns);
-  io(r.jumps_through_object);
-  io(r.jumps_beyond_ends);
-  io(r.jumps_unlocated);
+  io(r.winding_jumps);
   io(r.final_winding_turns);
   io(r.writhe_peak_row);
   io(r.writhe_peak_col);

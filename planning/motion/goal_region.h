@@ -54,10 +54,15 @@ struct GoalRegionProblem {
 };
 
 inline constexpr int kDefaultMaxGoalStates = 32;  // the scenario key rrt.goal_states' default
-// The scenarios' goal sampler (scenario_goal_region.h): IK iterations per start and uniform starts
-// per draw (the keys rrt.goal_ik_iterations and rrt.goal_ik_starts).
-inline constexpr int kDefaultGoalIkIterations = 200;
-inline constexpr int kDefaultGoalIkStarts = 1;
+
+// A scenario's goal-region settings (its "rrt" object): max_goal_states (rrt.goal_states, the
+// GoalRegionOptions field), and the sampler of scenario_goal_region.h: IK iterations per start
+// (rrt.goal_ik_iterations) and uniform starts per draw (rrt.goal_ik_starts).
+struct ScenarioGoalSettings {
+  int max_goal_states = kDefaultMaxGoalStates;
+  int ik_iterations = 200;
+  int ik_starts = 1;
+};
 
 struct GoalRegionOptions {
   RrtOptions rrt;  // range, resolution, goal_bias, max_checks, max_iterations (rrt.h)

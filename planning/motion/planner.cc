@@ -279,7 +279,7 @@ PlanResult RunPlanner(const Scenario& s, const PlanRequest& request) {
     gp.goal = ScenarioGoalRegion(s, w, valid, coll, &sampler);
     return gp;
   };
-  const GoalRegionOptions region_options{options, s.rrt_goal_states};
+  const GoalRegionOptions region_options{options, s.rrt_goal.max_goal_states};
   switch (planner) {
     case Planner::kRrt:
     case Planner::kBiRrt: {
@@ -388,9 +388,7 @@ void ApplyVerdict(const PlanVerdict& v, PlanReport* rep) {
   rep->failure_step = v.step;
   rep->reach_error_m = v.reach_error_m;
   rep->max_winding_jump_turns = v.max_winding_jump_turns;
-  rep->jumps_through_object = v.jumps_through_object;
-  rep->jumps_beyond_ends = v.jumps_beyond_ends;
-  rep->jumps_unlocated = v.jumps_unlocated;
+  rep->winding_jumps = v.winding_jumps;
   rep->final_winding_turns = v.final_winding_turns;
   rep->writhe_peak_row = v.writhe_peak_row;
   rep->writhe_peak_col = v.writhe_peak_col;

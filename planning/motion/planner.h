@@ -89,10 +89,8 @@ struct PlanReport {
   double reach_error_m = -1.0;          // final distance of the position task to its target, m
                                         // (−1: no position criterion or no path)
   double max_winding_jump_turns = 0.0;  // largest winding change between resampled states
-  // Steps with a winding jump >= the criterion's max_jump, by where the chain passes the report
-  // line: through the report object, only beyond its ends, not located (PlanVerdict).
-  int jumps_through_object = 0, jumps_beyond_ends = 0, jumps_unlocated = 0;
-  double final_winding_turns = 0.0;  // winding about the report line at the end
+  WindingJumps winding_jumps;           // the winding jumps by place (success.h)
+  double final_winding_turns = 0.0;     // winding about the report line at the end
   // Largest |entry| of the final writhe matrix of the report pair: row (robot chain segment),
   // col (object chain segment), value; −1, −1, 0 without a report pair or path.
   int writhe_peak_row = -1, writhe_peak_col = -1;

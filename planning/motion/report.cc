@@ -46,9 +46,9 @@ nlohmann::json PlanReportJson(const Scenario& s, const PlanReport& r, unsigned s
   j["failure_step"] = r.failure_step;
   j["reach_error_m"] = r.reach_error_m;
   j["max_winding_jump_turns"] = r.max_winding_jump_turns;
-  j["winding_jumps"] = {{"through_object", r.jumps_through_object},
-                        {"beyond_ends", r.jumps_beyond_ends},
-                        {"unlocated", r.jumps_unlocated}};
+  j["winding_jumps"] = {{"through_object", r.winding_jumps.through_object},
+                        {"beyond_ends", r.winding_jumps.beyond_ends},
+                        {"unlocated", r.winding_jumps.unlocated}};
   j["final_winding_turns"] = r.final_winding_turns;
   j["failure_detail"] = r.failure_detail;
   if (!s.frozen.empty()) {

@@ -122,12 +122,7 @@ struct Scenario {
   // Stop AICO at the first accepted sweep whose trajectory is a success (RunAicoAttempts).
   bool stop_when_solved = false;
   RrtOptions rrt;
-  // The goal-region trees' GoalRegionOptions::max_goal_states (rrt.goal_states).
-  int rrt_goal_states = kDefaultMaxGoalStates;
-  // The goal sampler's IK iterations per start and uniform starts per draw (rrt.goal_ik_iterations,
-  // rrt.goal_ik_starts; scenario_goal_region.h).
-  int rrt_goal_ik_iterations = kDefaultGoalIkIterations;
-  int rrt_goal_ik_starts = kDefaultGoalIkStarts;
+  ScenarioGoalSettings rrt_goal;   // the goal-region trees' settings (goal_region.h)
   double check_resolution = 0.02;  // edge resolution for validating any output path
   Eigen::VectorXd goal_q;          // q̂_T (final-pose estimate): the RRT goal
   // The unwinding path (coil start and an "unwinding" target only, else empty): the start coil

@@ -48,13 +48,13 @@ struct Sampler {
     lower = box.lower;
     upper = box.upper;
     options.starts = 1;
-    options.max_iterations = s.rrt_goal_ik_iterations;
+    options.max_iterations = s.rrt_goal.ik_iterations;
     options.position_tolerance = kIkToleranceFraction * s.success.position_tolerance;
     problem.seed.resize(lower.size());
   }
 
   bool Draw(std::mt19937* rng, Eigen::VectorXd* q) {
-    for (int k = 0; k < scenario.rrt_goal_ik_starts; ++k) {
+    for (int k = 0; k < scenario.rrt_goal.ik_starts; ++k) {
       internal::SampleUniform(lower, upper, rng, &problem.seed);
       if (problem.targets.empty()) {
         *q = problem.seed;

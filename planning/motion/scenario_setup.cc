@@ -450,9 +450,7 @@ std::unique_ptr<Scenario> SetUpScenario(ScenarioSpec spec,
   s->aico = sp.aico;
   s->stop_when_solved = sp.aico_stop_when_solved;
   s->rrt = sp.rrt;
-  s->rrt_goal_states = sp.rrt_goal_states;
-  s->rrt_goal_ik_iterations = sp.rrt_goal_ik_iterations;
-  s->rrt_goal_ik_starts = sp.rrt_goal_ik_starts;
+  s->rrt_goal = sp.rrt_goal;
   s->check_resolution = sp.check_resolution;
   for (const AicoAttemptSpec& a : sp.aico_attempts) {
     AicoAttempt attempt;

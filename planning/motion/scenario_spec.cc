@@ -408,9 +408,9 @@ RrtOptions ReadRrt(const base::JsonNode& n, ScenarioSpec* spec) {
   const auto integer = [&n](const char* key, int lo, int hi, int* value) {
     if (n.Has(key)) *value = static_cast<int>(n.At(key).Integer(lo, hi));
   };
-  integer("goal_states", 1, 10000, &spec->rrt_goal_states);
-  integer("goal_ik_iterations", 1, 100000, &spec->rrt_goal_ik_iterations);
-  integer("goal_ik_starts", 1, 100, &spec->rrt_goal_ik_starts);
+  integer("goal_states", 1, 10000, &spec->rrt_goal.max_goal_states);
+  integer("goal_ik_iterations", 1, 100000, &spec->rrt_goal.ik_iterations);
+  integer("goal_ik_starts", 1, 100, &spec->rrt_goal.ik_starts);
   return r;
 }
 

@@ -102,8 +102,7 @@
 //                            changes by less than max_jump between neighbouring states (no
 //                            tunnelling through the pole, no coil slipping off its end; with
 //                            "object" only passes through the object chain's extent, and jumps
-//                            with no located pass, count) and
-//                            ends below final_below in modulus;
+//                            with no located pass, count) and ends below final_below in modulus;
 //                            through_loop: bool (needs writhe_report with a closed object chain):
 //                            at the end the report chain passes through the object's loop (a
 //                            segment of the chain crosses the disc the loop bounds, success.h
@@ -368,9 +367,7 @@ struct ScenarioSpec {
   std::vector<AicoAttemptSpec> aico_attempts;  // [0]: plain; [1]: "aico.retry" when given
   bool aico_stop_when_solved = false;
   RrtOptions rrt;
-  int rrt_goal_states = kDefaultMaxGoalStates;            // rrt.goal_states
-  int rrt_goal_ik_iterations = kDefaultGoalIkIterations;  // rrt.goal_ik_iterations
-  int rrt_goal_ik_starts = kDefaultGoalIkStarts;          // rrt.goal_ik_starts
+  ScenarioGoalSettings rrt_goal;  // rrt.goal_states, rrt.goal_ik_iterations, rrt.goal_ik_starts
   double check_resolution = 0.02;
 };
 

@@ -158,13 +158,13 @@ PlanVerdict JudgePlan(const Scenario& s, const ScenarioState& w, const Trajector
         const JumpPlace place = LocateJump(s, w, dense.q.col(k - 1), dense.q.col(k));
         switch (place) {
           case JumpPlace::kThrough:
-            ++v.jumps_through_object;
+            ++v.winding_jumps.through_object;
             break;
           case JumpPlace::kBeyondEnds:
-            ++v.jumps_beyond_ends;
+            ++v.winding_jumps.beyond_ends;
             break;
           case JumpPlace::kUnlocated:
-            ++v.jumps_unlocated;
+            ++v.winding_jumps.unlocated;
             break;
         }
         const bool tunnel =

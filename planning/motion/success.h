@@ -61,15 +61,19 @@ EndState CheckEndState(const Scenario& scenario, const ScenarioState& state,
                        const Eigen::VectorXd& q, bool state_checks,
                        const SuccessCriteria& criteria);
 
+// The resampled steps whose winding jumps by at least winding_max_jump, by where the report chain
+// passes the report object's line in that step (topology::LocateLineCrossings): within the object
+// chain's extent (through the pole), only beyond its ends (round the end), or not located.
+struct WindingJumps {
+  int through_object = 0, beyond_ends = 0, unlocated = 0;
+};
+
 // The verdict of JudgePlan.
 struct PlanVerdict {
   FailureReason reason = FailureReason::kNone;
   int step = -1;  // index into Densify(path, check_resolution) of the first violation, or −1
   double max_winding_jump_turns = 0.0;
-  // The resampled steps whose winding jump is >= winding_max_jump, by where the report chain
-  // passes the line (topology::LocateLineCrossings over the step): within the report object
-  // chain's extent (through the pole), only beyond its ends (round the end), or not located.
-  int jumps_through_object = 0, jumps_beyond_ends = 0, jumps_unlocated = 0;
+  WindingJumps winding_jumps;        // (only with the winding criterion's max_jump)
   double final_winding_turns = 0.0;  // the end condition's winding (EndState::winding_turns)
   double final_writhe_total = 0.0;
   int writhe_peak_row = -1, writhe_peak_col = -1;  // see PlanReport

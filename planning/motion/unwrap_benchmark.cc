@@ -347,7 +347,8 @@ std::string UnwrapGeometryCsv(const UnwrapGeometry& geometry, const UnwrapBenchm
         << p.final_writhe_total << "," << p.reach_error_m << "," << p.final_winding_turns << ","
         << r.unwound_winding_turns << "," << (r.goal_meets_end_conditions ? 1 : 0) << ","
         << p.counts.state_queries << "," << p.cpu_time_s << "," << p.setup_time_s << ","
-        << p.jumps_through_object << "," << p.jumps_beyond_ends << "," << p.jumps_unlocated << "\n";
+        << p.winding_jumps.through_object << "," << p.winding_jumps.beyond_ends << ","
+        << p.winding_jumps.unlocated << "\n";
   }
   return csv.str();
 }

@@ -9,6 +9,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
+
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
@@ -18,11 +19,10 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "render/image.h"
 #include "render/offscreen_context.h"
@@ -40,7 +40,14 @@ using Array = py::array_t<double, py::array::c_style | py::array::forcecast>;
   throw py::error_already_set();
 }
 
-[[noreturn]] inline void ThrowValue(const std::string& message) { ThrowPy(PyExc_ValueError, message); }
+[[noreturn]] inline void ThrowValue(const std::string& message) {
+  ThrowPy(PyExc_ValueError, message);
+}
+
+// An old keyword, kept working for one release: a DeprecationWarning naming the new one.
+inline void WarnDeprecated(const char* old_name, const char* new_name) {
+  PyErr_WarnFormat(PyExc_DeprecationWarning, 2, "%s= is deprecated; use %s=", old_name, new_name);
+}
 
 // f(), with a std::invalid_argument it throws raised as `type` "arg: <message>".
 template <typename F>
@@ -79,7 +86,8 @@ inline Array ToArray(const py::handle& obj, const std::string& arg) {
     ThrowValue(arg + ": complex numbers are not accepted (the imaginary part would be lost)");
   }
   if (kind != 'f' && kind != 'i' && kind != 'u' && kind != 'b') {
-    ThrowValue(arg + ": expected real numbers, got dtype " + py::str(raw.dtype()).cast<std::string>());
+    ThrowValue(arg + ": expected real numbers, got dtype " +
+               py::str(raw.dtype()).cast<std::string>());
   }
   if (raw.size() > kMaxArrayElements) {
     ThrowValue(arg + ": " + std::to_string(raw.size()) + " numbers, more than the limit of " +
@@ -101,7 +109,8 @@ inline Array ToArray(const py::handle& obj, const std::string& arg) {
 }
 
 // An N×3 point array as a 3×N Eigen matrix (N >= min_points).
-inline Eigen::Matrix3Xd ToPoints(const py::handle& obj, const std::string& arg, int min_points = 2) {
+inline Eigen::Matrix3Xd ToPoints(const py::handle& obj, const std::string& arg,
+                                 int min_points = 2) {
   const Array a = ToArray(obj, arg);
   if (a.ndim() != 2 || a.shape(1) != 3) {
     std::string shape = "(";
@@ -187,8 +196,8 @@ inline std::pair<int, int> CheckSize(const std::pair<int, int>& size) {
   return size;
 }
 
-inline render::Image RenderScene(const render::Scene& scene, const render::Camera& camera, int width,
-                          int height) {
+inline render::Image RenderScene(const render::Scene& scene, const render::Camera& camera,
+                                 int width, int height) {
   render::OffscreenContext context(render::GlBackend::kAuto);
   render::Renderer renderer(context.proc_loader());
   return renderer.Render(scene, camera, width, height, render::RenderOptions{});
@@ -197,6 +206,7 @@ inline render::Image RenderScene(const render::Scene& scene, const render::Camer
 // Binds each layer's functions and classes into `m`.
 void BindTopology(py::module_& m);
 void BindPlanning(py::module_& m);
+void BindScenarioLoading(py::module_& m);  // scenario_loading.cc, called by BindPlanning
 void BindRender(py::module_& m);
 
 }  // namespace topoplan_py

@@ -1,5 +1,6 @@
 // The topoplan Python module (_core): one binding file per layer (python/bind/topology.cc,
-// planning.cc, render.cc), all into one flat namespace, re-exported by topoplan/__init__.py.
+// planning.cc with scenario_loading.cc, render.cc), all into one flat namespace, re-exported by
+// topoplan/__init__.py.
 #include "base/version.h"
 #include "python/bind/planning_types.h"
 

@@ -246,8 +246,8 @@ TEST(GoalRegionPlanners, ScenarioGoalStatesCapsTheGoalStates) {
   ScenarioOverrides o;
   o.start_wrap_deg = 360.0;
   const auto shipped = LoadScenario(kAssets + "scenarios/unwrap.json", o);
-  ASSERT_EQ(one->rrt_goal_states, 1);
-  ASSERT_EQ(shipped->rrt_goal_states, 32);
+  ASSERT_EQ(one->rrt_goal.max_goal_states, 1);
+  ASSERT_EQ(shipped->rrt_goal.max_goal_states, 32);
   EXPECT_GT(RunPlanner(*shipped, Planner::kBiRrtRegion, 0).report.goal_samples, 1);
   std::vector<Planner> planners = {Planner::kRrtRegion, Planner::kBiRrtRegion};
   if (OmplAvailable()) planners.push_back(Planner::kOmplRrtRegion);
@@ -265,8 +265,8 @@ TEST(GoalRegionPlanners, ScenarioGoalStatesCapsTheGoalStates) {
 TEST(GoalRegionPlanners, ScenarioIkKeysSetTheSamplersEffort) {
   const auto one_iteration =
       UnwrapWithRrtKeys("goal_ik_iterations_1", "3000", ", \"goal_ik_iterations\": 1");
-  ASSERT_EQ(one_iteration->rrt_goal_ik_iterations, 1);
-  ASSERT_EQ(one_iteration->rrt_goal_ik_starts, 1);
+  ASSERT_EQ(one_iteration->rrt_goal.ik_iterations, 1);
+  ASSERT_EQ(one_iteration->rrt_goal.ik_starts, 1);
   for (Planner planner : {Planner::kRrtRegion, Planner::kBiRrtRegion}) {
     SCOPED_TRACE(PlannerName(planner));
     const PlanReport r = RunPlanner(*one_iteration, planner, 0).report;
@@ -276,8 +276,8 @@ TEST(GoalRegionPlanners, ScenarioIkKeysSetTheSamplersEffort) {
   }
   const auto shipped = UnwrapWithRrtKeys("goal_ik_shipped", "3000", "");
   const auto eight = UnwrapWithRrtKeys("goal_ik_starts_8", "3000", ", \"goal_ik_starts\": 8");
-  ASSERT_EQ(shipped->rrt_goal_ik_iterations, 200);
-  ASSERT_EQ(eight->rrt_goal_ik_starts, 8);
+  ASSERT_EQ(shipped->rrt_goal.ik_iterations, 200);
+  ASSERT_EQ(eight->rrt_goal.ik_starts, 8);
   const auto in_region = [](const Scenario& s) {
     CollisionData coll(s.robot, s.initial.env, s.collision);
     GoalSamplerCost cost;

@@ -67,8 +67,8 @@ TEST(JudgePlan, APathThatTunnelsThroughThePoleBetweenSlicesIsRejected) {
   EXPECT_GT(v.step, 0);
   EXPECT_GT(v.max_winding_jump_turns, 0.5);  // a whole turn lost in one resampled step
   // The pass is located on the pole: tunnelling with either rule.
-  EXPECT_GE(v.jumps_through_object, 1);
-  EXPECT_EQ(v.jumps_beyond_ends, 0);
+  EXPECT_GE(v.winding_jumps.through_object, 1);
+  EXPECT_EQ(v.winding_jumps.beyond_ends, 0);
   SuccessCriteria object_rule = s->success;
   object_rule.winding_tunnel_through_object_only = true;
   EXPECT_EQ(JudgePlan(*s, s->initial, path, object_rule).reason, FailureReason::kTunnelled);
@@ -91,14 +91,14 @@ TEST(JudgePlan, APassBeyondTheObjectsEndIsTunnellingOnlyByTheLineRule) {
   moved->report_object_chain.col(1) = pole.col(1) + 1.5 * along;
   const PlanVerdict line = JudgePlan(*s, *moved, path, s->success);
   EXPECT_EQ(line.reason, FailureReason::kTunnelled) << FailureReasonName(line.reason);
-  EXPECT_EQ(line.jumps_through_object, 0);
-  EXPECT_GE(line.jumps_beyond_ends, 1);
-  EXPECT_EQ(line.jumps_unlocated, 0);
+  EXPECT_EQ(line.winding_jumps.through_object, 0);
+  EXPECT_GE(line.winding_jumps.beyond_ends, 1);
+  EXPECT_EQ(line.winding_jumps.unlocated, 0);
   SuccessCriteria object_rule = s->success;
   object_rule.winding_tunnel_through_object_only = true;
   const PlanVerdict object = JudgePlan(*s, *moved, path, object_rule);
   EXPECT_NE(object.reason, FailureReason::kTunnelled) << FailureReasonName(object.reason);
-  EXPECT_EQ(object.jumps_beyond_ends, line.jumps_beyond_ends);
+  EXPECT_EQ(object.winding_jumps.beyond_ends, line.winding_jumps.beyond_ends);
   EXPECT_DOUBLE_EQ(object.max_winding_jump_turns, line.max_winding_jump_turns);
 }
 
@@ -110,14 +110,14 @@ TEST(JudgePlan, WindingJumpCountsReachTheReportJsonAndGeometryCsv) {
   const PlanReport tunnel = RunPlanner(*s, Planner::kAicoGoal, 0).report;
   EXPECT_EQ(tunnel.failure_reason, FailureReason::kTunnelled)
       << FailureReasonName(tunnel.failure_reason);
-  EXPECT_GE(tunnel.jumps_through_object, 1);
+  EXPECT_GE(tunnel.winding_jumps.through_object, 1);
   EXPECT_EQ(PlanReportJson(*s, tunnel, 0)["winding_jumps"]["through_object"].get<int>(),
-            tunnel.jumps_through_object);
+            tunnel.winding_jumps.through_object);
 
   PlanReport r;
-  r.jumps_through_object = 3;
-  r.jumps_beyond_ends = 5;
-  r.jumps_unlocated = 7;
+  r.winding_jumps.through_object = 3;
+  r.winding_jumps.beyond_ends = 5;
+  r.winding_jumps.unlocated = 7;
   const nlohmann::json j = PlanReportJson(*s, r, 0)["winding_jumps"];
   EXPECT_EQ(j["through_object"].get<int>(), 3);
   EXPECT_EQ(j["beyond_ends"].get<int>(), 5);
