@@ -46,6 +46,7 @@ struct DemoArgs {
   std::string out_dir = "demo-out";
   bool full = false;              // the whole Figure 4.5 sweep (0..1080 deg every 15, 3 seeds)
   bool no_grasp = false;          // skip the grasp-transfer stage
+  bool all_frames = false;        // frames of every grasp trial, not only those the page shows
   double timeout = 0.0;           // --timeout: seconds, 0 = none
   int jobs = 0;                   // --jobs: stages at the same time (0: the number of cores)
   std::vector<std::string> only;  // --only: these stages (writhe, unwrap, ...); empty: all
@@ -457,6 +458,9 @@ class Demo {
     GraspRunOptions run;
     run.workers = workers_;
     run.frames = true;
+    // The page shows the winding transfers (each with the human grasp beside it); the other
+    // methods' frames take about as long again as every trial's physics (--all-frames).
+    if (!args_.all_frames) run.frame_methods = {planning::TransferMethod::kWinding};
     run.out_dir = dir.string();
     run.scratch_dir = (out_ / ".grasp-trials").string();
     run.should_stop = [this] { return stop_->Stopped(); };
@@ -562,6 +566,9 @@ void AddDemoCommand(CLI::App* root, CommandList* commands) {
   demo->add_flag("--full", args->full,
                  "the whole Fig. 4.5 sweep (0..1080 deg every 15 deg, 3 seeds)");
   demo->add_flag("--no-grasp", args->no_grasp, "skip the grasp-transfer stage");
+  demo->add_flag("--all-frames", args->all_frames,
+                 "frames of every grasp trial (all methods and the human hand) under "
+                 "DIR/grasp/frames/; default: the winding method's, which the page shows");
   IntIn(demo->add_option("--jobs", args->jobs,
                          "stages run at the same time, each in its own process, and worker "
                          "processes of the grasp trials and of the Fig. 4.5 angles (default 0: "

@@ -59,8 +59,9 @@ GraspRunResult RunGraspTrialsInProcesses(const planning::GraspInputs& in,
     std::unique_ptr<GraspFrameWriter> frames = NewFrameWriter(run);
     phys::GraspTrialsOptions o = options;
     if (run.should_stop) o.should_stop = run.should_stop;
-    out.trials = phys::RunGraspTrials(ode, in.human, in.lwr_sdh, in.objects, in.grasps, methods, o,
-                                      GraspTransferHooks(run.out_dir, frames.get()));
+    out.trials =
+        phys::RunGraspTrials(ode, in.human, in.lwr_sdh, in.objects, in.grasps, methods, o,
+                             GraspTransferHooks(run.out_dir, frames.get(), run.frame_methods));
     if (frames) frames->FlushVideos();
     return out;
   }
@@ -83,7 +84,7 @@ GraspRunResult RunGraspTrialsInProcesses(const planning::GraspInputs& in,
                         phys::OdeRuntime ode;
                         std::unique_ptr<GraspFrameWriter> frames = NewFrameWriter(run);
                         const phys::GraspTrialHooks hooks =
-                            GraspTransferHooks(run.out_dir, frames.get());
+                            GraspTransferHooks(run.out_dir, frames.get(), run.frame_methods);
                         for (size_t k = next.Next(); k < n; k = next.Next()) {
                           if (run.should_stop && run.should_stop()) break;
                           const phys::GraspTrial trial = plan.RunTrial(ode, order[k], hooks);

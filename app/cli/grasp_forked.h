@@ -21,6 +21,8 @@ struct GraspRunOptions {
   // Frames of every trial under OUT_DIR/frames/ (GraspTransferHooks(out_dir, frames)); the
   // progress lines of the trials go to stderr either way.
   bool frames = false;
+  // With `frames`: only the trials of these methods are drawn (empty: every trial).
+  std::vector<planning::TransferMethod> frame_methods;
   std::string out_dir;
   // workers > 1: the trials pass through this folder (created; removed before returning).
   std::string scratch_dir;

@@ -248,15 +248,20 @@ void GraspFrameWriter::FinishStability(const phys::StabilityResult& result) {
   writer_.reset();
 }
 
-planning::physics::GraspTrialHooks GraspTransferHooks(const std::string& out_dir,
-                                                      GraspFrameWriter* frames) {
+planning::physics::GraspTrialHooks GraspTransferHooks(
+    const std::string& out_dir, GraspFrameWriter* frames,
+    const std::vector<planning::TransferMethod>& framed) {
   namespace phys = planning::physics;
   phys::GraspTrialHooks hooks;
+  const auto drawn = [framed](planning::TransferMethod m) {
+    return framed.empty() || std::find(framed.begin(), framed.end(), m) != framed.end();
+  };
   if (frames) {
-    hooks.on_start = [out_dir, frames](const planning::TransferSetup& setup,
-                                       const planning::TransferResult& t, const phys::SimHand& hand,
-                                       const phys::SimObject& object,
-                                       const phys::StabilityOptions& options) {
+    hooks.on_start = [out_dir, frames, drawn](
+                         const planning::TransferSetup& setup, const planning::TransferResult& t,
+                         const phys::SimHand& hand, const phys::SimObject& object,
+                         const phys::StabilityOptions& options) -> phys::StepCallback {
+      if (!drawn(t.method)) return {};
       const std::string dir =
           (std::filesystem::path(out_dir) / "frames" /
            base::SafeFileName(setup.grasp.name + "_" + planning::ToString(t.method), "grasp name"))
@@ -265,8 +270,9 @@ planning::physics::GraspTrialHooks GraspTransferHooks(const std::string& out_dir
       return frames->Stability(dir + "/stability", hand, object, options);
     };
   }
-  hooks.on_done = [frames](const planning::TransferSetup& setup, const phys::GraspTrial& trial) {
-    if (frames) frames->FinishStability(trial.stability);
+  hooks.on_done = [frames, drawn](const planning::TransferSetup& setup,
+                                  const phys::GraspTrial& trial) {
+    if (frames && drawn(trial.transfer.method)) frames->FinishStability(trial.stability);
     const phys::StabilityResult& r = trial.stability;
     std::fprintf(stderr, "grasp %-24s %-9s winding err %.3f  clearance %+5.1f mm  %d/6 %s\n",
                  setup.grasp.name.c_str(), planning::ToString(trial.transfer.method),

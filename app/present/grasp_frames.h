@@ -109,10 +109,11 @@ class GraspFrameWriter {
   void AddStabilityFrame(int phase, const planning::physics::SimState& state);
 };
 
-// Hooks for RunGraspTrials: with `frames`, the frames of each trial go to
-// OUT_DIR/frames/<grasp>_<method>/{transfer,stability}/; always, one progress line per trial on
-// stderr (winding error, clearance, directions held).
-planning::physics::GraspTrialHooks GraspTransferHooks(const std::string& out_dir,
-                                                      GraspFrameWriter* frames);
+// Hooks for RunGraspTrials: with `frames`, the frames of each trial whose method is in `framed`
+// (every trial when `framed` is empty) go to OUT_DIR/frames/<grasp>_<method>/{transfer,stability}/;
+// always, one progress line per trial on stderr (winding error, clearance, directions held).
+planning::physics::GraspTrialHooks GraspTransferHooks(
+    const std::string& out_dir, GraspFrameWriter* frames,
+    const std::vector<planning::TransferMethod>& framed = {});
 
 }  // namespace app

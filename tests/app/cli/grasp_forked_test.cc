@@ -11,6 +11,7 @@
 #include <map>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "planning/physics/grasp_report.h"
 #include "planning/physics/grasp_trial_codec.h"
@@ -56,6 +57,11 @@ TEST(GraspForked, WorkersGiveTheSameResultAndFramesAsOneProcess) {
   run.scratch_dir = (dir / "scratch").string();
   const GraspRunResult two = RunGraspTrialsInProcesses(in, methods, options, run);
   EXPECT_FALSE(fs::exists(dir / "scratch"));
+  // Frames of the winding trial only (the demo's default), also in workers.
+  run.frame_methods = {planning::TransferMethod::kWinding};
+  run.out_dir = (dir / "winding_only").string();
+  const GraspRunResult some = RunGraspTrialsInProcesses(in, methods, options, run);
+  run.frame_methods.clear();
   run.workers = 1;
   run.out_dir = (dir / "one").string();
   const GraspRunResult one = RunGraspTrialsInProcesses(in, methods, options, run);
@@ -72,6 +78,24 @@ TEST(GraspForked, WorkersGiveTheSameResultAndFramesAsOneProcess) {
     ASSERT_TRUE(b.count(name)) << name;
     EXPECT_TRUE(b.at(name) == bytes) << name << " differs";
   }
+  // The winding-only run: the same result, one trial's folder with the same files.
+  ASSERT_EQ(some.exit_code, 0);
+  EXPECT_EQ(phys::GraspReportJson(one.trials).dump(1), phys::GraspReportJson(some.trials).dump(1));
+  std::vector<std::string> folders;
+  for (const auto& e : fs::directory_iterator(dir / "winding_only" / "frames")) {
+    folders.push_back(e.path().filename().string());
+  }
+  EXPECT_EQ(folders, std::vector<std::string>{"lateral_pinch_box_winding"});
+  const auto c = Files(dir / "winding_only");
+  size_t winding_files = 0;
+  for (const auto& [name, bytes] : a) {
+    if (name.rfind("frames/lateral_pinch_box_winding/", 0) != 0) continue;
+    ++winding_files;
+    ASSERT_TRUE(c.count(name)) << name;
+    EXPECT_TRUE(c.at(name) == bytes) << name << " differs";
+  }
+  EXPECT_EQ(c.size(), winding_files);
+  EXPECT_TRUE(c.count("frames/lateral_pinch_box_winding/transfer/side_by_side.png"));
   // Bytes and back: every field the reports read, bit for bit.
   for (const phys::GraspTrial& t : one.trials.trials[0]) {
     const std::string bytes = phys::EncodeGraspTrial(t);
