@@ -18,8 +18,8 @@ struct GraspRunOptions {
   // from the trials' options); > 1 forks that many workers (one thread each). Only call with
   // workers > 1 from a single-threaded process.
   int workers = 1;
-  // Frames of every trial under OUT_DIR/frames/ (GraspTransferHooks(out_dir, frames)); the
-  // progress lines of the trials go to stderr either way.
+  // Frames of the trials under OUT_DIR/frames/ (GraspTransferHooks(out_dir, frames,
+  // frame_methods)); the progress lines of the trials go to stderr either way.
   bool frames = false;
   // With `frames`: only the trials of these methods are drawn (empty: every trial).
   std::vector<planning::TransferMethod> frame_methods;
