@@ -20,7 +20,7 @@
 namespace render {
 namespace {
 
-void AppendToString(png_structp png, png_bytep data, png_size_t length) {
+void AppendPngBytes(png_structp png, png_bytep data, png_size_t length) {
   auto* out = static_cast<std::string*>(png_get_io_ptr(png));
   out->append(reinterpret_cast<const char*>(data), length);
 }
@@ -62,7 +62,7 @@ std::string EncodePng(const Image& image, int zlib_level) {
     png_destroy_write_struct(&png, &info);
     throw std::runtime_error("EncodePng: libpng error");
   }
-  png_set_write_fn(png, &out, AppendToString, NoFlush);
+  png_set_write_fn(png, &out, AppendPngBytes, NoFlush);
   png_set_compression_level(png, std::clamp(zlib_level, 0, 9));
   // One fixed filter: "sub" is cheap and good for rendered images (measured, see image.h).
   png_set_filter(png, PNG_FILTER_TYPE_BASE, PNG_FILTER_SUB);

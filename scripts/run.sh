@@ -24,14 +24,23 @@ case "$cmd" in
   *) echo "run.sh: unknown command '$cmd' (demo, test, build, bench)" >&2; exit 2 ;;
 esac
 
-bash scripts/setup.sh
+# The demo needs neither the test frameworks nor the Python module (scripts/setup.sh --demo).
+if [[ "$cmd" == "demo" ]]; then bash scripts/setup.sh --demo; else bash scripts/setup.sh; fi
 # Warnings are errors in CI; elsewhere the cached setting is kept (so that `demo` after `test`
 # does not rebuild everything with other flags).
 werror=()
 [[ "${CI:-}" == "true" ]] && werror=(-DTOPOPLAN_WERROR=ON)
 launcher=()
 command -v ccache >/dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
-cmake -S "$ROOT" -B "$BUILD_DIR" -DCMAKE_BUILD_TYPE=Release "${werror[@]}" "${launcher[@]}" >/dev/null
+# Everything but the demo must build the tests and benchmarks: a missing framework is an error.
+require=()
+[[ "$cmd" != "demo" ]] && require=(-DTOPOPLAN_REQUIRE_TESTS=ON)
+# Ninja for a new build directory (it keeps both cores busy across libraries, where Make builds
+# one library after another: ~50 s less for a cold build of the demo's target on two cores); an
+# existing directory keeps the generator it was made with.
+generator() { [[ ! -f "$1/CMakeCache.txt" ]] && command -v ninja >/dev/null && echo "-GNinja"; true; }
+cmake -S "$ROOT" -B "$BUILD_DIR" $(generator "$BUILD_DIR") -DCMAKE_BUILD_TYPE=Release \
+  "${werror[@]}" "${launcher[@]}" "${require[@]}" >/dev/null
 # The demo needs only the topoplan binary; the other commands build everything (tests, benchmarks).
 targets=()
 [[ "$cmd" == "demo" ]] && targets=(--target topoplan)
@@ -46,7 +55,8 @@ case "$cmd" in
       ASAN_BUILD_DIR=${ASAN_BUILD_DIR:-$ROOT/build-asan}
       # -O1 (the usual level for ASan) compiles in about half the time of -O3; no benchmarks, no
       # Python module, and only the targets below are built.
-      cmake -S "$ROOT" -B "$ASAN_BUILD_DIR" -DCMAKE_BUILD_TYPE=Release -DTOPOPLAN_SANITIZE=ON \
+      cmake -S "$ROOT" -B "$ASAN_BUILD_DIR" $(generator "$ASAN_BUILD_DIR") \
+        -DCMAKE_BUILD_TYPE=Release -DTOPOPLAN_SANITIZE=ON \
         "-DCMAKE_CXX_FLAGS_RELEASE=-O1 -DNDEBUG" -DTOPOPLAN_BUILD_BENCHMARKS=OFF \
         -DTOPOPLAN_BUILD_PYTHON=OFF "${werror[@]}" "${launcher[@]}" >/dev/null
       # The unit and property test programs of the numeric libraries (topology, planning,

@@ -5,8 +5,8 @@
 #include <fstream>
 #include <iomanip>
 #include <limits>
-#include <nlohmann/json.hpp>
 #include <locale>
+#include <nlohmann/json.hpp>
 #include <sstream>
 #include <stdexcept>
 
@@ -18,24 +18,22 @@
 namespace planning {
 namespace {
 
-using Json = nlohmann::json;
-
 // {"xyz": [x, y, z], "rpy": [r, p, y]} (both required).
 Eigen::Isometry3d ReadPose(const base::JsonNode& n) {
   n.CheckKeys({"xyz", "rpy"});
   return PoseFromXyzRpy(n.At("xyz").Vec3(), n.At("rpy").Vec3());
 }
 
-Json PoseJson(const Eigen::Isometry3d& pose) {
+nlohmann::json PoseJson(const Eigen::Isometry3d& pose) {
   Eigen::Vector3d xyz, rpy;
   PoseToXyzRpy(pose, &xyz, &rpy);
   auto round = [](double v) { return std::round(v * 1e9) / 1e9; };
-  return Json{{"xyz", {round(xyz.x()), round(xyz.y()), round(xyz.z())}},
-              {"rpy", {round(rpy.x()), round(rpy.y()), round(rpy.z())}}};
+  return nlohmann::json{{"xyz", {round(xyz.x()), round(xyz.y()), round(xyz.z())}},
+                        {"rpy", {round(rpy.x()), round(rpy.y()), round(rpy.z())}}};
 }
 
 // Every link in the subtree rooted at `link` (including it), in index order.
-std::vector<char> Subtree(const Robot& robot, int link) {
+std::vector<char> LinkSubtree(const Robot& robot, int link) {
   std::vector<char> in(robot.links.size(), 0);
   in[link] = 1;
   for (size_t i = 0; i < robot.links.size(); ++i) {  // topological order: parents first
@@ -71,7 +69,7 @@ const std::vector<std::string>& SdhFingers() {
 }
 
 HumanGrasp LoadHumanGrasp(const std::string& path) {
-  const Json doc = base::ParseJsonFile(path, "grasp");
+  const nlohmann::json doc = base::ParseJsonFile(path, "grasp");
   const base::JsonNode root(doc, path);
   root.CheckKeys({"name", "type", "description", "object", "object_pose", "palm_pose", "joints",
                   "sdh_spread", "close"});
@@ -79,9 +77,8 @@ HumanGrasp LoadHumanGrasp(const std::string& path) {
   g.source = path;
   // A grasp's name names its output folders (frames/<name>_<method>): one plain file name, so
   // that nothing an input file says can write outside the output folder.
-  g.name = base::Located(root.At("name"), [&] {
-    return base::SafeFileName(root.At("name").String(), "");
-  });
+  g.name = base::Located(root.At("name"),
+                         [&] { return base::SafeFileName(root.At("name").String(), ""); });
   g.object = root.At("object").String();
   g.type = root.String("type", "");
   g.description = root.String("description", "");
@@ -98,7 +95,7 @@ HumanGrasp LoadHumanGrasp(const std::string& path) {
 }
 
 std::string HumanGraspToJson(const HumanGrasp& g) {
-  Json j;
+  nlohmann::json j;
   j["name"] = g.name;
   j["type"] = g.type;
   j["description"] = g.description;
@@ -106,7 +103,7 @@ std::string HumanGraspToJson(const HumanGrasp& g) {
   j["object_pose"] = PoseJson(g.world_from_object);
   j["palm_pose"] = PoseJson(g.world_from_palm);
   j["sdh_spread"] = g.sdh_spread;
-  Json joints = Json::object();
+  nlohmann::json joints = nlohmann::json::object();
   for (const auto& [name, v] : g.joints) joints[name] = std::round(v * 1e6) / 1e6;
   j["joints"] = joints;
   if (!g.close.empty()) j["close"] = g.close;
@@ -320,7 +317,7 @@ double SynthesizeGrasp(const Robot& human, const GraspObject& object, HumanGrasp
     }
     const int dof = static_cast<int>(it - names.begin());
     const Joint& joint = human.joints[human.dof_joints[dof]];
-    const std::vector<char> moved = Subtree(human, joint.child_link);
+    const std::vector<char> moved = LinkSubtree(human, joint.child_link);
     std::vector<int> links;
     for (size_t i = 0; i < moved.size(); ++i) {
       if (moved[i]) links.push_back(static_cast<int>(i));

@@ -4,15 +4,13 @@
 #include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <numbers>
 #include <stdexcept>
 
 #include "base/json_reader.h"
 
 namespace planning {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
-using Json = nlohmann::json;
 
 // Distance in the primitive's own frame (no gradient).
 double LocalDistance(const GraspPrimitive& prim, const Eigen::Vector3d& p) {
@@ -34,7 +32,7 @@ double LocalDistance(const GraspPrimitive& prim, const Eigen::Vector3d& p) {
       return (p - Eigen::Vector3d(0, 0, z)).norm() - s.x();
     }
     case GraspPrimitive::Kind::kTorus: {
-      const double half = s.z() > 0 ? std::min(s.z(), kPi) : kPi;
+      const double half = s.z() > 0 ? std::min(s.z(), std::numbers::pi) : std::numbers::pi;
       const double phi = std::clamp(std::atan2(p.y(), p.x()), -half, half);
       const Eigen::Vector3d core(s.x() * std::cos(phi), s.x() * std::sin(phi), 0.0);
       return (p - core).norm() - s.y();
@@ -165,7 +163,7 @@ ReferenceCurve ReadReference(const base::JsonNode& r) {
     const Eigen::Vector3d v = n.cross(u);
     ref.loop.resize(3, segments + 1);
     for (int k = 0; k <= segments; ++k) {
-      const double a = 2 * kPi * (k % segments) / segments;
+      const double a = 2 * std::numbers::pi * (k % segments) / segments;
       ref.loop.col(k) = c + radius * (std::cos(a) * u + std::sin(a) * v);
     }
   } else {
@@ -177,7 +175,7 @@ ReferenceCurve ReadReference(const base::JsonNode& r) {
 }  // namespace
 
 std::vector<GraspObject> LoadGraspObjects(const std::string& path) {
-  const Json doc = base::ParseJsonFile(path, "object catalogue");
+  const nlohmann::json doc = base::ParseJsonFile(path, "object catalogue");
   const base::JsonNode root(doc, path);
   root.CheckKeys({"objects"});
   const base::JsonNode list = root.At("objects");

@@ -12,12 +12,12 @@
 
 extern "C" {
 #include <libqhull_r/qhull_ra.h>
+
+#include <numbers>
 }
 
 namespace planning {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 // Tangent t1 ⊥ n (unit), built from the coordinate axis least aligned with n.
 Eigen::Vector3d Tangent(const Eigen::Vector3d& n) {
@@ -86,7 +86,7 @@ Eigen::Matrix<double, 6, Eigen::Dynamic> PrimitiveWrenches(
     const Eigen::Vector3d t2 = n.cross(t1);
     const Eigen::Vector3d r = c.position - centre;
     for (int k = 0; k < m; ++k) {
-      const double theta = 2.0 * kPi * k / m;
+      const double theta = 2.0 * std::numbers::pi * k / m;
       const Eigen::Vector3d f = n + mu * (std::cos(theta) * t1 + std::sin(theta) * t2);
       const Eigen::Index col = static_cast<Eigen::Index>(i) * m + k;
       w.col(col).head<3>() = f;

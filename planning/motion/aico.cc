@@ -345,7 +345,7 @@ void CheckInput(const MotionProblem& problem, const AicoOptions& options, const 
 }
 
 // Steps `aico` until done, calling `callback` after each sweep.
-AicoResult RunToEnd(internal::Aico* aico, const AicoCallback& callback) {
+AicoResult RunAicoToEnd(internal::Aico* aico, const AicoCallback& callback) {
   while (!aico->done()) {
     const AicoStep step = aico->Step();
     if (callback) callback(step.sweep, step.cost, step.accepted, aico->result().trajectory);
@@ -387,7 +387,7 @@ AicoSolver::~AicoSolver() = default;
 AicoStep AicoSolver::Step() { return impl_->aico.Step(); }
 
 AicoResult AicoSolver::Solve(const AicoCallback& callback) {
-  return RunToEnd(&impl_->aico, callback);
+  return RunAicoToEnd(&impl_->aico, callback);
 }
 
 bool AicoSolver::done() const { return impl_->aico.done(); }
@@ -409,7 +409,7 @@ AicoResult SolveAico(const MotionProblem& problem, const AicoOptions& options, A
   CheckInput(problem, options, init);
   internal::Aico aico(problem, options, ws);
   aico.Start(init);
-  return RunToEnd(&aico, callback);
+  return RunAicoToEnd(&aico, callback);
 }
 
 double TrajectoryCost(const MotionProblem& problem, const Eigen::MatrixXd& q,

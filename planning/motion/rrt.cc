@@ -11,6 +11,21 @@
 #include "planning/motion/internal/rrt_tree.h"
 
 namespace planning {
+namespace internal {
+
+// What both planners set up first (Prepare, below): argument checks, the default range (20 % of the
+// joint box's diagonal) and edge resolution (1 %), the counting checker, the per-iteration buffers
+// (size n), and the start and goal validity checks. Returns false (result filled with
+// kInvalidInput) when start or goal is invalid.
+struct RrtSetup {
+  Checker check;
+  int n = 0;
+  double range = 0.0, resolution = 0.0;
+  Eigen::VectorXd q_rand{}, q_new{}, tmp{};  // sample, extension, edge interpolation
+};
+
+}  // namespace internal
+
 namespace {
 
 using internal::BranchPath;
@@ -24,22 +39,12 @@ void CheckProblem(const RrtProblem& p) {
   internal::CheckBox("RRT", p.lower, p.upper, p.start, &p.goal);
 }
 
-void SampleUniform(const RrtProblem& p, std::mt19937* rng, Eigen::VectorXd* q) {
+void SampleInLimits(const RrtProblem& p, std::mt19937* rng, Eigen::VectorXd* q) {
   internal::SampleUniform(p.lower, p.upper, rng, q);
 }
 
-// What both planners set up first: argument checks, the default range (20 % of the joint box's
-// diagonal) and edge resolution (1 %), the counting checker, the per-iteration buffers (size n),
-// and the start and goal validity checks. Returns false (result filled with kInvalidInput) when
-// start or goal is invalid.
-struct Setup {
-  Checker check;
-  int n = 0;
-  double range = 0.0, resolution = 0.0;
-  Eigen::VectorXd q_rand{}, q_new{}, tmp{};  // sample, extension, edge interpolation
-};
-
-bool Prepare(const RrtProblem& problem, const RrtOptions& options, Setup* s, RrtResult* result) {
+bool Prepare(const RrtProblem& problem, const RrtOptions& options, internal::RrtSetup* s,
+             RrtResult* result) {
   CheckProblem(problem);
   s->n = static_cast<int>(problem.start.size());
   internal::RangeAndResolution(options, problem.lower, problem.upper, &s->range, &s->resolution);
@@ -56,7 +61,7 @@ bool Prepare(const RrtProblem& problem, const RrtOptions& options, Setup* s, Rrt
 
 // One extension of `tree` towards s->q_rand: from its nearest node (*near) to s->q_new, at most
 // s->range away, then the validity check of that edge.
-EdgeResult Extend(const std::vector<RrtNode>& tree, Setup* s, int* near) {
+EdgeResult Extend(const std::vector<RrtNode>& tree, internal::RrtSetup* s, int* near) {
   *near = Nearest(tree, s->q_rand);
   Steer(tree[*near].q, s->q_rand, s->range, &s->q_new);
   return CheckEdge(tree[*near].q, s->q_new, s->resolution, &s->check, &s->tmp);
@@ -87,7 +92,7 @@ struct RrtSolver::Impl {
   const ValidityFn valid;
   std::mt19937 rng;
   const bool bidirectional;
-  Setup setup;
+  internal::RrtSetup setup;
   std::vector<RrtNode> trees[2];
   int grow = 0;  // BiRRT: index of the tree that grows this iteration
   std::int64_t iterations = 0;
@@ -104,7 +109,7 @@ void RrtSolver::Impl::IterateRrt() {
   if (to_goal) {
     setup.q_rand = problem.goal;
   } else {
-    SampleUniform(problem, &rng, &setup.q_rand);
+    SampleInLimits(problem, &rng, &setup.q_rand);
   }
   int near = 0;
   const EdgeResult edge = Extend(tree, &setup, &near);
@@ -125,7 +130,7 @@ void RrtSolver::Impl::IterateBiRrt() {
   if (base::UniformUnit(&rng) < options.goal_bias) {
     setup.q_rand = b[base::UniformIndex(&rng, static_cast<std::uint32_t>(b.size()))].q;
   } else {
-    SampleUniform(problem, &rng, &setup.q_rand);
+    SampleInLimits(problem, &rng, &setup.q_rand);
   }
   int near = 0;
   const EdgeResult edge = Extend(a, &setup, &near);
@@ -219,8 +224,8 @@ RrtResult RrtSolver::result() const {
 
 namespace {
 
-RrtResult RunToEnd(const RrtProblem& problem, const RrtOptions& options, const ValidityFn& valid,
-                   std::mt19937* rng, bool bidirectional) {
+RrtResult RunRrtToEnd(const RrtProblem& problem, const RrtOptions& options, const ValidityFn& valid,
+                      std::mt19937* rng, bool bidirectional) {
   RrtSolver solver(problem, options, valid, *rng, bidirectional);
   while (!solver.done()) solver.Step(std::numeric_limits<std::int64_t>::max());
   *rng = solver.rng();
@@ -231,12 +236,12 @@ RrtResult RunToEnd(const RrtProblem& problem, const RrtOptions& options, const V
 
 RrtResult PlanRrt(const RrtProblem& problem, const RrtOptions& options, const ValidityFn& valid,
                   std::mt19937* rng) {
-  return RunToEnd(problem, options, valid, rng, false);
+  return RunRrtToEnd(problem, options, valid, rng, false);
 }
 
 RrtResult PlanBiRrt(const RrtProblem& problem, const RrtOptions& options, const ValidityFn& valid,
                     std::mt19937* rng) {
-  return RunToEnd(problem, options, valid, rng, true);
+  return RunRrtToEnd(problem, options, valid, rng, true);
 }
 
 bool PathIsValid(const Trajectory& path, double resolution, const ValidityFn& valid,

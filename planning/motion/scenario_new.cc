@@ -18,6 +18,7 @@
 #include "planning/motion/success.h"
 #include "planning/robot/ik.h"
 #include "planning/robot/kinematics.h"
+#include "planning/robot/pose.h"
 #include "planning/robot/robot_io.h"
 
 namespace planning {
@@ -126,7 +127,7 @@ NewScenario MakeNewScenario(const std::string& urdf, const NewScenarioOptions& o
     {
       const Eigen::Vector3d center = placement.center;
       d = placement.axis.normalized();
-      ring_rot = Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), d).toRotationMatrix();
+      ring_rot = RotationFromZ(d);
       const Eigen::Vector3d target = center + d * (o.task == "ring" ? 0.6 * hand_size : 0.0);
       Environment env;
       if (o.task == "ring") {

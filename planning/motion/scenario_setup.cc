@@ -328,8 +328,7 @@ void LoadObjects(Scenario* s) {
       g.size = Eigen::Vector3d(o.capsule_radius, (b - a).norm(), 0.0);
       Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
       T.translation() = 0.5 * (a + b);
-      T.linear() =
-          Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), b - a).toRotationMatrix();
+      T.linear() = RotationFromZ(b - a);
       const std::string part = o.name + "#" + std::to_string(k);
       AddObject(MakePrimitiveObject(part, g), T, part, &w.env);
     }

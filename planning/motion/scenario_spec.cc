@@ -57,11 +57,11 @@ SpecName Name(const base::JsonNode& n) { return {n.String(), n.Where()}; }
 SpecName Name(const base::JsonNode& n, const std::string& key) { return Name(n.At(key)); }
 
 // The names of the objects read so far, in file order.
-using ObjectNames = std::vector<std::string>;
+using NameList = std::vector<std::string>;
 
 // "frame" of `n` when given: the name of one of `objects` (the objects `before` it in the file,
 // or all of them), else an error naming the key.
-std::optional<SpecName> ReadFrame(const base::JsonNode& n, const ObjectNames& objects,
+std::optional<SpecName> ReadFrame(const base::JsonNode& n, const NameList& objects,
                                   bool before = false) {
   if (!n.Has("frame")) return std::nullopt;
   const base::JsonNode fn = n.At("frame");
@@ -77,7 +77,7 @@ std::optional<SpecName> ReadFrame(const base::JsonNode& n, const ObjectNames& ob
 }
 
 ObjectSpec ReadObject(const base::JsonNode& n, const std::string& dir,
-                      const std::vector<std::string>& roots, const ObjectNames& earlier) {
+                      const std::vector<std::string>& roots, const NameList& earlier) {
   n.CheckKeys({"name", "urdf", "xyz", "rpy", "collide", "capsules", "frame"});
   ObjectSpec o;
   o.where = n.Where();
@@ -167,7 +167,7 @@ ProblemSpec ReadProblem(const base::JsonNode& n) {
   return p;
 }
 
-FeatureSpec ReadFeature(const base::JsonNode& n, const ObjectNames& objects) {
+FeatureSpec ReadFeature(const base::JsonNode& n, const NameList& objects) {
   FeatureSpec f;
   f.where = n.Where();
   f.type = Parse<FeatureType>(n.At("type"), "feature type");
@@ -239,7 +239,7 @@ FeatureSpec ReadFeature(const base::JsonNode& n, const ObjectNames& objects) {
   return f;
 }
 
-TaskSpec ReadTask(const base::JsonNode& n, const ObjectNames& objects) {
+TaskSpec ReadTask(const base::JsonNode& n, const NameList& objects) {
   n.CheckKeys({"name", "feature", "order", "between", "max_jump", "target", "precision",
                "final_precision", "final_steps"});
   TaskSpec t;
@@ -470,7 +470,7 @@ ScenarioSpec ParseScenarioSpec(const std::string& path,
   }
   if (root.Has("objects")) {
     const base::JsonNode objs = root.At("objects");
-    ObjectNames earlier;
+    NameList earlier;
     for (size_t i = 0; i < objs.Size(); ++i) {
       s.objects.push_back(ReadObject(objs.At(i), dir, search_roots, earlier));
       earlier.push_back(s.objects.back().name);
@@ -498,7 +498,7 @@ ScenarioSpec ParseScenarioSpec(const std::string& path,
   }
   if (root.Has("problem")) s.problem = ReadProblem(root.At("problem"));
   const base::JsonNode tasks = root.At("tasks");
-  ObjectNames object_names;
+  NameList object_names;
   for (const ObjectSpec& o : s.objects) object_names.push_back(o.name);
   for (size_t i = 0; i < tasks.Size(); ++i) {
     s.tasks.push_back(ReadTask(tasks.At(i), object_names));

@@ -120,7 +120,7 @@ struct Column {
   const UnwrapAblation* ablation = nullptr;
 };
 
-void CheckOptions(const UnwrapBenchmarkOptions& options) {
+void CheckBenchmarkOptions(const UnwrapBenchmarkOptions& options) {
   if (options.angles_deg.empty()) throw std::invalid_argument("unwrap benchmark: no angles");
   if (options.seeds < 1) throw std::invalid_argument("unwrap benchmark: seeds must be >= 1");
   if (!(options.perturb_m >= 0.0) || !std::isfinite(options.perturb_m)) {
@@ -209,7 +209,7 @@ std::vector<UnwrapRun> RunColumns(const UnwrapBenchmarkOptions& options, const S
 }  // namespace
 
 UnwrapBenchmarkResult RunUnwrapBenchmark(const UnwrapBenchmarkOptions& options) {
-  CheckOptions(options);
+  CheckBenchmarkOptions(options);
   if (options.planners.empty()) throw std::invalid_argument("unwrap benchmark: no planners");
   UnwrapBenchmarkResult result;
   result.angles_deg = options.angles_deg;
@@ -302,7 +302,7 @@ std::vector<UnwrapAblation> UnwrapAblations(const ScenarioSpec& spec) {
 
 UnwrapBenchmarkResult RunUnwrapAblation(const UnwrapBenchmarkOptions& options,
                                         std::vector<UnwrapAblation>* ablations) {
-  CheckOptions(options);
+  CheckBenchmarkOptions(options);
   const ScenarioSpec spec = BenchmarkSpec(options);
   *ablations = UnwrapAblations(spec);
   UnwrapBenchmarkResult result;

@@ -2,14 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <stdexcept>
 
 #include "planning/robot/kinematics.h"
+#include "planning/robot/pose.h"
 
 namespace planning::physics {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 SimShape ToSimShape(const Geometry& g, const Eigen::Isometry3d& body_from_geometry, bool* ok) {
   SimShape s;
@@ -115,10 +115,10 @@ SimHand BuildSimHand(const Robot& robot, const Eigen::VectorXd& q, const std::st
         l.joint_axis = start.joint_axis_world[pj];
         l.q_start = start.joint_value[pj];
         const double close = Holds(options, j.name) ? 0.0 : options.close_by;
-        const double lo = std::isfinite(j.limits.lower) ? j.limits.lower : -kPi + 0.01;
-        const double hi = std::isfinite(j.limits.upper) ? j.limits.upper : kPi - 0.01;
-        l.lower = std::max(lo, -kPi + 0.01);
-        l.upper = std::min(hi, kPi - 0.01);
+        const double lo = std::isfinite(j.limits.lower) ? j.limits.lower : -std::numbers::pi + 0.01;
+        const double hi = std::isfinite(j.limits.upper) ? j.limits.upper : std::numbers::pi - 0.01;
+        l.lower = std::max(lo, -std::numbers::pi + 0.01);
+        l.upper = std::min(hi, std::numbers::pi - 0.01);
         l.q_start = std::clamp(l.q_start, l.lower, l.upper);
         l.q_target = std::clamp(grasp.joint_value[pj] + close, l.lower, l.upper);
         const double* torque = FindBySubstring(options.joint_torques, j.name);
@@ -199,8 +199,10 @@ SimObject BuildSimObject(const GraspObject& object, const Eigen::Isometry3d& wor
         o.shapes.push_back(s);
         break;
       case GraspPrimitive::Kind::kTorus: {
-        const double half = p.size.z() > 0 ? std::min(p.size.z(), kPi) : kPi;
-        const int n = std::max(4, static_cast<int>(std::ceil(torus_segments * half / kPi)));
+        const double half =
+            p.size.z() > 0 ? std::min(p.size.z(), std::numbers::pi) : std::numbers::pi;
+        const int n =
+            std::max(4, static_cast<int>(std::ceil(torus_segments * half / std::numbers::pi)));
         for (int k = 0; k < n; ++k) {
           const double a0 = -half + 2 * half * k / n, a1 = -half + 2 * half * (k + 1) / n;
           const Eigen::Vector3d p0(p.size.x() * std::cos(a0), p.size.x() * std::sin(a0), 0);
@@ -210,8 +212,7 @@ SimObject BuildSimObject(const GraspObject& object, const Eigen::Isometry3d& wor
           c.size = Eigen::Vector3d(p.size.y(), (p1 - p0).norm(), 0);
           Eigen::Isometry3d local = Eigen::Isometry3d::Identity();
           local.translation() = 0.5 * (p0 + p1);
-          local.linear() = Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), p1 - p0)
-                               .toRotationMatrix();
+          local.linear() = RotationFromZ(p1 - p0);
           c.body_from_shape = p.object_from_primitive * local;
           o.shapes.push_back(c);
         }
@@ -226,11 +227,11 @@ double PrimitiveVolume(const SimShape& s) {
   const double r = s.size.x();
   switch (s.kind) {
     case SimShape::Kind::kSphere:
-      return 4.0 / 3.0 * kPi * r * r * r;
+      return 4.0 / 3.0 * std::numbers::pi * r * r * r;
     case SimShape::Kind::kCapsule:
-      return kPi * r * r * s.size.y() + 4.0 / 3.0 * kPi * r * r * r;
+      return std::numbers::pi * r * r * s.size.y() + 4.0 / 3.0 * std::numbers::pi * r * r * r;
     case SimShape::Kind::kCylinder:
-      return kPi * r * r * s.size.y();
+      return std::numbers::pi * r * r * s.size.y();
     case SimShape::Kind::kBox:
       return s.size.prod();
     case SimShape::Kind::kTrimesh:

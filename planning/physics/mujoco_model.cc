@@ -22,14 +22,14 @@ std::string Num(double v) {
   return buf;
 }
 
-std::string Vec(const Eigen::Vector3d& v) {
+std::string MjVec(const Eigen::Vector3d& v) {
   return StrCat(Num(v.x()), " ", Num(v.y()), " ", Num(v.z()));
 }
 
 // pos="x y z" quat="w x y z" of a pose.
 std::string PoseAttributes(const Eigen::Isometry3d& pose) {
   const Eigen::Quaterniond q(pose.linear());
-  return StrCat("pos=\"", Vec(pose.translation()), "\" quat=\"", Num(q.w()), " ", Num(q.x()), " ",
+  return StrCat("pos=\"", MjVec(pose.translation()), "\" quat=\"", Num(q.w()), " ", Num(q.x()), " ",
                 Num(q.y()), " ", Num(q.z()), "\"");
 }
 
@@ -61,7 +61,7 @@ std::string Geoms(const std::vector<SimShape>& shapes, double mass, const std::s
         break;
       case SimShape::Kind::kBox:
         type = "box";
-        size = Vec(0.5 * s.size);
+        size = MjVec(0.5 * s.size);
         break;
       case SimShape::Kind::kTrimesh:
         break;
@@ -114,8 +114,8 @@ std::string MujocoModelXml(const SimHand& hand, const SimObject& object, const S
     if (i > 0) {
       const Eigen::Isometry3d link_from_world = l.world_from_link.inverse();
       x.append(StrCat("<joint name=\"j", std::to_string(i), "\" type=\"hinge\" pos=\"",
-                      Vec(link_from_world * l.joint_anchor), "\" axis=\"",
-                      Vec(link_from_world.linear() * l.joint_axis.normalized()),
+                      MjVec(link_from_world * l.joint_anchor), "\" axis=\"",
+                      MjVec(link_from_world.linear() * l.joint_axis.normalized()),
                       "\" limited=\"true\" range=\"", Num(l.lower - l.q_start), " ",
                       Num(l.upper - l.q_start), "\" armature=\"", Num(mj.armature), "\"/>\n"));
     }

@@ -15,8 +15,6 @@
 namespace planning::physics {
 namespace {
 
-constexpr double kRadToDeg = 57.29577951308232;
-
 struct ModelDeleter {
   void operator()(mjModel* m) const { mj_deleteModel(m); }
 };
@@ -151,11 +149,6 @@ SimState State(const Sim& s, int step) {
   return st;
 }
 
-void Drift(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b, double* slip, double* rot) {
-  *slip = (b.translation() - a.translation()).norm();
-  *rot = std::abs(Eigen::AngleAxisd(a.linear().transpose() * b.linear()).angle()) * kRadToDeg;
-}
-
 }  // namespace
 
 StabilityResult TestGraspStabilityMujoco(const SimHand& hand, const SimObject& object,
@@ -251,7 +244,7 @@ StabilityResult TestGraspStabilityMujoco(const SimHand& hand, const SimObject& o
       ++dir.steps;
       if (on_state) on_state(k + 1, State(s, close_steps + dir.steps));
       if (!ok) break;
-      Drift(reference, s.world_from_palm.inverse() * ObjectPose(s), &slip, &rot);
+      PoseDrift(reference, s.world_from_palm.inverse() * ObjectPose(s), &slip, &rot);
       if (slip > options.early_exit_slip) break;
     }
     result.total_steps += dir.steps;
@@ -262,7 +255,8 @@ StabilityResult TestGraspStabilityMujoco(const SimHand& hand, const SimObject& o
       if (result.message.empty()) result.message = "gravity " + dir.label + ": " + reason;
       continue;
     }
-    Drift(reference, s.world_from_palm.inverse() * ObjectPose(s), &dir.slip_m, &dir.rotation_deg);
+    PoseDrift(reference, s.world_from_palm.inverse() * ObjectPose(s), &dir.slip_m,
+              &dir.rotation_deg);
     mj_forward(m, d);  // contacts of the final state
     dir.contact_links = Contacts(s, nullptr);
     dir.passed = dir.slip_m < options.max_slip && dir.rotation_deg < options.max_rotation_deg &&

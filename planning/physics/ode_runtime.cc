@@ -13,7 +13,7 @@ namespace {
 
 std::atomic<bool> g_runtime_alive{false};
 
-std::string Format(int errnum, const char* msg, va_list ap) {
+std::string FormatOdeMessage(int errnum, const char* msg, va_list ap) {
   char buffer[512];
   std::vsnprintf(buffer, sizeof(buffer), msg, ap);
   return "ODE error " + std::to_string(errnum) + ": " + buffer;
@@ -21,7 +21,7 @@ std::string Format(int errnum, const char* msg, va_list ap) {
 
 // ODE calls abort() if an error handler returns; throwing lets the caller report the failure.
 [[noreturn]] void ThrowOdeError(int errnum, const char* msg, va_list ap) {
-  throw std::runtime_error(Format(errnum, msg, ap));
+  throw std::runtime_error(FormatOdeMessage(errnum, msg, ap));
 }
 
 // ODE's informational messages (e.g. LCP internal warnings) are not errors; drop them so that

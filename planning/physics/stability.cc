@@ -6,18 +6,9 @@
 namespace planning::physics {
 namespace {
 
-constexpr double kRadToDeg = 57.29577951308232;
-
 // Object pose in the palm frame.
 Eigen::Isometry3d PalmFromObject(const SimState& s) {
   return s.world_from_link[0].inverse() * s.world_from_object;
-}
-
-// Translation [m] and rotation [deg] between two palm-frame object poses.
-void Drift(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b, double* slip, double* rot) {
-  *slip = (b.translation() - a.translation()).norm();
-  const Eigen::AngleAxisd d(a.linear().transpose() * b.linear());
-  *rot = std::abs(d.angle()) * kRadToDeg;
 }
 
 void CheckOptions(const StabilityOptions& options) {
@@ -35,6 +26,14 @@ const StabilityOptions& Checked(const StabilityOptions& options) {
 }
 
 }  // namespace
+
+void PoseDrift(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b, double* slip_m,
+               double* rotation_deg) {
+  constexpr double kRadToDeg = 57.29577951308232;
+  *slip_m = (b.translation() - a.translation()).norm();
+  const Eigen::AngleAxisd d(a.linear().transpose() * b.linear());
+  *rotation_deg = std::abs(d.angle()) * kRadToDeg;
+}
 
 StabilityRun::StabilityRun(const OdeRuntime& runtime, const SimHand& hand, const SimObject& object,
                            const StabilityOptions& options, const StepCallback& on_step)
@@ -119,7 +118,7 @@ void StabilityRun::CheckPhaseEnd() {
   if (dir.steps < trial_steps_ && !s.blown_up) {
     if (dir.steps == 0) return;
     double slip = 0, rot = 0;
-    Drift(reference_, PalmFromObject(s), &slip, &rot);
+    PoseDrift(reference_, PalmFromObject(s), &slip, &rot);
     if (!(slip > options_.early_exit_slip)) return;
   }
   phase_finished_ = true;
@@ -128,7 +127,7 @@ void StabilityRun::CheckPhaseEnd() {
     dir.blown_up = true;
     dir.blowup_reason = s.blowup_reason;
   } else {
-    Drift(reference_, PalmFromObject(s), &dir.slip_m, &dir.rotation_deg);
+    PoseDrift(reference_, PalmFromObject(s), &dir.slip_m, &dir.rotation_deg);
     dir.contact_links = s.num_contact_links;
     dir.passed = dir.slip_m < options_.max_slip && dir.rotation_deg < options_.max_rotation_deg &&
                  dir.contact_links >= options_.min_contact_links;

@@ -131,6 +131,12 @@ StabilityResult TestGraspStability(const OdeRuntime& runtime, const SimHand& han
                                    const SimObject& object, const StabilityOptions& options,
                                    const StepCallback& on_step = {});
 
+// How far an object moved between two of its poses in the palm frame, a → b: the translation
+// |b.t − a.t| [m] and the rotation angle of a.R⁻¹·b.R [deg] (the slip and rotation that ODE's and
+// MuJoCo's trials judge).
+void PoseDrift(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b, double* slip_m,
+               double* rotation_deg);
+
 inline constexpr base::EnumName<StabilityStatus> kStabilityStatusNames[] = {
     {StabilityStatus::kTested, "tested"},
     {StabilityStatus::kNoGrasp, "no_grasp"},

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <random>
 #include <stdexcept>
 #include <string>
@@ -14,7 +15,6 @@
 namespace planning {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kMaxDamping = 1e10;  // λ beyond this: no step lowers the cost (a minimum)
 constexpr double kMinDamping = 1e-12;
 constexpr int kMaxStalls = 8;  // accepted steps in a row that lower the cost by almost nothing
@@ -53,7 +53,7 @@ std::vector<IkTarget> CheckedTargets(const Robot& robot, const std::vector<IkTar
   return out;
 }
 
-void CheckOptions(const IkOptions& o) {
+void CheckIkOptions(const IkOptions& o) {
   if (o.starts < 1) Bad("starts must be >= 1");
   if (o.max_iterations < 1) Bad("max_iterations must be >= 1");
   const auto positive = [](double v) { return v > 0.0 && std::isfinite(v); };
@@ -162,7 +162,8 @@ void StartConfiguration(const Robot& robot, const Eigen::VectorXd& seed, int s, 
   if (s == 0) return;
   for (int k = 0; k < d->q.size(); ++k) {
     if (d->frozen[k]) continue;
-    const double half = robot.joints[robot.dof_joints[k]].type == JointType::kPrismatic ? 1.0 : kPi;
+    const double half =
+        robot.joints[robot.dof_joints[k]].type == JointType::kPrismatic ? 1.0 : std::numbers::pi;
     const double lo = std::isfinite(d->lower[k]) ? d->lower[k] : seed[k] - half;
     const double hi = std::isfinite(d->upper[k]) ? d->upper[k] : seed[k] + half;
     d->q[k] = lo + base::UniformUnit(rng) * (hi - lo);
@@ -213,7 +214,7 @@ IkResult SolveIk(const Robot& robot, const IkProblem& problem, const IkOptions& 
     Bad("IkData was sized for another robot");
   if (n == 0) Bad("robot '" + robot.name + "' has no movable joints");
   const std::vector<IkTarget> targets = CheckedTargets(robot, problem.targets);
-  CheckOptions(options);
+  CheckIkOptions(options);
   IkData& d = *data;
 
   // The seed: given (moved into the limits) or the middle of the limits.
@@ -306,7 +307,7 @@ IkResult SolveIk(const Robot& robot, const IkProblem& problem, const IkOptions& 
   for (int k = 0; k < n; ++k) {
     if (std::isfinite(d.lower[k]) || std::isfinite(d.upper[k])) continue;
     if (robot.joints[robot.dof_joints[k]].type == JointType::kPrismatic) continue;
-    best_q[k] = seed[k] + std::remainder(best_q[k] - seed[k], 2.0 * kPi);
+    best_q[k] = seed[k] + std::remainder(best_q[k] - seed[k], 2.0 * std::numbers::pi);
   }
   result.q = best_q;
   IkErrors(robot, IkProblem{targets, {}, {}}, result.q, &d.kin, &result.position_error,

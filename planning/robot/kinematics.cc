@@ -9,7 +9,7 @@
 namespace planning {
 namespace {
 
-void CheckLink(const Robot& robot, int link, const char* fn) {
+void CheckLinkIndex(const Robot& robot, int link, const char* fn) {
   if (link < 0 || link >= static_cast<int>(robot.links.size())) {
     throw std::invalid_argument(std::string(fn) + ": link index " + std::to_string(link) +
                                 " out of range [0, " + std::to_string(robot.links.size()) + ")");
@@ -111,7 +111,7 @@ void ForwardKinematics(const Robot& robot, const Eigen::VectorXd& q, KinematicsD
 
 void PointJacobian(const Robot& robot, const KinematicsData& kin, int link,
                    const Eigen::Vector3d& p_link, Eigen::Ref<Eigen::MatrixXd> J) {
-  CheckLink(robot, link, "PointJacobian");
+  CheckLinkIndex(robot, link, "PointJacobian");
   CheckSize(J, 3, num_dofs(robot), "PointJacobian");
   J.setZero();
   const Eigen::Vector3d p = kin.world_from_link[link] * p_link;
@@ -121,7 +121,7 @@ void PointJacobian(const Robot& robot, const KinematicsData& kin, int link,
 void AddPointJacobianAlong(const Robot& robot, const KinematicsData& kin, int link,
                            const Eigen::Vector3d& p_world, const Eigen::Vector3d& u, double scale,
                            Eigen::Ref<Eigen::RowVectorXd, 0, Eigen::InnerStride<>> row) {
-  CheckLink(robot, link, "AddPointJacobianAlong");
+  CheckLinkIndex(robot, link, "AddPointJacobianAlong");
   if (row.size() != num_dofs(robot)) {
     throw std::invalid_argument("AddPointJacobianAlong: row has " + std::to_string(row.size()) +
                                 " entries, expected " + std::to_string(num_dofs(robot)));
@@ -139,7 +139,7 @@ void AddPointJacobianAlong(const Robot& robot, const KinematicsData& kin, int li
 
 void FrameJacobian(const Robot& robot, const KinematicsData& kin, int link,
                    Eigen::Ref<Eigen::MatrixXd> J) {
-  CheckLink(robot, link, "FrameJacobian");
+  CheckLinkIndex(robot, link, "FrameJacobian");
   CheckSize(J, 6, num_dofs(robot), "FrameJacobian");
   J.setZero();
   auto lin = J.topRows<3>();

@@ -30,4 +30,8 @@ void PoseToXyzRpy(const Eigen::Isometry3d& pose, Eigen::Vector3d* xyz, Eigen::Ve
   *rpy = Eigen::Vector3d(roll, pitch, yaw);
 }
 
+Eigen::Matrix3d RotationFromZ(const Eigen::Vector3d& d) {
+  return Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), d).toRotationMatrix();
+}
+
 }  // namespace planning

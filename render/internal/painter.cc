@@ -21,7 +21,6 @@ std::ostringstream ClassicStream() {
   return out;
 }
 
-
 class RasterPainter : public Painter {
  public:
   explicit RasterPainter(Image* image) : image_(image) {}
@@ -104,7 +103,7 @@ class SvgPainter : public VectorPainter {
   std::ostringstream out_ = ClassicStream();
 };
 
-cairo_status_t AppendToString(void* closure, const unsigned char* data, unsigned int length) {
+cairo_status_t AppendPdfBytes(void* closure, const unsigned char* data, unsigned int length) {
   static_cast<std::string*>(closure)->append(reinterpret_cast<const char*>(data), length);
   return CAIRO_STATUS_SUCCESS;
 }
@@ -112,7 +111,7 @@ cairo_status_t AppendToString(void* closure, const unsigned char* data, unsigned
 class PdfPainter : public VectorPainter {
  public:
   PdfPainter(int width, int height) {
-    surface_ = cairo_pdf_surface_create_for_stream(AppendToString, &bytes_, width, height);
+    surface_ = cairo_pdf_surface_create_for_stream(AppendPdfBytes, &bytes_, width, height);
     cairo_pdf_surface_set_metadata(surface_, CAIRO_PDF_METADATA_CREATE_DATE,
                                    "2000-01-01T00:00:00Z");
     cairo_pdf_surface_set_metadata(surface_, CAIRO_PDF_METADATA_CREATOR, "topoplan");

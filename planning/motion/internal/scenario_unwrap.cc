@@ -1,8 +1,8 @@
 // `scenario new --task unwrap` (internal/scenario_unwrap.h).
 #include "planning/motion/internal/scenario_unwrap.h"
 
-#include <Eigen/Geometry>
 #include <Eigen/Eigenvalues>
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -17,6 +17,7 @@
 #include "planning/collision/collision.h"
 #include "planning/motion/internal/scenario_file.h"
 #include "planning/robot/kinematics.h"
+#include "planning/robot/pose.h"
 #include "planning/robot/robot_io.h"
 #include "topology/winding.h"
 #include "topology/writhe.h"
@@ -141,8 +142,7 @@ Hook BestHook(const Eigen::Matrix3Xd& p) {
 Eigen::Isometry3d PolePose(const Hook& h) {
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
   pose.translation() = h.point;
-  pose.linear() =
-      Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), h.dir).toRotationMatrix();
+  pose.linear() = RotationFromZ(h.dir);
   return pose;
 }
 

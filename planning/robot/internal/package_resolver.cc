@@ -12,12 +12,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-[[noreturn]] void Fail(const std::string& source, const std::string& message) {
+[[noreturn]] void FailMesh(const std::string& source, const std::string& message) {
   throw std::invalid_argument(source + ": " + message);
-}
-
-bool StartsWith(const std::string& s, const std::string& prefix) {
-  return s.compare(0, prefix.size(), prefix) == 0;
 }
 
 // Folders below `dir` (depth levels, not hidden, not inside a package) whose package.xml names
@@ -86,19 +82,19 @@ const std::vector<fs::path>& MeshResolver::PackageRoots(const std::string& pkg) 
 }
 
 std::string MeshResolver::Resolve(const std::string& uri) const {
-  if (StartsWith(uri, "package://")) {
+  if (uri.starts_with("package://")) {
     std::string rest = uri.substr(10);
     // "package:///NAME/..." (an extra slash, seen in published URDFs) means the same.
     while (!rest.empty() && rest[0] == '/') rest.erase(0, 1);
     const size_t slash = rest.find('/');
     if (slash == std::string::npos || slash == 0) {
-      Fail(source, "malformed mesh URI '" + uri + "'");
+      FailMesh(source, "malformed mesh URI '" + uri + "'");
     }
     const std::string pkg = rest.substr(0, slash);
     const std::string rel = rest.substr(slash + 1);
     const fs::path rel_path = fs::path(rel).lexically_normal();
     if (rel_path.empty() || rel_path.is_absolute() || *rel_path.begin() == "..") {
-      Fail(source, "mesh '" + uri + "' leaves its package '" + pkg + "'");
+      FailMesh(source, "mesh '" + uri + "' leaves its package '" + pkg + "'");
     }
     const std::vector<fs::path>& roots = PackageRoots(pkg);
     std::string missing;
@@ -112,7 +108,7 @@ std::string MeshResolver::Resolve(const std::string& uri) const {
       }
     }
     if (!missing.empty()) {
-      Fail(source, "mesh '" + uri + "' not found: no file " + missing);
+      FailMesh(source, "mesh '" + uri + "' not found: no file " + missing);
     }
     std::string tried;
     for (const std::string& r : package_paths) {
@@ -120,18 +116,19 @@ std::string MeshResolver::Resolve(const std::string& uri) const {
       if (!tried.empty()) tried.append(", ");
       tried.append(r);
     }
-    Fail(source,
-         "mesh '" + uri + "' not found: no package '" + pkg +
-             "' (a folder of that name or with a package.xml naming it) under the search roots (" +
-             (tried.empty() ? std::string("none given") : tried) +
-             ") or above the URDF; pass --package-path with the folder that holds it");
+    FailMesh(
+        source,
+        "mesh '" + uri + "' not found: no package '" + pkg +
+            "' (a folder of that name or with a package.xml naming it) under the search roots (" +
+            (tried.empty() ? std::string("none given") : tried) +
+            ") or above the URDF; pass --package-path with the folder that holds it");
   }
   std::string path = uri;
-  if (StartsWith(path, "file://")) path = path.substr(7);
+  if (path.starts_with("file://")) path = path.substr(7);
   fs::path p(path);
   if (p.is_relative()) p = base_dir / p;
   if (!fs::is_regular_file(p))
-    Fail(source, "mesh file '" + uri + "' not found (looked at " + p.string() + ")");
+    FailMesh(source, "mesh file '" + uri + "' not found (looked at " + p.string() + ")");
   return p.lexically_normal().string();
 }
 
