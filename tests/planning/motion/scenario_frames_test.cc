@@ -59,6 +59,22 @@ const TaskSpec& TaskOf(const ScenarioSpec& spec, const std::string& name) {
 
 // The shipped unwrap scenario's reach target resolves to the absolute point it had before it was
 // placed in the cylinder's frame (itself in the pole's): bit for bit, so the shipped results stay.
+// RotationFromZ(d): a rotation (orthonormal, det +1) taking +z to d/|d|, the identity for d along
+// +z, and a half turn for d along -z; the length of d does not matter. Tolerance 1e-9: close to -z
+// Eigen's quaternion formula loses digits as 1/(1 + cos): 5e-11 at 2.2 mrad from -z.
+TEST(Pose, RotationFromZTakesZToTheDirection) {
+  const Eigen::Vector3d dirs[] = {{0, 0, 1},        {0, 0, -2},          {3, 0, 0},
+                                  {0.2, -0.5, 0.1}, {-1e-3, 2e-3, -1.0}, {1, 1, 1}};
+  for (const Eigen::Vector3d& d : dirs) {
+    const Eigen::Matrix3d R = RotationFromZ(d);
+    EXPECT_TRUE((R.transpose() * R).isIdentity(1e-9)) << d.transpose();
+    EXPECT_NEAR(R.determinant(), 1.0, 1e-9) << d.transpose();
+    EXPECT_TRUE((R * Eigen::Vector3d::UnitZ()).isApprox(d.normalized(), 1e-9)) << d.transpose();
+  }
+  EXPECT_TRUE(RotationFromZ(Eigen::Vector3d(0, 0, 5)).isIdentity(1e-15));
+  EXPECT_NEAR(Eigen::AngleAxisd(RotationFromZ(Eigen::Vector3d(0, 0, -1))).angle(), M_PI, 1e-12);
+}
+
 TEST(ScenarioFrames, ShippedUnwrapTargetIsTheCylinderInThePoleFrame) {
   ScenarioSpec spec = ParseScenarioSpec(kUnwrap);
   ASSERT_TRUE(TaskOf(spec, "reach").target.frame.has_value());

@@ -3,6 +3,7 @@
 // time and contacts readable between steps.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <vector>
 
 #include "planning/physics/stability.h"
@@ -51,6 +52,24 @@ OdeRuntime& Runtime() {
 class StabilityStepTest : public ::testing::TestWithParam<double> {};
 
 // Closing target 1.3: an enveloping grasp; −0.3: an open hand (early exits when the bottle falls).
+// PoseDrift: the distance between the two positions and the angle of the relative rotation,
+// whatever the first pose.
+TEST(PoseDrift, DistanceAndRelativeAngle) {
+  Eigen::Isometry3d a = Eigen::Isometry3d::Identity();
+  a.translate(Eigen::Vector3d(0.1, -0.2, 0.3));
+  a.rotate(Eigen::AngleAxisd(1.1, Eigen::Vector3d(1, 2, -1).normalized()));
+  Eigen::Isometry3d b = a;
+  b.translation() += Eigen::Vector3d(0.01, 0.02, -0.02);  // 0.03 m
+  b.linear() = a.linear() * Eigen::AngleAxisd(M_PI / 6, Eigen::Vector3d::UnitY()).matrix();
+  double slip = -1, rotation = -1;
+  PoseDrift(a, b, &slip, &rotation);
+  EXPECT_NEAR(slip, 0.03, 1e-12);
+  EXPECT_NEAR(rotation, 30.0, 1e-9);
+  PoseDrift(a, a, &slip, &rotation);
+  EXPECT_EQ(slip, 0.0);
+  EXPECT_NEAR(rotation, 0.0, 1e-6);
+}
+
 TEST_P(StabilityStepTest, SteppingEqualsOneShot) {
   const SimHand hand = testing_hands::ClawHand(GetParam());
   const SimObject bottle = testing_hands::Bottle();
