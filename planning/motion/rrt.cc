@@ -13,10 +13,8 @@
 namespace planning {
 namespace internal {
 
-// What both planners set up first (Prepare, below): argument checks, the default range (20 % of the
-// joint box's diagonal) and edge resolution (1 %), the counting checker, the per-iteration buffers
-// (size n), and the start and goal validity checks. Returns false (result filled with
-// kInvalidInput) when start or goal is invalid.
+// What both planners set up first (Prepare, below): the counting checker, the default range (20 %
+// of the joint box's diagonal) and edge resolution (1 %), the per-iteration buffers (size n).
 struct RrtSetup {
   Checker check;
   int n = 0;
@@ -43,6 +41,8 @@ void SampleInLimits(const RrtProblem& p, std::mt19937* rng, Eigen::VectorXd* q) 
   internal::SampleUniform(p.lower, p.upper, rng, q);
 }
 
+// Argument checks, then fills *s and checks the start and goal. Returns false (result filled with
+// kInvalidInput) when start or goal is invalid.
 bool Prepare(const RrtProblem& problem, const RrtOptions& options, internal::RrtSetup* s,
              RrtResult* result) {
   CheckProblem(problem);

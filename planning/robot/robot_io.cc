@@ -27,11 +27,7 @@ namespace planning {
 namespace {
 
 namespace fs = std::filesystem;
-
-[[noreturn]] void FailUrdf(const std::string& source, int line, const std::string& message) {
-  throw std::invalid_argument(source + (line > 0 ? ":" + std::to_string(line) : "") + ": " +
-                              message);
-}
+using internal::FailAt;
 
 // ---- Validation pass ---------------------------------------------------------------------------
 
@@ -58,14 +54,14 @@ void CheckNumberAttr(const TiXmlElement* e, const char* attr, int count, bool re
                      const std::string& source, const std::string& where) {
   const char* v = e->Attribute(attr);
   if (!v) {
-    if (required) FailUrdf(source, e->Row(), where + ": <" + e->Value() + "> needs " + attr + "=");
+    if (required) FailAt(source, e->Row(), where + ": <" + e->Value() + "> needs " + attr + "=");
     return;
   }
   std::vector<double> numbers;
   if (!internal::ParseNumbers(v, count, &numbers)) {
-    FailUrdf(source, e->Row(),
-             where + ": <" + e->Value() + " " + attr + "=\"" + v + "\">: expected " +
-                 (count > 1 ? std::to_string(count) + " finite numbers" : "a finite number"));
+    FailAt(source, e->Row(),
+           where + ": <" + e->Value() + " " + attr + "=\"" + v + "\">: expected " +
+               (count > 1 ? std::to_string(count) + " finite numbers" : "a finite number"));
   }
 }
 
@@ -78,9 +74,9 @@ void ValidateGeometryElement(const TiXmlElement* e, const std::string& source,
     CheckNumberAttr(o, "rpy", 3, false, source, where);
   }
   const TiXmlElement* g = e->FirstChildElement("geometry");
-  if (!g) FailUrdf(source, e->Row(), where + ": missing <geometry>");
+  if (!g) FailAt(source, e->Row(), where + ": missing <geometry>");
   const TiXmlElement* shape = g->FirstChildElement();
-  if (!shape) FailUrdf(source, g->Row(), where + ": <geometry> is empty");
+  if (!shape) FailAt(source, g->Row(), where + ": <geometry> is empty");
   const std::string type = shape->Value();
   if (type == "box") {
     CheckNumberAttr(shape, "size", 3, true, source, where);
@@ -91,14 +87,14 @@ void ValidateGeometryElement(const TiXmlElement* e, const std::string& source,
     CheckNumberAttr(shape, "length", 1, true, source, where);
   } else if (type == "mesh") {
     if (Attr(shape, "filename").empty()) {
-      FailUrdf(source, shape->Row(), where + ": <mesh> needs filename=");
+      FailAt(source, shape->Row(), where + ": <mesh> needs filename=");
     }
     CheckNumberAttr(shape, "scale", 3, false, source, where);
   } else {
-    FailUrdf(source, shape->Row(),
-             where + ": unknown geometry <" + type +
-                 "> (expected box, sphere, cylinder or mesh; a capsule is a <cylinder> in an "
-                 "element whose name starts with \"capsule\")");
+    FailAt(source, shape->Row(),
+           where + ": unknown geometry <" + type +
+               "> (expected box, sphere, cylinder or mesh; a capsule is a <cylinder> in an "
+               "element whose name starts with \"capsule\")");
   }
 }
 
@@ -107,16 +103,16 @@ void ValidateLinks(const TiXmlElement* robot, const std::string& source, XmlSumm
   for (const TiXmlElement* e = robot->FirstChildElement("link"); e;
        e = e->NextSiblingElement("link")) {
     const std::string name = Attr(e, "name");
-    if (name.empty()) FailUrdf(source, e->Row(), "<link> without a name");
+    if (name.empty()) FailAt(source, e->Row(), "<link> without a name");
     if (s->link_line.count(name)) {
-      FailUrdf(source, e->Row(),
-               "duplicate link '" + name + "' (first defined at line " +
-                   std::to_string(s->link_line[name]) + ")");
+      FailAt(source, e->Row(),
+             "duplicate link '" + name + "' (first defined at line " +
+                 std::to_string(s->link_line[name]) + ")");
     }
     s->link_line[name] = e->Row();
     s->links.push_back(name);
     if (s->links.size() > kMaxUrdfLinks) {
-      FailUrdf(source, e->Row(), "more than " + std::to_string(kMaxUrdfLinks) + " links");
+      FailAt(source, e->Row(), "more than " + std::to_string(kMaxUrdfLinks) + " links");
     }
     for (int kind = 0; kind < 2; ++kind) {
       const char* tag = kind == 0 ? "visual" : "collision";
@@ -127,7 +123,7 @@ void ValidateLinks(const TiXmlElement* robot, const std::string& source, XmlSumm
       }
     }
   }
-  if (s->links.empty()) FailUrdf(source, robot->Row(), "the robot has no <link>");
+  if (s->links.empty()) FailAt(source, robot->Row(), "the robot has no <link>");
 }
 
 // One <joint> (after the links): a unique name, a supported type, existing distinct parent and
@@ -137,48 +133,48 @@ XmlJoint ValidateJoint(const TiXmlElement* e, const std::string& source, XmlSumm
   j.line = e->Row();
   j.name = Attr(e, "name");
   j.type = Attr(e, "type");
-  if (j.name.empty()) FailUrdf(source, j.line, "<joint> without a name");
+  if (j.name.empty()) FailAt(source, j.line, "<joint> without a name");
   if (s->joint_line.count(j.name)) {
-    FailUrdf(source, j.line,
-             "duplicate joint '" + j.name + "' (first defined at line " +
-                 std::to_string(s->joint_line[j.name]) + ")");
+    FailAt(source, j.line,
+           "duplicate joint '" + j.name + "' (first defined at line " +
+               std::to_string(s->joint_line[j.name]) + ")");
   }
   s->joint_line[j.name] = j.line;
   const std::string where = "joint '" + j.name + "': ";
   if (j.type != "revolute" && j.type != "continuous" && j.type != "prismatic" &&
       j.type != "fixed" && j.type != "floating" && j.type != "planar") {
-    FailUrdf(source, j.line,
-             where + "unknown joint type '" + j.type +
-                 "' (expected revolute, continuous, prismatic, fixed, floating or planar)");
+    FailAt(source, j.line,
+           where + "unknown joint type '" + j.type +
+               "' (expected revolute, continuous, prismatic, fixed, floating or planar)");
   }
   const TiXmlElement* parent = e->FirstChildElement("parent");
   const TiXmlElement* child = e->FirstChildElement("child");
   if (!parent || Attr(parent, "link").empty())
-    FailUrdf(source, j.line, where + "missing <parent link=...>");
+    FailAt(source, j.line, where + "missing <parent link=...>");
   if (!child || Attr(child, "link").empty())
-    FailUrdf(source, j.line, where + "missing <child link=...>");
+    FailAt(source, j.line, where + "missing <child link=...>");
   j.parent = Attr(parent, "link");
   j.child = Attr(child, "link");
   if (!s->link_line.count(j.parent)) {
-    FailUrdf(source, j.line, where + "parent link '" + j.parent + "' does not exist");
+    FailAt(source, j.line, where + "parent link '" + j.parent + "' does not exist");
   }
   if (!s->link_line.count(j.child)) {
-    FailUrdf(source, j.line, where + "child link '" + j.child + "' does not exist");
+    FailAt(source, j.line, where + "child link '" + j.child + "' does not exist");
   }
-  if (j.parent == j.child) FailUrdf(source, j.line, where + "parent and child are the same link");
+  if (j.parent == j.child) FailAt(source, j.line, where + "parent and child are the same link");
   if (s->parent_of.count(j.child)) {
-    FailUrdf(source, j.line,
-             where + "link '" + j.child + "' already has parent joint '" + s->parent_of[j.child] +
-                 "' (a link can have only one parent)");
+    FailAt(source, j.line,
+           where + "link '" + j.child + "' already has parent joint '" + s->parent_of[j.child] +
+               "' (a link can have only one parent)");
   }
   s->parent_of[j.child] = j.name;
   if ((j.type == "revolute" || j.type == "prismatic") && !e->FirstChildElement("limit")) {
-    FailUrdf(source, j.line,
-             where + j.type + " joint needs a <limit lower= upper= effort= velocity=>");
+    FailAt(source, j.line,
+           where + j.type + " joint needs a <limit lower= upper= effort= velocity=>");
   }
   if (const TiXmlElement* m = e->FirstChildElement("mimic")) {
     j.mimic = Attr(m, "joint");
-    if (j.mimic.empty()) FailUrdf(source, m->Row(), where + "<mimic> without joint=");
+    if (j.mimic.empty()) FailAt(source, m->Row(), where + "<mimic> without joint=");
   }
   return j;
 }
@@ -190,8 +186,7 @@ void CheckSingleTree(const XmlSummary& s, int robot_line, const std::string& sou
     if (!s.parent_of.count(l)) roots.push_back(l);
   }
   if (roots.empty())
-    FailUrdf(source, s.link_line.at(s.links[0]),
-             "kinematic cycle through link '" + s.links[0] + "'");
+    FailAt(source, s.link_line.at(s.links[0]), "kinematic cycle through link '" + s.links[0] + "'");
   if (roots.size() == 1) {
     // Every link has at most one parent, so a link not reachable from the single root lies on
     // a cycle (or hangs below one). Breadth-first from the root: O(links + joints).
@@ -206,16 +201,16 @@ void CheckSingleTree(const XmlSummary& s, int robot_line, const std::string& sou
     }
     for (const std::string& l : s.links) {
       if (!reached.count(l)) {
-        FailUrdf(source, s.link_line.at(l), "kinematic cycle through link '" + l + "'");
+        FailAt(source, s.link_line.at(l), "kinematic cycle through link '" + l + "'");
       }
     }
   }
   if (roots.size() != 1) {
     std::string list;
     for (const std::string& r : roots) list += (list.empty() ? "" : ", ") + r;
-    FailUrdf(source, robot_line,
-             "the links must form one tree with a single root, found " +
-                 std::to_string(roots.size()) + " roots (" + list + "); connect them with joints");
+    FailAt(source, robot_line,
+           "the links must form one tree with a single root, found " +
+               std::to_string(roots.size()) + " roots (" + list + "); connect them with joints");
   }
 }
 
@@ -237,7 +232,7 @@ void CheckMimicChains(const XmlSummary& s, const std::string& source) {
       cur = mimic_of[cur];
     }
     if (mimic_of.count(cur) && state[cur] == 1) {
-      FailUrdf(source, j.line, "mimic cycle through joint '" + j.name + "'");
+      FailAt(source, j.line, "mimic cycle through joint '" + j.name + "'");
     }
     for (const std::string& w : walk) state[w] = 2;
   }
@@ -250,15 +245,15 @@ void CheckFreeBase(const XmlSummary& s, const std::string& source) {
   for (const XmlJoint& j : s.joints) {
     if (j.type != "floating" && j.type != "planar") continue;
     if (s.parent_of.count(j.parent)) {
-      FailUrdf(source, j.line,
-               "joint '" + j.name + "': a " + j.type +
-                   " joint is supported only as the free base (its parent must be the root link, "
-                   "the one without a parent joint), not inside the tree");
+      FailAt(source, j.line,
+             "joint '" + j.name + "': a " + j.type +
+                 " joint is supported only as the free base (its parent must be the root link, "
+                 "the one without a parent joint), not inside the tree");
     }
     if (base != nullptr) {
-      FailUrdf(source, j.line,
-               "joint '" + j.name + "': a second free base (first: joint '" + base->name +
-                   "', line " + std::to_string(base->line) + ")");
+      FailAt(source, j.line,
+             "joint '" + j.name + "': a second free base (first: joint '" + base->name +
+                 "', line " + std::to_string(base->line) + ")");
     }
     base = &j;
   }
@@ -270,11 +265,11 @@ XmlSummary ValidateXml(const std::string& xml, const std::string& source) {
   TiXmlDocument doc;
   doc.Parse(xml.c_str());
   if (doc.Error()) {
-    FailUrdf(source, doc.ErrorRow(), std::string("XML error: ") + doc.ErrorDesc());
+    FailAt(source, doc.ErrorRow(), std::string("XML error: ") + doc.ErrorDesc());
   }
   const TiXmlElement* robot = doc.RootElement();
   if (!robot || std::string(robot->Value()) != "robot") {
-    FailUrdf(source, robot ? robot->Row() : 0, "the root element must be <robot>");
+    FailAt(source, robot ? robot->Row() : 0, "the root element must be <robot>");
   }
   internal::CheckSingleRoot(doc, source);
   internal::CheckNoTrailingText(xml, source);
@@ -325,7 +320,7 @@ struct GeometryBuilder {
   // Returns false when the geometry is dropped (a mesh with load_meshes off).
   bool Convert(const urdf::GeometrySharedPtr& g, const std::string& element_name,
                const std::string& where, Geometry* out) {
-    if (!g) FailUrdf(resolver.source, 0, where + ": <geometry> is missing or empty");
+    if (!g) FailAt(resolver.source, 0, where + ": <geometry> is missing or empty");
     switch (g->type) {
       case urdf::Geometry::SPHERE: {
         const auto& s = static_cast<const urdf::Sphere&>(*g);
@@ -362,12 +357,12 @@ struct GeometryBuilder {
       }
     }
     if (out->kind == Geometry::Kind::kCapsule && !(out->size[0] > 0)) {
-      FailUrdf(resolver.source, 0, where + ": a capsule needs a radius > 0");
+      FailAt(resolver.source, 0, where + ": a capsule needs a radius > 0");
     }
     for (int i = 0; i < 3; ++i) {
       if (!std::isfinite(out->size[i]) ||
           (out->kind != Geometry::Kind::kMesh && out->size[i] < 0)) {
-        FailUrdf(resolver.source, 0, where + ": invalid geometry size");
+        FailAt(resolver.source, 0, where + ": invalid geometry size");
       }
     }
     return true;
@@ -395,7 +390,7 @@ void ConvertJoints(const urdf::ModelInterface& model, const XmlSummary& summary,
   for (size_t i = 0; i < summary.joints.size(); ++i) {
     const XmlJoint& xj = summary.joints[i];
     const urdf::JointConstSharedPtr uj = model.getJoint(xj.name);
-    if (!uj) FailUrdf(robot->source, xj.line, "urdfdom lost joint '" + xj.name + "'");
+    if (!uj) FailAt(robot->source, xj.line, "urdfdom lost joint '" + xj.name + "'");
     Joint& j = robot->joints[i];
     j.name = xj.name;
     j.parent_link = link_index.at(xj.parent);
@@ -424,12 +419,11 @@ void ConvertJoints(const urdf::ModelInterface& model, const XmlSummary& summary,
         robot->base_joint = xj.name;
         break;
       default:
-        FailUrdf(robot->source, xj.line, "joint '" + xj.name + "': unsupported joint type");
+        FailAt(robot->source, xj.line, "joint '" + xj.name + "': unsupported joint type");
     }
     if (j.type != JointType::kFixed) {
       Eigen::Vector3d a(uj->axis.x, uj->axis.y, uj->axis.z);
-      if (!(a.norm() > 1e-9))
-        FailUrdf(robot->source, xj.line, "joint '" + xj.name + "': zero axis");
+      if (!(a.norm() > 1e-9)) FailAt(robot->source, xj.line, "joint '" + xj.name + "': zero axis");
       j.axis = a.normalized();
     }
     if (uj->limits) {
@@ -437,7 +431,7 @@ void ConvertJoints(const urdf::ModelInterface& model, const XmlSummary& summary,
         j.limits.lower = uj->limits->lower;
         j.limits.upper = uj->limits->upper;
         if (j.limits.lower > j.limits.upper) {
-          FailUrdf(robot->source, xj.line, "joint '" + xj.name + "': lower limit > upper limit");
+          FailAt(robot->source, xj.line, "joint '" + xj.name + "': lower limit > upper limit");
         }
       }
       if (uj->limits->velocity > 0) j.limits.velocity = uj->limits->velocity;
@@ -471,8 +465,8 @@ void ResolveMimicJoints(const XmlSummary& summary, Robot* robot) {
       master = joint_index.at(summary.joints[master].mimic);
     }
     if (robot->joints[master].dof < 0) {
-      FailUrdf(robot->source, summary.joints[i].line,
-               "joint '" + j.name + "': mimics fixed joint '" + robot->joints[master].name + "'");
+      FailAt(robot->source, summary.joints[i].line,
+             "joint '" + j.name + "': mimics fixed joint '" + robot->joints[master].name + "'");
     }
     j.dof = robot->joints[master].dof;
     j.mimic_multiplier = mult;
@@ -500,7 +494,7 @@ Robot ParseRobot(const std::string& urdf_xml, const std::string& source_name,
                  const std::string& base_dir, const RobotLoadOptions& options) {
   const XmlSummary summary = ValidateXml(urdf_xml, source_name);
   const urdf::ModelInterfaceSharedPtr model = urdf::parseURDF(urdf_xml);
-  if (!model) FailUrdf(source_name, 0, "urdfdom rejected the file (see the messages above)");
+  if (!model) FailAt(source_name, 0, "urdfdom rejected the file (see the messages above)");
 
   Robot robot;
   robot.name = summary.robot_name;
@@ -519,12 +513,11 @@ Robot ParseRobot(const std::string& urdf_xml, const std::string& source_name,
     link.name = order[i];
     const urdf::LinkConstSharedPtr ul = model->getLink(link.name);
     if (!ul)
-      FailUrdf(source_name, summary.link_line.at(link.name),
-               "urdfdom lost link '" + link.name + "'");
+      FailAt(source_name, summary.link_line.at(link.name), "urdfdom lost link '" + link.name + "'");
     const std::array<size_t, 2>& count = summary.geometry_count.at(link.name);
     if (ul->visual_array.size() != count[0] || ul->collision_array.size() != count[1]) {
-      FailUrdf(source_name, summary.link_line.at(link.name),
-               "link '" + link.name + "': urdfdom dropped a <visual> or <collision> element");
+      FailAt(source_name, summary.link_line.at(link.name),
+             "link '" + link.name + "': urdfdom dropped a <visual> or <collision> element");
     }
     for (size_t v = 0; v < ul->visual_array.size(); ++v) {
       const urdf::Visual& vis = *ul->visual_array[v];

@@ -17,12 +17,8 @@ namespace planning {
 namespace {
 
 namespace fs = std::filesystem;
+using internal::FailAt;
 using internal::XmlAttr;
-
-[[noreturn]] void FailSrdf(const std::string& source, int line, const std::string& message) {
-  throw std::invalid_argument(source + (line > 0 ? ":" + std::to_string(line) : "") + ": " +
-                              message);
-}
 
 }  // namespace
 
@@ -31,10 +27,10 @@ Srdf ParseSrdf(const std::string& xml, const std::string& source) {
   internal::CheckXmlDepth(xml, source);
   TiXmlDocument doc;
   doc.Parse(xml.c_str());
-  if (doc.Error()) FailSrdf(source, doc.ErrorRow(), std::string("XML error: ") + doc.ErrorDesc());
+  if (doc.Error()) FailAt(source, doc.ErrorRow(), std::string("XML error: ") + doc.ErrorDesc());
   const TiXmlElement* robot = doc.RootElement();
   if (!robot || std::string(robot->Value()) != "robot") {
-    FailSrdf(source, robot ? robot->Row() : 0, "the root element of an SRDF must be <robot>");
+    FailAt(source, robot ? robot->Row() : 0, "the root element of an SRDF must be <robot>");
   }
   internal::CheckSingleRoot(doc, source);
   internal::CheckNoTrailingText(xml, source);
@@ -47,25 +43,25 @@ Srdf ParseSrdf(const std::string& xml, const std::string& source) {
     if (tag == "disable_collisions") {
       SrdfPair p{XmlAttr(e, "link1"), XmlAttr(e, "link2"), e->Row()};
       if (p.link1.empty() || p.link2.empty()) {
-        FailSrdf(source, e->Row(), "<disable_collisions> needs link1= and link2=");
+        FailAt(source, e->Row(), "<disable_collisions> needs link1= and link2=");
       }
       s.disabled_pairs.push_back(p);
     } else if (tag == "group_state") {
       SrdfPose pose{XmlAttr(e, "name"), XmlAttr(e, "group"), {}, e->Row()};
-      if (pose.name.empty()) FailSrdf(source, e->Row(), "<group_state> without a name");
+      if (pose.name.empty()) FailAt(source, e->Row(), "<group_state> without a name");
       if (!pose_names.insert(pose.name).second) {
-        FailSrdf(source, e->Row(), "duplicate group_state '" + pose.name + "'");
+        FailAt(source, e->Row(), "duplicate group_state '" + pose.name + "'");
       }
       for (const TiXmlElement* j = e->FirstChildElement("joint"); j;
            j = j->NextSiblingElement("joint")) {
         SrdfJointValue v{XmlAttr(j, "name"), {}, j->Row()};
         if (v.joint.empty())
-          FailSrdf(source, j->Row(), "group_state '" + pose.name + "': <joint> without a name");
+          FailAt(source, j->Row(), "group_state '" + pose.name + "': <joint> without a name");
         std::vector<double> numbers;
         if (!internal::ParseNumbers(XmlAttr(j, "value"), 0, &numbers)) {
-          FailSrdf(source, j->Row(),
-                   "group_state '" + pose.name + "' joint '" + v.joint +
-                       "': value= must be finite numbers, got '" + XmlAttr(j, "value") + "'");
+          FailAt(source, j->Row(),
+                 "group_state '" + pose.name + "' joint '" + v.joint +
+                     "': value= must be finite numbers, got '" + XmlAttr(j, "value") + "'");
         }
         v.values = numbers;  // the arity is checked against the joint (NamedPose)
         pose.joints.push_back(v);
@@ -75,7 +71,7 @@ Srdf ParseSrdf(const std::string& xml, const std::string& source) {
       SrdfGroup g;
       g.name = XmlAttr(e, "name");
       g.line = e->Row();
-      if (g.name.empty()) FailSrdf(source, e->Row(), "<group> without a name");
+      if (g.name.empty()) FailAt(source, e->Row(), "<group> without a name");
       for (const TiXmlElement* c = e->FirstChildElement(); c; c = c->NextSiblingElement()) {
         const std::string ctag = c->Value();
         if (ctag == "joint") g.joints.push_back(XmlAttr(c, "name"));
@@ -89,18 +85,17 @@ Srdf ParseSrdf(const std::string& xml, const std::string& source) {
     } else if (tag == "virtual_joint") {
       SrdfVirtualJoint v{XmlAttr(e, "name"), XmlAttr(e, "type"), XmlAttr(e, "parent_frame"),
                          XmlAttr(e, "child_link"), e->Row()};
-      if (v.name.empty()) FailSrdf(source, e->Row(), "<virtual_joint> without a name");
+      if (v.name.empty()) FailAt(source, e->Row(), "<virtual_joint> without a name");
       if (v.type != "fixed" && v.type != "floating" && v.type != "planar") {
-        FailSrdf(source, e->Row(),
-                 "virtual_joint '" + v.name + "': type '" + v.type +
-                     "' (expected fixed, floating or planar)");
+        FailAt(source, e->Row(),
+               "virtual_joint '" + v.name + "': type '" + v.type +
+                   "' (expected fixed, floating or planar)");
       }
       s.virtual_joints.push_back(v);
     } else if (tag == "end_effector") {
       SrdfEndEffector ee{XmlAttr(e, "name"), XmlAttr(e, "parent_link"), XmlAttr(e, "group"),
                          e->Row()};
-      if (ee.parent_link.empty())
-        FailSrdf(source, e->Row(), "<end_effector> without a parent_link");
+      if (ee.parent_link.empty()) FailAt(source, e->Row(), "<end_effector> without a parent_link");
       s.end_effectors.push_back(ee);
     }
   }
@@ -224,10 +219,10 @@ Eigen::VectorXd NamedPose(const Robot& robot, const Srdf& srdf, const std::strin
       continue;
     }
     if (v.values.size() != std::max<size_t>(arity, 1)) {
-      FailSrdf(srdf.source, v.line,
-               "group_state '" + name + "' joint '" + v.joint + "': value= has " +
-                   std::to_string(v.values.size()) + " numbers, the joint takes " +
-                   std::to_string(std::max<size_t>(arity, 1)));
+      FailAt(srdf.source, v.line,
+             "group_state '" + name + "' joint '" + v.joint + "': value= has " +
+                 std::to_string(v.values.size()) + " numbers, the joint takes " +
+                 std::to_string(std::max<size_t>(arity, 1)));
     }
     if (j.is_mimic || j.dof < 0) continue;
     const double value = v.values[0];
@@ -236,7 +231,7 @@ Eigen::VectorXd NamedPose(const Robot& robot, const Srdf& srdf, const std::strin
                                base::FormatShortest(value) + " outside its limits [" +
                                base::FormatShortest(j.limits.lower) + ", " +
                                base::FormatShortest(j.limits.upper) + "]";
-      if (warnings == nullptr) FailSrdf(srdf.source, v.line, what);
+      if (warnings == nullptr) FailAt(srdf.source, v.line, what);
       std::string w = srdf.source;
       w.append(":").append(std::to_string(v.line)).append(": ").append(what);
       warnings->push_back(w);
@@ -262,7 +257,7 @@ void AddGroupDofs(const Robot& robot, const Srdf& srdf, const std::string& name,
     what.append(have.empty() ? std::string("the SRDF has none") : "have: " + have).append(")");
     throw std::invalid_argument(what);
   }
-  if (depth > 32) FailSrdf(srdf.source, group->line, "groups nested in a cycle at '" + name + "'");
+  if (depth > 32) FailAt(srdf.source, group->line, "groups nested in a cycle at '" + name + "'");
   const auto add_joint = [&](int j) {
     if (robot.joints[j].dof >= 0) dofs->insert(robot.joints[j].dof);
   };
@@ -291,8 +286,8 @@ void AddGroupDofs(const Robot& robot, const Srdf& srdf, const std::string& name,
       l = robot.joints[j].parent_link;
     }
     if (l != base_link) {
-      FailSrdf(srdf.source, group->line,
-               "group '" + name + "': chain base '" + base + "' is not above tip '" + tip + "'");
+      FailAt(srdf.source, group->line,
+             "group '" + name + "': chain base '" + base + "' is not above tip '" + tip + "'");
     }
   }
   for (const std::string& sub : group->subgroups) AddGroupDofs(robot, srdf, sub, depth + 1, dofs);

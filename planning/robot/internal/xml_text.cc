@@ -1,8 +1,6 @@
 // XML depth pre-scan and strict number lists (planning/robot/internal/xml_text.h).
 #include "planning/robot/internal/xml_text.h"
 
-#include "base/numbers.h"
-
 #include <tinyxml.h>
 
 #include <cerrno>
@@ -14,7 +12,14 @@
 #include <stdexcept>
 #include <utility>
 
+#include "base/numbers.h"
+
 namespace planning::internal {
+
+void FailAt(const std::string& source, int line, const std::string& message) {
+  throw std::invalid_argument(source + (line > 0 ? ":" + std::to_string(line) : "") + ": " +
+                              message);
+}
 
 void CheckXmlUtf8(const std::string& xml, const std::string& source) {
   int line = 1;

@@ -35,6 +35,10 @@ void CheckNoTrailingText(const std::string& xml, const std::string& source);
 
 bool ParseNumbers(const std::string& text, int count, std::vector<double>* out);
 
+// Throws std::invalid_argument "<source>:<line>: <message>" (no ":<line>" when line <= 0): the
+// error of the URDF and SRDF readers, naming the file and the element's line.
+[[noreturn]] void FailAt(const std::string& source, int line, const std::string& message);
+
 // Attribute value or "" when absent.
 std::string XmlAttr(const TiXmlElement* e, const char* name);
 
