@@ -11,7 +11,8 @@ Every geometry draws, from random.Random(seed) in this order:
   pole_translation   uniform in [-0.1, 0.1] m along each of the pole's two axes perpendicular to
                      its length (written in world coordinates)
   target_offset      uniform in [-0.1, 0.1] m per pole-frame axis, plus the arm's nominal offset
-The arm cycles through ARMS of the set. The 12-link arm's nominal target is 0.8 m nearer its base
+The arm cycles through ARMS of the set. The tuning set had 8 geometries until 2026-12-06 and 24
+since: the draws are sequential, so its first 8 files did not change. The 12-link arm's nominal target is 0.8 m nearer its base
 along the pole (the shipped target is out of its reach: 0.25 m short when unwrapped).
 Run from anywhere: python3 scripts/make_unwrap_geometries.py
 """
@@ -27,7 +28,7 @@ OUT = os.path.join(ROOT, "assets/scenarios/unwrap_geometries")
 NOMINAL = {12: (0.0, 0.0, 0.8), 20: (0.0, 0.0, 0.0), 30: (0.0, 0.0, 0.0)}
 SETS = {
     # name: (seed, count, arms)
-    "tuning": (1, 8, (20, 12, 30, 20)),
+    "tuning": (1, 24, (20, 12, 30, 20)),
     "test": (2, 20, (12, 30)),
 }
 

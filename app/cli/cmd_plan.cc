@@ -213,8 +213,8 @@ void AddPlanCommands(CLI::App* root, CommandList* commands) {
   CLI::App* plan = root->add_subcommand(
       "plan", "Plan a scenario with AICO (topology task variables) or an RRT baseline");
   plan->add_option("SCENARIO", pa->scenario,
-                   "scenario JSON file, or a name in assets/scenarios/ (unwrap, "
-                   "reach_through_ring)")
+                   "scenario JSON file, or a name in assets/scenarios/ (unwrap, unwrap_chord, "
+                   "reach_through_ring, tinyarm_ring)")
       ->required();
   plan->add_option("--planner", pa->planner,
                    PlannerChoices() +

@@ -93,10 +93,12 @@ std::unique_ptr<Feature> MakeBoxFeature(const Robot& robot, int link, const Eige
 // static object chain O (3 × N_B): W = topology::WritheMatrix(P, O) ((N_A−1) × (N_B−1), rows =
 // robot segments). kMatrix: y = vec(W) row-major (dim (N_A−1)(N_B−1)); kTotal: y = Σ_ij W_ij
 // (dim 1). J by the chain rule ∂W/∂P · ∂P/∂q (topology::ChainWritheJacobian with ChainJacobian).
+// closed_by_chord: P is closed by its chord first (its first point appended, N_A rows; see
+// writhe_feature.h).
 enum class WritheOutput { kMatrix, kTotal };
 std::unique_ptr<Feature> MakeWritheFeature(const Robot& robot, int chain,
                                            const Eigen::Matrix3Xd& object_chain,
-                                           WritheOutput output);
+                                           WritheOutput output, bool closed_by_chord = false);
 
 // Winding number of the robot chain about an axis (dim 1): y = topology::WindingNumber(P(q), axis)
 // (signed variant), J = Σ_k (∂w/∂p_k)ᵀ ∂p_k/∂q.

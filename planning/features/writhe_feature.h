@@ -14,15 +14,22 @@ namespace planning {
 // W = topology::WritheMatrix(P, O) ((N_A−1) × (N_B−1), rows = robot segments).
 //   kMatrix: y = vec(W) row-major (dim (N_A−1)(N_B−1)), J = ∂W/∂P · ∂P/∂q (ChainWritheJacobian);
 //   kTotal:  y = Σ_ij W_ij (dim 1), J = Σ_k (∂Σ/∂p_k)ᵀ ∂p_k/∂q (1 × n).
+// With closed_by_chord the robot chain is closed by its chord first: P gains its first point again
+// as point N_A, so W has N_A rows (the last: the chord from the chain's end back to its start),
+// and with O a straight pole axis Σ W tells the turns the closed chain makes round the pole,
+// wherever its two ends are: the difference of the solid angles the loop subtends at O's two ends
+// over 4π, a whole number for an infinitely long pole.
 // FeatureData: chain points, chain Jacobian, W and the writhe workspaces. `chain` must be valid
 // and O have >= 2 finite points.
 class WritheFeature : public Feature {
  public:
-  WritheFeature(const Robot& robot, int chain, const Eigen::Matrix3Xd& object, WritheOutput out)
+  WritheFeature(const Robot& robot, int chain, const Eigen::Matrix3Xd& object, WritheOutput out,
+                bool closed_by_chord = false)
       : chain_(chain),
         object_(object),
         output_(out),
-        rows_(ChainSize(robot, chain) - 1),
+        closed_by_chord_(closed_by_chord),
+        rows_(ChainSize(robot, chain) - (closed_by_chord ? 0 : 1)),
         cols_(static_cast<int>(object.cols()) - 1) {}
   int dim() const override { return output_ == WritheOutput::kTotal ? 1 : rows_ * cols_; }
   std::string name() const override {
@@ -36,6 +43,7 @@ class WritheFeature : public Feature {
   int chain_;
   Eigen::Matrix3Xd object_;
   WritheOutput output_;
+  bool closed_by_chord_;
   int rows_, cols_;
 };
 

@@ -39,7 +39,7 @@ double ReportWritheTotal(const Scenario& s, const Eigen::VectorXd& q, Eigen::Mat
 }
 
 double ReportWritheTotal(const Scenario& s, const ScenarioState& w, const Eigen::VectorXd& q,
-                         Eigen::MatrixXd* matrix) {
+                         Eigen::MatrixXd* matrix, bool closed_by_chord) {
   if (s.report_chain < 0) {
     if (matrix != nullptr) matrix->resize(0, 0);
     return 0.0;
@@ -48,6 +48,10 @@ double ReportWritheTotal(const Scenario& s, const ScenarioState& w, const Eigen:
   ForwardKinematics(s.robot, q, &kin);
   Eigen::Matrix3Xd P;
   ChainPoints(s.robot, kin, s.report_chain, &P);
+  if (closed_by_chord) {
+    P.conservativeResize(3, P.cols() + 1);
+    P.col(P.cols() - 1) = P.col(0);
+  }
   const Eigen::MatrixXd W = topology::WritheMatrix(P, w.report_object_chain);
   if (matrix != nullptr) *matrix = W;
   return W.sum();

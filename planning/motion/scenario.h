@@ -5,8 +5,12 @@
 // Start coil: the start configuration is found by writhe continuation from q = 0 of the robot
 // (the 20-link arm's zero pose is a coil around the pole): small damped Gauss–Newton steps that
 // move the total writhe of writhe_report by `step` at a time under the collision and joint-limit
-// tasks, until 360°·|writhe| = wrap_deg. Continuing to writhe 0 gives the "unwrapped" pose used to
-// initialise the final-pose estimate (the goal). Deterministic.
+// tasks, until 360°·|writhe| = wrap_deg. The start is collision-free whenever a collision-free
+// configuration is reached: a continuation that ends in collision backs off to its last
+// collision-free step, and one that never leaves a colliding q = 0 (a moved pole through the zero
+// pose) is run again from q = 0 pushed out of collision first; either may stop short of wrap_deg.
+// Continuing to writhe 0 gives the "unwrapped" pose used to initialise the final-pose estimate (the
+// goal). Deterministic.
 //
 // Goal: the final-pose estimate q̂_T (final_pose.h) from the configured init; when it misses an end
 // condition of the success criteria (CheckEndState with state checks, success.h: limits, collision,
@@ -49,7 +53,11 @@ struct ScenarioOverrides {
 
 struct SuccessCriteria {
   double writhe_total_below = -1.0;  // < 0: not checked
-  int position_task = -1;            // index into problem.tasks; −1: not checked
+  // The end condition's writhe is that of the report chain closed by its chord (the writhe
+  // feature's closure, writhe_feature.h), which tells the turns the chain makes round the pole
+  // wherever its ends are (a whole number for an infinitely long pole). false: the open chain's.
+  bool writhe_closed_by_chord = false;
+  int position_task = -1;  // index into problem.tasks; −1: not checked
   double position_tolerance = 0.05;
   int box_task = -1;  // index of a "box" task whose point must end inside its box (no margin)
   // Winding of the report chain about the report object chain's line (first to last point), in
@@ -192,9 +200,12 @@ double ReportWinding(const Scenario& scenario, const Eigen::VectorXd& q);
 topology::Axis ReportAxis(const Scenario& scenario, const ScenarioState& state);
 topology::Axis ReportAxis(const Scenario& scenario);
 
-// Total writhe and writhe matrix of the report pair at q (empty matrix if no report pair).
+// Total writhe and writhe matrix of the report pair at q (empty matrix if no report pair); with
+// closed_by_chord the report chain is closed by its chord first (the matrix gains a last row, the
+// chord's), as the writhe feature's closure.
 double ReportWritheTotal(const Scenario& scenario, const ScenarioState& state,
-                         const Eigen::VectorXd& q, Eigen::MatrixXd* matrix = nullptr);
+                         const Eigen::VectorXd& q, Eigen::MatrixXd* matrix = nullptr,
+                         bool closed_by_chord = false);
 double ReportWritheTotal(const Scenario& scenario, const Eigen::VectorXd& q,
                          Eigen::MatrixXd* matrix = nullptr);
 

@@ -7,6 +7,7 @@
 #include "planning/motion/success.h"
 #include "planning/robot/kinematics.h"
 #include "topology/winding.h"
+#include "topology/writhe.h"
 
 namespace planning::internal {
 
@@ -16,7 +17,8 @@ int FindIn(const SpecName& n, int (*find)(const Robot&, const std::string&), con
 
 Eigen::Matrix3Xd ObjectChain(const ScenarioState& w, const SpecName& object,
                              const SpecName& chain) {
-  const int o = base::PrefixErrors(object.where, [&] { return FindObject(w.objects, object.name); });
+  const int o =
+      base::PrefixErrors(object.where, [&] { return FindObject(w.objects, object.name); });
   const int c = FindIn(chain, FindChain, w.objects.objects[o].model);
   return ObjectChainPoints(w.objects, o, c);
 }
@@ -49,7 +51,8 @@ std::unique_ptr<Feature> BuildFeature(const Scenario& s, const ScenarioState& w,
       case FeatureType::kBox:
         return MakeBoxFeature(r, link(), f.offset, f.center, f.half_extent, f.margin);
       case FeatureType::kWrithe:
-        return MakeWritheFeature(r, chain(), ObjectChain(w, f.object, f.object_chain), f.output);
+        return MakeWritheFeature(r, chain(), ObjectChain(w, f.object, f.object_chain), f.output,
+                                 f.closed_by_chord);
       case FeatureType::kWinding: {
         if (!f.object.name.empty()) return MakeWindingFeature(r, chain(), ObjectLine(w, f));
         topology::Axis axis;
@@ -77,6 +80,38 @@ void HoldFromReachAt(double reach_at, Task* task) {
     task->target.col(t) = (1.0 - s) * y0 + s * yT;
   }
 }
+
+namespace {
+
+// For a writhe target's "chord_to": the total writhe between the straight segment from the
+// writhe chain's first point at q0 to the final target of the named position task and the
+// feature's object chain.
+double ChordWrithe(const Scenario& s, const ScenarioState& w, const FeatureSpec& f,
+                   const SpecName& task, const Eigen::VectorXd& q0) {
+  const TaskSpec* to = nullptr;
+  for (const TaskSpec& t : s.spec.tasks) {
+    if (t.name == task.name) to = &t;
+  }
+  if (to == nullptr) throw std::invalid_argument(task.where + ": no task \"" + task.name + "\"");
+  if (to->feature.type != FeatureType::kPosition ||
+      (to->target.kind != TargetKind::kValue && to->target.kind != TargetKind::kInterpolate) ||
+      (!to->target.scalar && to->target.value.size() != 3)) {
+    throw std::invalid_argument(task.where + ": task \"" + task.name +
+                                "\" is not a \"position\" task with a point target");
+  }
+  KinematicsData kin(s.robot);
+  ForwardKinematics(s.robot, q0, &kin);
+  Eigen::Matrix3Xd chain;
+  ChainPoints(s.robot, kin, FindIn(f.chain, FindChain, s.robot), &chain);
+  Eigen::Matrix3Xd chord(3, 2);
+  // The spec's frames are resolved: the value is in world coordinates.
+  const Eigen::Vector3d end = to->target.scalar ? Eigen::Vector3d::Constant(to->target.value[0])
+                                                : Eigen::Vector3d(to->target.value);
+  chord << chain.col(0), end;
+  return topology::WritheMatrix(chord, ObjectChain(w, f.object, f.object_chain)).sum();
+}
+
+}  // namespace
 
 // Task from its spec; target resolution needs q0 (and q̂_T for "final_pose").
 Task BuildTask(const Scenario& s, const ScenarioState& w, const TaskSpec& spec,
@@ -106,10 +141,13 @@ Task BuildTask(const Scenario& s, const ScenarioState& w, const TaskSpec& spec,
           &task, target.kind == TargetKind::kZero ? Eigen::VectorXd::Zero(dim) : value(), mid, T);
       task.precision[T] = fin;
       break;
-    case TargetKind::kInterpolate:
-      SetInterpolatedTarget(&task, FeatureValue(s.robot, *task.feature, q0), value(), mid, fin, T);
+    case TargetKind::kInterpolate: {
+      Eigen::VectorXd end = value();
+      if (target.chord_to) end.array() += ChordWrithe(s, w, spec.feature, *target.chord_to, q0);
+      SetInterpolatedTarget(&task, FeatureValue(s.robot, *task.feature, q0), end, mid, fin, T);
       HoldFromReachAt(target.reach_at, &task);
       break;
+    }
     case TargetKind::kFinalPose:
       if (q_final == nullptr) {
         throw std::invalid_argument(target.where +

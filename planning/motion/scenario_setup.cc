@@ -29,11 +29,11 @@ using internal::ObjectChain;
 
 namespace {
 
-// Writhe continuation (see scenario.h): from q toward total writhe `target` in steps.
-// Every accepted configuration (from included) is appended to `path` if not null.
-Eigen::VectorXd WritheContinuation(const Scenario& s, const Eigen::VectorXd& from, double target,
-                                   double step, double margin,
-                                   std::vector<Eigen::VectorXd>* path = nullptr) {
+// One writhe continuation (see WritheContinuation); with push_out, a `from` in collision is first
+// pushed out of it at its own writhe (up to 100 steps).
+Eigen::VectorXd ContinueWrithe(const Scenario& s, const Eigen::VectorXd& from, double target,
+                               double step, double margin, bool push_out,
+                               std::vector<Eigen::VectorXd>* path) {
   MotionProblem p;
   p.robot = &s.robot;
   p.q0 = from;
@@ -61,7 +61,29 @@ Eigen::VectorXd WritheContinuation(const Scenario& s, const Eigen::VectorXd& fro
   fo.alpha = 0.5;
   Eigen::VectorXd q = from;
   if (path != nullptr) path->push_back(q);
+  CollisionData coll(s.robot, s.initial.env, s.collision);
+  KinematicsData kin(s.robot);
+  const auto collision_free = [&](const Eigen::VectorXd& x) {
+    ForwardKinematics(s.robot, x, &kin);
+    return !InCollision(s.robot, kin, &coll);
+  };
+  std::optional<Eigen::VectorXd> last_free;
+  size_t last_free_size = 0;  // path->size() when last_free was accepted
+  const auto remember_if_free = [&] {
+    if (!collision_free(q)) return;
+    last_free = q;
+    last_free_size = path != nullptr ? path->size() : 0;
+  };
+  remember_if_free();
   double current = ReportWritheTotal(s, q);
+  for (int k = 0; push_out && k < 100 && !last_free; ++k) {
+    p.q0 = q;
+    p.tasks[0].target.setConstant(current);
+    q = EstimateFinalPose(p, fo, &ws).q;
+    current = ReportWritheTotal(s, q);
+    if (path != nullptr) path->push_back(q);
+    remember_if_free();
+  }
   for (int k = 0; k < 1000 && std::abs(current - target) > 0.005; ++k) {
     const double next =
         current + std::copysign(std::min(step, std::abs(target - current)), target - current);
@@ -73,8 +95,36 @@ Eigen::VectorXd WritheContinuation(const Scenario& s, const Eigen::VectorXd& fro
     q = r.q;
     current = moved;
     if (path != nullptr) path->push_back(q);
+    remember_if_free();
+  }
+  if (last_free && !collision_free(q)) {
+    if (path != nullptr) path->resize(last_free_size);
+    return *last_free;
   }
   return q;
+}
+
+// Writhe continuation (see scenario.h): from q toward total writhe `target` in steps.
+// Every accepted configuration (from included) is appended to `path` if not null. The collision
+// task is a soft cost, so a continuation may end in collision. A start coil must be a state the
+// robot can be in: such a continuation backs off to its last collision-free configuration (and
+// `path` ends there), even if that stops it short of the angle asked; one that was never
+// collision-free (a moved pole through the robot's zero pose, which the steps need not leave) is
+// run again from `from` pushed out of collision first. A continuation that ends collision-free is
+// kept as it is.
+Eigen::VectorXd WritheContinuation(const Scenario& s, const Eigen::VectorXd& from, double target,
+                                   double step, double margin,
+                                   std::vector<Eigen::VectorXd>* path = nullptr) {
+  std::vector<Eigen::VectorXd> first;
+  const Eigen::VectorXd q = ContinueWrithe(s, from, target, step, margin, false, &first);
+  CollisionData coll(s.robot, s.initial.env, s.collision);
+  KinematicsData kin(s.robot);
+  ForwardKinematics(s.robot, q, &kin);
+  if (!InCollision(s.robot, kin, &coll)) {
+    if (path != nullptr) path->insert(path->end(), first.begin(), first.end());
+    return q;
+  }
+  return ContinueWrithe(s, from, target, step, margin, true, path);
 }
 
 // `path` (at least one configuration) resampled at num_points equally spaced joint-space arc
@@ -462,6 +512,7 @@ std::unique_ptr<Scenario> SetUpScenario(ScenarioSpec spec,
 
   const SuccessSpec& su = sp.success;
   s->success.writhe_total_below = su.writhe_total_below;
+  s->success.writhe_closed_by_chord = su.writhe_closed_by_chord;
   if (su.position_task) s->success.position_task = TaskIndex(*s, *su.position_task);
   s->success.position_tolerance = su.position_tolerance;
   if (su.box_task) s->success.box_task = TaskIndex(*s, *su.box_task);

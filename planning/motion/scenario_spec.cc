@@ -54,7 +54,18 @@ E Parse(const base::JsonNode& n, const std::string& what) {
 }
 
 SpecName Name(const base::JsonNode& n) { return {n.String(), n.Where()}; }
+
 SpecName Name(const base::JsonNode& n, const std::string& key) { return Name(n.At(key)); }
+
+// n[key]: "open" (also when absent) -> false, "chord" -> true; anything else is an error.
+bool ParseClosure(const base::JsonNode& n, const char* key) {
+  const std::string closure = n.String(key, "open");
+  if (closure != "open" && closure != "chord") {
+    throw std::invalid_argument(
+        base::StrCat(n.Where(), ".", key, ": \"", closure, "\" is not \"open\" or \"chord\""));
+  }
+  return closure == "chord";
+}
 
 // The names of the objects read so far, in file order.
 using NameList = std::vector<std::string>;
@@ -202,11 +213,12 @@ FeatureSpec ReadFeature(const base::JsonNode& n, const NameList& objects) {
       f.margin = n.Number("margin", 0.0);
       break;
     case FeatureType::kWrithe:
-      n.CheckKeys({"type", "chain", "object", "object_chain", "output"});
+      n.CheckKeys({"type", "chain", "object", "object_chain", "output", "closure"});
       f.chain = Name(n, "chain");
       f.object = Name(n, "object");
       f.object_chain = Name(n, "object_chain");
       if (n.Has("output")) f.output = Parse<WritheOutput>(n.At("output"), "writhe output");
+      f.closed_by_chord = ParseClosure(n, "closure");
       break;
     case FeatureType::kWinding:
       n.CheckKeys(
@@ -261,7 +273,7 @@ TaskSpec ReadTask(const base::JsonNode& n, const NameList& objects) {
   t.target.where = n.Where() + ".target";
   if (n.Has("target")) {
     const base::JsonNode tn = n.At("target");
-    tn.CheckKeys({"type", "value", "reach_at", "frame"});
+    tn.CheckKeys({"type", "value", "reach_at", "frame", "chord_to"});
     t.target.kind =
         tn.Has("type") ? Parse<TargetKind>(tn.At("type"), "target type") : TargetKind::kValue;
     if (tn.Has("reach_at")) {
@@ -274,6 +286,13 @@ TaskSpec ReadTask(const base::JsonNode& n, const NameList& objects) {
       t.target.value_where = vn.Where();
       t.target.scalar = vn.IsNumber();
       t.target.value = vn.IsNumber() ? Eigen::VectorXd::Constant(1, vn.Number()) : vn.Vector();
+    }
+    if (tn.Has("chord_to")) {
+      t.target.chord_to = Name(tn, "chord_to");
+      if (t.target.kind != TargetKind::kInterpolate)
+        tn.At("chord_to").Fail("\"chord_to\" needs an \"interpolate\" target");
+      if (t.feature.type != FeatureType::kWrithe || t.feature.output != WritheOutput::kTotal)
+        tn.At("chord_to").Fail("\"chord_to\" needs a \"writhe\" feature with output \"total\"");
     }
     t.target.frame = ReadFrame(tn, objects);
     if (t.target.frame) {
@@ -312,9 +331,11 @@ FinalPoseSpec ReadFinalPose(const base::JsonNode& n) {
 }
 
 SuccessSpec ReadSuccess(const base::JsonNode& n) {
-  n.CheckKeys({"writhe_total_below", "position", "inside_box", "winding", "through_loop"});
+  n.CheckKeys({"writhe_total_below", "writhe_closure", "position", "inside_box", "winding",
+               "through_loop"});
   SuccessSpec s;
   s.writhe_total_below = n.Number("writhe_total_below", -1.0);
+  s.writhe_closed_by_chord = ParseClosure(n, "writhe_closure");
   if (n.Has("position")) {
     const base::JsonNode pn = n.At("position");
     pn.CheckKeys({"task", "tolerance"});
@@ -332,12 +353,7 @@ SuccessSpec ReadSuccess(const base::JsonNode& n) {
     s.winding_where = wn.Where();
     s.winding_max_jump = wn.Number("max_jump", 0.1);
     s.winding_final_below = wn.Number("final_below", 0.1);
-    const std::string closure = wn.String("final_closure", "open");
-    if (closure != "open" && closure != "chord") {
-      throw std::invalid_argument(base::StrCat(wn.Where(), ".final_closure: \"", closure,
-                                               "\" is not \"open\" or \"chord\""));
-    }
-    s.winding_closed_by_chord = closure == "chord";
+    s.winding_closed_by_chord = ParseClosure(wn, "final_closure");
     const std::string tunnel = wn.String("tunnel", "line");
     if (tunnel != "line" && tunnel != "object") {
       throw std::invalid_argument(

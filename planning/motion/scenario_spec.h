@@ -68,6 +68,12 @@
 //                            "interpolate"); reach_at: number in (0, 1], default 1 (for
 //                            "interpolate" and "final_pose"): the target moves linearly from
 //                            y(q0) to its end value until t = reach_at·T and holds it after;
+//                            chord_to: name of a "position" task (for "interpolate" targets of a
+//                            "writhe" feature with output "total"): value is relative to the
+//                            writhe of the straight segment from the chain's first point at q0 to
+//                            that task's final target, the writhe an unwrapped chain ending there
+//                            has; y*_T = value + that writhe (near 0 on the shipped unwrap scene,
+//                            whose base and target are at about one angle round the pole)
 //                            frame: object name (for "value" and "interpolate" targets of a
 //                            "position" feature, value [3]): value is a point in that object's
 //                            frame (its origin: [0, 0, 0]), so moving, tilting or re-placing the
@@ -90,7 +96,9 @@
 //   success         object   what a plan must meet (every planner alike; planner.h JudgePlan).
 //                            Always: the path resampled at check_resolution is collision-free and
 //                            within the joint limits. writhe_total_below: |total writhe of the
-//                            report pair| at the end (default: not checked); position: {task: name
+//                            report pair| at the end (default: not checked); writhe_closure:
+//                            "open" (default) | "chord" (that writhe with the report chain closed
+//                            by its chord, as the writhe feature's closure); position: {task: name
 //                            (required), tolerance: m, default 0.05}: distance of the task's
 //                            feature to its final target; inside_box: name of a "box" task whose
 //                            point must end inside its box (centre ± half_extent; the task's
@@ -157,7 +165,9 @@
 //   box             link (required), offset [3] (default 0), center [3], half_extent [3]
 //                   (required), margin (m, default 0), frame (object name: center is a point in
 //                   that object's frame; the box's axes stay the world's)
-//   writhe          chain, object, object_chain (required), output: "matrix" (default) | "total"
+//   writhe          chain, object, object_chain (required), output: "matrix" (default) | "total",
+//                   closure: "open" (default) | "chord" (the chain closed by its chord from its
+//                   last point back to its first: writhe_feature.h)
 //   winding         chain (required), and either axis_point [3] and axis_direction [3] (with
 //                   frame: an object name, both in that object's frame), or object and
 //                   object_chain (the line through that chain's first and last point)
@@ -274,6 +284,7 @@ struct FeatureSpec {
   double margin = 0.0;            // the type's default when absent (collision: 0.05)
   double prismatic_margin = 0.0;  // joint_limits: the margin of prismatic joints, m
   WritheOutput output = WritheOutput::kMatrix;
+  bool closed_by_chord = false;  // writhe: "closure": "chord" (default "open")
   // box: center; winding: axis_point and axis_direction; axis_alignment: direction, in the frame
   // of this object (unset: world).
   std::optional<SpecName> frame;
@@ -296,8 +307,9 @@ struct TargetSpec {
   Eigen::VectorXd value;  // kValue / kInterpolate
   bool scalar = false;    // value was one number: every component
   double reach_at = 1.0;  // kInterpolate / kFinalPose: fraction of T at which y_T is reached
-  std::optional<SpecName> frame;  // value is a point in this object's frame (unset: world)
-  std::string where;              // of "target"
+  std::optional<SpecName> frame;     // value is a point in this object's frame (unset: world)
+  std::optional<SpecName> chord_to;  // a position task: value is relative to the chord's writhe
+  std::string where;                 // of "target"
   std::string value_where;
 };
 
@@ -325,7 +337,8 @@ struct FinalPoseSpec {
 };
 
 struct SuccessSpec {
-  double writhe_total_below = -1.0;  // < 0: not checked
+  double writhe_total_below = -1.0;     // < 0: not checked
+  bool writhe_closed_by_chord = false;  // "writhe_closure": "chord" (default "open")
   std::optional<SpecName> position_task;
   double position_tolerance = 0.05;
   std::optional<SpecName> box_task;

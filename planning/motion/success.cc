@@ -232,7 +232,7 @@ EndState CheckEndState(const Scenario& s, const ScenarioState& w, const Eigen::V
     return false;
   };
   Eigen::MatrixXd W;
-  e.writhe_total = ReportWritheTotal(s, w, q, &W);
+  e.writhe_total = ReportWritheTotal(s, w, q, &W, c.writhe_closed_by_chord);
   if (W.size() > 0) {
     Eigen::Index row = 0, col = 0;
     W.cwiseAbs().maxCoeff(&row, &col);

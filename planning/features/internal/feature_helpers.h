@@ -50,6 +50,9 @@ struct ChainData : FeatureData {
   topology::WritheJacobian wjac;
   topology::WritheWorkspace ws;
   Eigen::Matrix3Xd grad, grad_object;
+  // The chain closed by its chord (WritheFeature with closed_by_chord): 3 × (N+1), 3(N+1) × n.
+  Eigen::Matrix3Xd closed_P;
+  Eigen::MatrixXd closed_dP;
 };
 
 }  // namespace planning::internal

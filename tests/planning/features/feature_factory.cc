@@ -54,6 +54,11 @@ std::vector<FeatureCase> AllFeatureCases(const FeatureFixture& f) {
   // points of mesh-vs-primitive distances come back in swapped order: check primitives only.
   options.self_collision = false;
   cases.push_back({"collision", MakeCollisionFeature(r, f.primitive_env, options, 1.0)});
+  // Appended last: a case's random configurations are seeded by its index.
+  cases.push_back({"writhe_matrix_chord", MakeWritheFeature(r, arm, ring, WritheOutput::kMatrix,
+                                                            /*closed_by_chord=*/true)});
+  cases.push_back({"writhe_total_chord", MakeWritheFeature(r, arm, ring, WritheOutput::kTotal,
+                                                           /*closed_by_chord=*/true)});
   return cases;
 }
 

@@ -8,6 +8,7 @@
 
 #include "planning/robot/kinematics.h"
 #include "tests/planning/features/feature_factory.h"
+#include "topology/writhe.h"
 
 namespace planning::testing {
 namespace {
@@ -91,6 +92,38 @@ INSTANTIATE_TEST_SUITE_P(AllFeatures, FeatureJacobianTest, ::testing::Range(0, N
                          [](const ::testing::TestParamInfo<int>& info) {
                            return AllFeatureCases(SharedFixture())[info.param].name;
                          });
+
+// Closed by its chord, the writhe feature is the open one of the chain with its first point
+// appended: one more row (the chord's), and the matrix's other rows unchanged.
+TEST(Features, WritheClosedByChordAppendsTheChord) {
+  const FeatureFixture& f = SharedFixture();
+  const Robot& r = f.robot;
+  const int arm = FindChain(r, "arm");
+  const Eigen::Matrix3Xd ring = ObjectChainPoints(f.env, FindObject(f.env, "ring"), 0);
+  const auto open = MakeWritheFeature(r, arm, ring, WritheOutput::kMatrix);
+  const auto closed = MakeWritheFeature(r, arm, ring, WritheOutput::kMatrix, true);
+  const auto closed_total = MakeWritheFeature(r, arm, ring, WritheOutput::kTotal, true);
+  const int cols = static_cast<int>(ring.cols()) - 1;
+  ASSERT_EQ(closed->dim(), open->dim() + cols);
+  Eigen::VectorXd q = Eigen::VectorXd::LinSpaced(num_dofs(r), -0.4, 0.5);
+  KinematicsData kin(r);
+  ForwardKinematics(r, q, &kin);
+  Eigen::Matrix3Xd P;
+  ChainPoints(r, kin, arm, &P);
+  Eigen::Matrix3Xd loop(3, P.cols() + 1);
+  loop << P, P.col(0);
+  const Eigen::MatrixXd W = topology::WritheMatrix(loop, ring);
+  Eigen::VectorXd y_open(open->dim()), y(closed->dim()), total(1);
+  auto d_open = open->CreateData(r);
+  auto d = closed->CreateData(r);
+  auto d_total = closed_total->CreateData(r);
+  open->Eval(r, kin, d_open.get(), y_open, nullptr);
+  closed->Eval(r, kin, d.get(), y, nullptr);
+  closed_total->Eval(r, kin, d_total.get(), total, nullptr);
+  EXPECT_LT((y.head(open->dim()) - y_open).lpNorm<Eigen::Infinity>(), 1e-15);
+  for (int j = 0; j < cols; ++j) EXPECT_NEAR(y[open->dim() + j], W(W.rows() - 1, j), 1e-15);
+  EXPECT_NEAR(total[0], W.sum(), 1e-12);
+}
 
 TEST(Features, BadArgumentsThrow) {
   const FeatureFixture& f = SharedFixture();

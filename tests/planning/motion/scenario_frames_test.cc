@@ -11,6 +11,7 @@
 
 #include "planning/motion/scenario.h"
 #include "planning/motion/scenario_spec.h"
+#include "planning/motion/success.h"
 #include "planning/motion/unwrap_geometry.h"
 #include "planning/robot/pose.h"
 
@@ -242,6 +243,26 @@ TEST(UnwrapGeometry, ReadsAppliesAndRejects) {
   expect_error("geo_tilt.json", R"({"pole_tilt_deg": [0, 95]})", "pole_tilt_deg: component 1");
   expect_error("geo_key.json", R"({"pole_radias": 0.03})", "unknown key 'pole_radias'");
   expect_error("geo_arm.json", R"({"arm": {"urdf": "nope.urdf"}})", "arm.urdf: cannot find");
+}
+
+// On test_01 (30-link arm, pole tilted by 4.2° and 4.3°, moved and resized) the pole passes through
+// the arm's zero pose, and the writhe continuation to 540° used to end there too: the start
+// collided (arm_link_19 in the pole) and no planner could solve the run. The continuation is now
+// run again from the zero pose pushed out of collision, and the start is collision-free near the
+// angle asked. At 720° the first continuation ends collision-free and is kept.
+TEST(UnwrapGeometry, AStartCoilIsCollisionFreeWhenThePolePassesThroughTheZeroPose) {
+  const UnwrapGeometry g =
+      ReadUnwrapGeometry(kAssets + "scenarios/unwrap_geometries/test/test_01_arm30.json");
+  for (const double wrap : {540.0, 720.0}) {
+    SCOPED_TRACE("wrap " + std::to_string(wrap));
+    ScenarioSpec spec = ParseScenarioSpec(kUnwrap);
+    ApplyUnwrapGeometry(g, &spec);
+    const auto s = SetUpScenario(spec, wrap);
+    const Eigen::VectorXd zero = Eigen::VectorXd::Zero(s->initial.problem.q0.size());
+    EXPECT_FALSE(CheckEndState(*s, zero, true).collision_free);  // the pole through the zero pose
+    EXPECT_TRUE(CheckEndState(*s, s->initial.problem.q0, true).collision_free);
+    EXPECT_NEAR(s->start_wrap_deg, wrap, 5.0);
+  }
 }
 
 }  // namespace
