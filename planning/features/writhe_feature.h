@@ -15,10 +15,11 @@ namespace planning {
 //   kMatrix: y = vec(W) row-major (dim (N_A−1)(N_B−1)), J = ∂W/∂P · ∂P/∂q (ChainWritheJacobian);
 //   kTotal:  y = Σ_ij W_ij (dim 1), J = Σ_k (∂Σ/∂p_k)ᵀ ∂p_k/∂q (1 × n).
 // With closed_by_chord the robot chain is closed by its chord first: P gains its first point again
-// as point N_A, so W has N_A rows (the last: the chord from the chain's end back to its start),
-// and with O a straight pole axis Σ W tells the turns the closed chain makes round the pole,
-// wherever its two ends are: the difference of the solid angles the loop subtends at O's two ends
-// over 4π, a whole number for an infinitely long pole.
+// as point N_A, so W has N_A rows (the last: the chord from the chain's end back to its start)
+// and kMatrix has dim N_A(N_B−1). With O a straight pole axis, Σ W tells the turns the closed chain
+// makes round the pole: it is the change of the solid angle the loop subtends, followed
+// continuously along O from its first point to its last, over 4π; a whole number for an
+// infinitely long pole, near one when O's ends are far from the loop.
 // FeatureData: chain points, chain Jacobian, W and the writhe workspaces. `chain` must be valid
 // and O have >= 2 finite points.
 class WritheFeature : public Feature {

@@ -91,8 +91,9 @@ struct PlanReport {
   double max_winding_jump_turns = 0.0;  // largest winding change between resampled states
   WindingJumps winding_jumps;           // the winding jumps by place (success.h)
   double final_winding_turns = 0.0;     // winding about the report line at the end
-  // Largest |entry| of the final writhe matrix of the report pair: row (robot chain segment),
-  // col (object chain segment), value; −1, −1, 0 without a report pair or path.
+  // Largest |entry| of the final writhe matrix of the report pair: row (robot chain segment; with
+  // success.writhe_closure "chord" the last row is the chord's), col (object chain segment),
+  // value; −1, −1, 0 without a report pair or path.
   int writhe_peak_row = -1, writhe_peak_col = -1;
   double writhe_peak_value = 0.0;
   std::string failure_detail;  // PlanVerdict::detail: the joint or pair of the first violation

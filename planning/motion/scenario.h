@@ -5,10 +5,11 @@
 // Start coil: the start configuration is found by writhe continuation from q = 0 of the robot
 // (the 20-link arm's zero pose is a coil around the pole): small damped Gauss–Newton steps that
 // move the total writhe of writhe_report by `step` at a time under the collision and joint-limit
-// tasks, until 360°·|writhe| = wrap_deg. The start is collision-free whenever a collision-free
-// configuration is reached: a continuation that ends in collision backs off to its last
-// collision-free step, and one that never leaves a colliding q = 0 (a moved pole through the zero
-// pose) is run again from q = 0 pushed out of collision first; either may stop short of wrap_deg.
+// tasks, until 360°·|writhe| = wrap_deg. The start is made collision-free: a continuation that
+// ends in collision backs off to its last collision-free step, and one that never leaves a
+// colliding q = 0 (a moved pole through the zero pose) is run again from q = 0 pushed out of
+// collision first; either may stop short of wrap_deg, and Scenario::warnings says when no
+// collision-free start was found.
 // Continuing to writhe 0 gives the "unwrapped" pose used to initialise the final-pose estimate (the
 // goal). Deterministic.
 //

@@ -89,7 +89,7 @@ namespace {
 double ChordWrithe(const Scenario& s, const ScenarioState& w, const FeatureSpec& f,
                    const SpecName& task, const Eigen::VectorXd& q0) {
   const TaskSpec* to = nullptr;
-  for (const TaskSpec& t : s.spec.tasks) {
+  for (const TaskSpec& t : w.tasks) {  // the state's tasks (their targets move with objects)
     if (t.name == task.name) to = &t;
   }
   if (to == nullptr) throw std::invalid_argument(task.where + ": no task \"" + task.name + "\"");

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "base/assets.h"
+#include "base/str_cat.h"
 #include "planning/features/position_feature.h"
 #include "planning/motion/internal/scenario_build.h"
 #include "planning/motion/robot_scene.h"
@@ -29,11 +30,16 @@ using internal::ObjectChain;
 
 namespace {
 
-// One writhe continuation (see WritheContinuation); with push_out, a `from` in collision is first
-// pushed out of it at its own writhe (up to 100 steps).
+// kPlain: the continuation as it ends. kBackOff: one that ends in collision returns its last
+// collision-free configuration instead (and `path` ends there). kPushOutAndBackOff: the same, and
+// a `from` in collision is first pushed out of it at its own writhe (up to 100 steps).
+enum class ContinueMode { kPlain, kBackOff, kPushOutAndBackOff };
+
+// One writhe continuation (see WritheContinuation and StartCoil).
 Eigen::VectorXd ContinueWrithe(const Scenario& s, const Eigen::VectorXd& from, double target,
-                               double step, double margin, bool push_out,
+                               double step, double margin, ContinueMode mode,
                                std::vector<Eigen::VectorXd>* path) {
+  const bool push_out = mode == ContinueMode::kPushOutAndBackOff;
   MotionProblem p;
   p.robot = &s.robot;
   p.q0 = from;
@@ -97,7 +103,7 @@ Eigen::VectorXd ContinueWrithe(const Scenario& s, const Eigen::VectorXd& from, d
     if (path != nullptr) path->push_back(q);
     remember_if_free();
   }
-  if (last_free && !collision_free(q)) {
+  if (mode != ContinueMode::kPlain && last_free && !collision_free(q)) {
     if (path != nullptr) path->resize(last_free_size);
     return *last_free;
   }
@@ -105,26 +111,36 @@ Eigen::VectorXd ContinueWrithe(const Scenario& s, const Eigen::VectorXd& from, d
 }
 
 // Writhe continuation (see scenario.h): from q toward total writhe `target` in steps.
-// Every accepted configuration (from included) is appended to `path` if not null. The collision
-// task is a soft cost, so a continuation may end in collision. A start coil must be a state the
-// robot can be in: such a continuation backs off to its last collision-free configuration (and
-// `path` ends there), even if that stops it short of the angle asked; one that was never
-// collision-free (a moved pole through the robot's zero pose, which the steps need not leave) is
-// run again from `from` pushed out of collision first. A continuation that ends collision-free is
-// kept as it is.
+// Every accepted configuration (from included) is appended to `path` if not null.
 Eigen::VectorXd WritheContinuation(const Scenario& s, const Eigen::VectorXd& from, double target,
                                    double step, double margin,
                                    std::vector<Eigen::VectorXd>* path = nullptr) {
-  std::vector<Eigen::VectorXd> first;
-  const Eigen::VectorXd q = ContinueWrithe(s, from, target, step, margin, false, &first);
+  return ContinueWrithe(s, from, target, step, margin, ContinueMode::kPlain, path);
+}
+
+bool CollisionFree(const Scenario& s, const Eigen::VectorXd& q) {
   CollisionData coll(s.robot, s.initial.env, s.collision);
   KinematicsData kin(s.robot);
   ForwardKinematics(s.robot, q, &kin);
-  if (!InCollision(s.robot, kin, &coll)) {
-    if (path != nullptr) path->insert(path->end(), first.begin(), first.end());
-    return q;
+  return !InCollision(s.robot, kin, &coll);
+}
+
+// The start coil: the continuation from `from` to `target`, made a state the robot can be in. The
+// collision task is a soft cost, so a continuation may end in collision; then it backs off to its
+// last collision-free configuration, even if that stops it short of the angle asked, and one
+// that was never collision-free (a moved pole through the robot's zero pose, which the steps need
+// not leave) is run again from `from` pushed out of collision first. A continuation that ends
+// collision-free is kept as it is. Sets *collides when no collision-free start was found.
+Eigen::VectorXd StartCoil(const Scenario& s, const Eigen::VectorXd& from, double target,
+                          double step, double margin, bool* collides) {
+  Eigen::VectorXd q = ContinueWrithe(s, from, target, step, margin, ContinueMode::kPlain, nullptr);
+  if (CollisionFree(s, q)) return q;
+  q = ContinueWrithe(s, from, target, step, margin, ContinueMode::kBackOff, nullptr);
+  if (!CollisionFree(s, q)) {
+    q = ContinueWrithe(s, from, target, step, margin, ContinueMode::kPushOutAndBackOff, nullptr);
   }
-  return ContinueWrithe(s, from, target, step, margin, true, path);
+  *collides = !CollisionFree(s, q);
+  return q;
 }
 
 // `path` (at least one configuration) resampled at num_points equally spaced joint-space arc
@@ -213,6 +229,7 @@ struct StartPose {
   Eigen::VectorXd q0;
   Eigen::VectorXd unwrapped;               // coil start only: the coil continued to writhe 0
   std::vector<Eigen::VectorXd> unwinding;  // coil start, "unwinding" targets: q0 continued to 0
+  std::string warning;                     // non-empty: the coil start collides
 };
 
 // The start configuration: given, zero, or the start coil (see scenario.h).
@@ -239,7 +256,12 @@ StartPose ResolveStart(const Scenario& s, const std::optional<double>& wrap_over
       }
       const Eigen::VectorXd zero = Eigen::VectorXd::Zero(n);
       const double sign = ReportWritheTotal(s, zero) < 0 ? -1.0 : 1.0;
-      out.q0 = WritheContinuation(s, zero, sign * wrap / 360.0, start.step, start.margin);
+      bool collides = false;
+      out.q0 = StartCoil(s, zero, sign * wrap / 360.0, start.step, start.margin, &collides);
+      if (collides) {
+        out.warning = base::StrCat(start.where, ": no collision-free start coil was found (the ",
+                                   "start collides; every planner will fail on it)");
+      }
       out.unwrapped = WritheContinuation(s, zero, 0.0, start.step, start.margin);
       if (UsesUnwinding(s.spec))
         WritheContinuation(s, out.q0, 0.0, start.step, start.margin, &out.unwinding);
@@ -490,6 +512,7 @@ std::unique_ptr<Scenario> SetUpScenario(ScenarioSpec spec,
     s->unwinding = resolved->unwinding;
   } else {
     start = ResolveStart(*s, start_wrap_deg);
+    if (!start.warning.empty()) s->warnings.push_back(start.warning);
     if (!start.unwinding.empty())
       s->unwinding = ResampleByArcLength(start.unwinding, sp.problem.num_steps + 1);
   }

@@ -293,6 +293,8 @@ TaskSpec ReadTask(const base::JsonNode& n, const NameList& objects) {
         tn.At("chord_to").Fail("\"chord_to\" needs an \"interpolate\" target");
       if (t.feature.type != FeatureType::kWrithe || t.feature.output != WritheOutput::kTotal)
         tn.At("chord_to").Fail("\"chord_to\" needs a \"writhe\" feature with output \"total\"");
+      if (t.feature.closed_by_chord)  // the closed feature already contains the chord's writhe
+        tn.At("chord_to").Fail("\"chord_to\" needs the open writhe (no \"closure\": \"chord\")");
     }
     t.target.frame = ReadFrame(tn, objects);
     if (t.target.frame) {

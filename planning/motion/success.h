@@ -40,8 +40,8 @@ struct EndState {
   // the segment from its last point to its first: an integer up to rounding), in turns; with the
   // winding criterion only, else 0.
   double winding_turns = 0.0;
-  // The writhe matrix entry of largest |W_ij| (row = robot chain segment, col = object segment;
-  // −1 and 0 when there is no report pair).
+  // The writhe matrix entry of largest |W_ij| (row = robot chain segment, or the chord with
+  // writhe_closed_by_chord; col = object segment; −1 and 0 when there is no report pair).
   int writhe_peak_row = -1, writhe_peak_col = -1;
   double writhe_peak_value = 0.0;
   bool writhe_reached = true;  // |writhe| < writhe_total_below, |winding| < winding_final_below

@@ -81,11 +81,11 @@ TEST(ChordClosure, WritheTargetIsTheWritheOfTheBaseToTargetSegment) {
 }
 
 // Closed by its chord, the coil's writhe with the pole's axis tells the turns it makes round the
-// pole: it is the difference of the solid angles the loop subtends at the axis's two ends over 4π,
-// a whole number for an infinitely long pole, and here, where the pole's ends are about as far
-// away as the loop is large, 0.10, 0.85 and 1.82 for the coils of 0, 1 and 2 turns (the end
-// condition asks for < 0.05 beside the exact chord-closed winding). The open chain's writhe
-// differs from it by exactly the chord's.
+// pole: it is the change of the solid angle the loop subtends, followed continuously along the
+// axis, over 4π; a whole number for an infinitely long pole, and here, where the pole's ends are
+// about as far away as the loop is large, 0.10, 0.85 and 1.82 for the coils of 0, 1 and 2 turns
+// (the end condition asks for < 0.05 beside the exact chord-closed winding). The open chain's
+// writhe differs from it by exactly the chord's.
 TEST(ChordClosure, ClosedWritheCountsTheTurnsOfTheCoil) {
   for (const double wrap : {0.0, 360.0, 720.0}) {
     SCOPED_TRACE("wrap " + std::to_string(wrap));
@@ -188,6 +188,10 @@ TEST(ChordClosure, KeysAreChecked) {
   ExpectError(
       UnwrapWith("not_interpolate", target, R"("target": {"value": 0, "chord_to": "reach"})"),
       "\"chord_to\" needs an \"interpolate\" target");
+  ExpectError(UnwrapWith("closed_chord_to", "\"output\": \"total\"},\n     " + target,
+                         "\"output\": \"total\", \"closure\": \"chord\"},\n     "
+                         R"("target": {"type": "interpolate", "value": 0, "chord_to": "reach"})"),
+              "\"chord_to\" needs the open writhe");
   // The feature closed by its chord in a scenario: the set-up builds it (and its goal search
   // runs with it).
   const std::string closed = UnwrapWith("closed_feature", R"("output": "total"})",
