@@ -133,9 +133,9 @@ bool CollisionFree(const Scenario& s, const Eigen::VectorXd& q) {
 // collision-free is kept as it is. Sets *collides when no collision-free start was found.
 Eigen::VectorXd StartCoil(const Scenario& s, const Eigen::VectorXd& from, double target,
                           double step, double margin, bool* collides) {
-  Eigen::VectorXd q = ContinueWrithe(s, from, target, step, margin, ContinueMode::kPlain, nullptr);
-  if (CollisionFree(s, q)) return q;
-  q = ContinueWrithe(s, from, target, step, margin, ContinueMode::kBackOff, nullptr);
+  // kBackOff returns the plain continuation whenever that ends collision-free.
+  Eigen::VectorXd q =
+      ContinueWrithe(s, from, target, step, margin, ContinueMode::kBackOff, nullptr);
   if (!CollisionFree(s, q)) {
     q = ContinueWrithe(s, from, target, step, margin, ContinueMode::kPushOutAndBackOff, nullptr);
   }
