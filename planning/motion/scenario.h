@@ -8,8 +8,10 @@
 // tasks, until 360°·|writhe| = wrap_deg. The start is made collision-free: a continuation that
 // ends in collision backs off to its last collision-free step, and one that never leaves a
 // colliding q = 0 (a moved pole through the zero pose) is run again from q = 0 pushed out of
-// collision first; either may stop short of wrap_deg, and Scenario::warnings says when no
-// collision-free start was found.
+// collision first; either may stop short of wrap_deg. A start that collides, leaves the joint
+// limits or stops more than 10° short is retried from 32 seeded perturbations of q = 0 (±1 rad per
+// joint), keeping the valid end closest to wrap_deg (it can still be short: a 12-link arm on a
+// moved pole). Scenario::warnings says when no collision-free start inside the limits was found.
 // Continuing to writhe 0 gives the "unwrapped" pose used to initialise the final-pose estimate (the
 // goal). Deterministic.
 //

@@ -1,7 +1,6 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <optional>
 #include <set>
 #include <stdexcept>
@@ -12,6 +11,7 @@
 #include "base/str_cat.h"
 #include "planning/features/position_feature.h"
 #include "planning/motion/internal/scenario_build.h"
+#include "planning/motion/internal/start_coil.h"
 #include "planning/motion/robot_scene.h"
 #include "planning/motion/scenario.h"
 #include "planning/motion/success.h"
@@ -27,121 +27,10 @@ namespace planning {
 using internal::BuildTask;
 using internal::FindIn;
 using internal::ObjectChain;
+using internal::StartCoil;
+using internal::WritheContinuation;
 
 namespace {
-
-// kPlain: the continuation as it ends. kBackOff: one that ends in collision returns its last
-// collision-free configuration instead (and `path` ends there). kPushOutAndBackOff: the same, and
-// a `from` in collision is first pushed out of it at its own writhe (up to 100 steps).
-enum class ContinueMode { kPlain, kBackOff, kPushOutAndBackOff };
-
-// One writhe continuation (see WritheContinuation and StartCoil).
-Eigen::VectorXd ContinueWrithe(const Scenario& s, const Eigen::VectorXd& from, double target,
-                               double step, double margin, ContinueMode mode,
-                               std::vector<Eigen::VectorXd>* path) {
-  const bool push_out = mode == ContinueMode::kPushOutAndBackOff;
-  MotionProblem p;
-  p.robot = &s.robot;
-  p.q0 = from;
-  p.num_steps = 1;
-  p.dynamic = false;
-  p.w_rate = 100.0;
-  Task w;
-  w.name = "writhe";
-  w.feature = MakeWritheFeature(s.robot, s.report_chain, s.initial.report_object_chain,
-                                WritheOutput::kTotal);
-  SetConstantTarget(&w, Eigen::VectorXd::Zero(1), 1000.0, 1);
-  p.tasks.push_back(std::move(w));
-  Task c;
-  c.name = "collision";
-  c.feature = MakeCollisionFeature(s.robot, s.initial.env, s.collision, margin);
-  SetConstantTarget(&c, Eigen::VectorXd::Zero(c.feature->dim()), 100.0, 1);
-  p.tasks.push_back(std::move(c));
-  Task l;
-  l.name = "limits";
-  l.feature = MakeJointLimitFeature(s.robot, 0.05);
-  SetConstantTarget(&l, Eigen::VectorXd::Zero(l.feature->dim()), 100.0, 1);
-  p.tasks.push_back(std::move(l));
-  TaskWorkspace ws(p);
-  FinalPoseOptions fo;
-  fo.alpha = 0.5;
-  Eigen::VectorXd q = from;
-  if (path != nullptr) path->push_back(q);
-  CollisionData coll(s.robot, s.initial.env, s.collision);
-  KinematicsData kin(s.robot);
-  const auto collision_free = [&](const Eigen::VectorXd& x) {
-    ForwardKinematics(s.robot, x, &kin);
-    return !InCollision(s.robot, kin, &coll);
-  };
-  std::optional<Eigen::VectorXd> last_free;
-  size_t last_free_size = 0;  // path->size() when last_free was accepted
-  const auto remember_if_free = [&] {
-    if (!collision_free(q)) return;
-    last_free = q;
-    last_free_size = path != nullptr ? path->size() : 0;
-  };
-  remember_if_free();
-  double current = ReportWritheTotal(s, q);
-  for (int k = 0; push_out && k < 100 && !last_free; ++k) {
-    p.q0 = q;
-    p.tasks[0].target.setConstant(current);
-    q = EstimateFinalPose(p, fo, &ws).q;
-    current = ReportWritheTotal(s, q);
-    if (path != nullptr) path->push_back(q);
-    remember_if_free();
-  }
-  for (int k = 0; k < 1000 && std::abs(current - target) > 0.005; ++k) {
-    const double next =
-        current + std::copysign(std::min(step, std::abs(target - current)), target - current);
-    p.q0 = q;
-    p.tasks[0].target.setConstant(next);
-    const FinalPoseResult r = EstimateFinalPose(p, fo, &ws);
-    const double moved = ReportWritheTotal(s, r.q);
-    if (std::abs(moved - current) < 1e-4) break;  // stuck
-    q = r.q;
-    current = moved;
-    if (path != nullptr) path->push_back(q);
-    remember_if_free();
-  }
-  if (mode != ContinueMode::kPlain && last_free && !collision_free(q)) {
-    if (path != nullptr) path->resize(last_free_size);
-    return *last_free;
-  }
-  return q;
-}
-
-// Writhe continuation (see scenario.h): from q toward total writhe `target` in steps.
-// Every accepted configuration (from included) is appended to `path` if not null.
-Eigen::VectorXd WritheContinuation(const Scenario& s, const Eigen::VectorXd& from, double target,
-                                   double step, double margin,
-                                   std::vector<Eigen::VectorXd>* path = nullptr) {
-  return ContinueWrithe(s, from, target, step, margin, ContinueMode::kPlain, path);
-}
-
-bool CollisionFree(const Scenario& s, const Eigen::VectorXd& q) {
-  CollisionData coll(s.robot, s.initial.env, s.collision);
-  KinematicsData kin(s.robot);
-  ForwardKinematics(s.robot, q, &kin);
-  return !InCollision(s.robot, kin, &coll);
-}
-
-// The start coil: the continuation from `from` to `target`, made a state the robot can be in. The
-// collision task is a soft cost, so a continuation may end in collision; then it backs off to its
-// last collision-free configuration, even if that stops it short of the angle asked, and one
-// that was never collision-free (a moved pole through the robot's zero pose, which the steps need
-// not leave) is run again from `from` pushed out of collision first. A continuation that ends
-// collision-free is kept as it is. Sets *collides when no collision-free start was found.
-Eigen::VectorXd StartCoil(const Scenario& s, const Eigen::VectorXd& from, double target,
-                          double step, double margin, bool* collides) {
-  // kBackOff returns the plain continuation whenever that ends collision-free.
-  Eigen::VectorXd q =
-      ContinueWrithe(s, from, target, step, margin, ContinueMode::kBackOff, nullptr);
-  if (!CollisionFree(s, q)) {
-    q = ContinueWrithe(s, from, target, step, margin, ContinueMode::kPushOutAndBackOff, nullptr);
-  }
-  *collides = !CollisionFree(s, q);
-  return q;
-}
 
 // `path` (at least one configuration) resampled at num_points equally spaced joint-space arc
 // lengths (linear between its configurations): n × num_points.
@@ -261,6 +150,14 @@ StartPose ResolveStart(const Scenario& s, const std::optional<double>& wrap_over
       if (collides) {
         out.warning = base::StrCat(start.where, ": no collision-free start coil was found (the ",
                                    "start collides; every planner will fail on it)");
+      } else {
+        try {
+          CheckJointValues(s.robot, out.q0, start.where);
+        } catch (const std::invalid_argument& e) {
+          out.warning =
+              base::StrCat(e.what(), " (no start coil inside the joint limits was found; ",
+                           "every planner will fail on it)");
+        }
       }
       out.unwrapped = WritheContinuation(s, zero, 0.0, start.step, start.margin);
       if (UsesUnwinding(s.spec))

@@ -265,5 +265,20 @@ TEST(UnwrapGeometry, AStartCoilIsCollisionFreeWhenThePolePassesThroughTheZeroPos
   }
 }
 
+// A short arm's continuation stops in a local minimum well short of the angle asked: the 12-link
+// arm on tuning_01's pole stopped at 275° of 540°. The continuation is then run again from seeded
+// perturbations of the zero pose and the collision-free end closest to the angle is kept (424°).
+TEST(UnwrapGeometry, AShortStartCoilIsRetriedFromPerturbedStarts) {
+  const UnwrapGeometry g =
+      ReadUnwrapGeometry(kAssets + "scenarios/unwrap_geometries/tuning/tuning_01_arm12.json");
+  ScenarioSpec spec = ParseScenarioSpec(kUnwrap);
+  ApplyUnwrapGeometry(g, &spec);
+  const auto s = SetUpScenario(spec, 540.0);
+  EXPECT_TRUE(CheckEndState(*s, s->initial.problem.q0, true).collision_free);
+  EXPECT_GT(s->start_wrap_deg, 400.0);
+  EXPECT_LE(s->start_wrap_deg, 550.0);
+  EXPECT_TRUE(s->warnings.empty());
+}
+
 }  // namespace
 }  // namespace planning

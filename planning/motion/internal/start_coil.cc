@@ -1,0 +1,164 @@
+#include "planning/motion/internal/start_coil.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <random>
+
+#include "base/random.h"
+#include "planning/collision/collision.h"
+#include "planning/features/task.h"
+#include "planning/motion/final_pose.h"
+#include "planning/robot/kinematics.h"
+
+namespace planning::internal {
+namespace {
+
+// kPlain: the continuation as it ends. kBackOff: one that ends in collision returns its last
+// collision-free configuration instead (and `path` ends there). kPushOutAndBackOff: the same, and
+// a `from` in collision is first pushed out of it at its own writhe (up to 100 steps).
+enum class ContinueMode { kPlain, kBackOff, kPushOutAndBackOff };
+
+// One writhe continuation (see WritheContinuation and StartCoil).
+Eigen::VectorXd ContinueWrithe(const Scenario& s, const Eigen::VectorXd& from, double target,
+                               double step, double margin, ContinueMode mode,
+                               std::vector<Eigen::VectorXd>* path) {
+  const bool push_out = mode == ContinueMode::kPushOutAndBackOff;
+  MotionProblem p;
+  p.robot = &s.robot;
+  p.q0 = from;
+  p.num_steps = 1;
+  p.dynamic = false;
+  p.w_rate = 100.0;
+  Task w;
+  w.name = "writhe";
+  w.feature = MakeWritheFeature(s.robot, s.report_chain, s.initial.report_object_chain,
+                                WritheOutput::kTotal);
+  SetConstantTarget(&w, Eigen::VectorXd::Zero(1), 1000.0, 1);
+  p.tasks.push_back(std::move(w));
+  Task c;
+  c.name = "collision";
+  c.feature = MakeCollisionFeature(s.robot, s.initial.env, s.collision, margin);
+  SetConstantTarget(&c, Eigen::VectorXd::Zero(c.feature->dim()), 100.0, 1);
+  p.tasks.push_back(std::move(c));
+  Task l;
+  l.name = "limits";
+  l.feature = MakeJointLimitFeature(s.robot, 0.05);
+  SetConstantTarget(&l, Eigen::VectorXd::Zero(l.feature->dim()), 100.0, 1);
+  p.tasks.push_back(std::move(l));
+  TaskWorkspace ws(p);
+  FinalPoseOptions fo;
+  fo.alpha = 0.5;
+  Eigen::VectorXd q = from;
+  if (path != nullptr) path->push_back(q);
+  CollisionData coll(s.robot, s.initial.env, s.collision);
+  KinematicsData kin(s.robot);
+  const auto collision_free = [&](const Eigen::VectorXd& x) {
+    ForwardKinematics(s.robot, x, &kin);
+    return !InCollision(s.robot, kin, &coll);
+  };
+  std::optional<Eigen::VectorXd> last_free;
+  size_t last_free_size = 0;  // path->size() when last_free was accepted
+  const auto remember_if_free = [&] {
+    if (!collision_free(q)) return;
+    last_free = q;
+    last_free_size = path != nullptr ? path->size() : 0;
+  };
+  remember_if_free();
+  double current = ReportWritheTotal(s, q);
+  for (int k = 0; push_out && k < 100 && !last_free; ++k) {
+    p.q0 = q;
+    p.tasks[0].target.setConstant(current);
+    q = EstimateFinalPose(p, fo, &ws).q;
+    current = ReportWritheTotal(s, q);
+    if (path != nullptr) path->push_back(q);
+    remember_if_free();
+  }
+  for (int k = 0; k < 1000 && std::abs(current - target) > 0.005; ++k) {
+    const double next =
+        current + std::copysign(std::min(step, std::abs(target - current)), target - current);
+    p.q0 = q;
+    p.tasks[0].target.setConstant(next);
+    const FinalPoseResult r = EstimateFinalPose(p, fo, &ws);
+    const double moved = ReportWritheTotal(s, r.q);
+    if (std::abs(moved - current) < 1e-4) break;  // stuck
+    q = r.q;
+    current = moved;
+    if (path != nullptr) path->push_back(q);
+    remember_if_free();
+  }
+  if (mode != ContinueMode::kPlain && last_free && !collision_free(q)) {
+    if (path != nullptr) path->resize(last_free_size);
+    return *last_free;
+  }
+  return q;
+}
+
+}  // namespace
+
+Eigen::VectorXd WritheContinuation(const Scenario& s, const Eigen::VectorXd& from, double target,
+                                   double step, double margin, std::vector<Eigen::VectorXd>* path) {
+  return ContinueWrithe(s, from, target, step, margin, ContinueMode::kPlain, path);
+}
+
+bool CollisionFree(const Scenario& s, const Eigen::VectorXd& q) {
+  CollisionData coll(s.robot, s.initial.env, s.collision);
+  KinematicsData kin(s.robot);
+  ForwardKinematics(s.robot, q, &kin);
+  return !InCollision(s.robot, kin, &coll);
+}
+
+// The start coil: the continuation from `from` to `target`, made a state the robot can be in. The
+// collision task is a soft cost, so a continuation may end in collision; then it backs off to its
+// last collision-free configuration, even if that stops it short of the angle asked, and one
+// that was never collision-free (a moved pole through the robot's zero pose, which the steps need
+// not leave) is run again from `from` pushed out of collision first. A continuation that ends
+// collision-free is kept as it is. A short arm's continuation can stop in a local minimum of the
+// writhe and collision costs well short of the angle asked (the 12-link arm on moved poles): when
+// the start found collides or is more than kCoilShortBy from `target`, the continuation is run
+// again from kCoilRestarts seeded perturbations of `from` (each joint uniform within
+// ±kCoilRestartRad, clamped to its limits), and the end closest to `target` that is collision-free
+// and inside the joint limits is kept (the continuation's limit task is soft). Sets *collides when
+// no collision-free start was found.
+constexpr double kCoilShortBy = 10.0 / 360.0;  // turns of writhe (10°)
+constexpr int kCoilRestarts = 32;
+constexpr double kCoilRestartRad = 1.0;
+
+Eigen::VectorXd StartCoil(const Scenario& s, const Eigen::VectorXd& from, double target,
+                          double step, double margin, bool* collides) {
+  // kBackOff returns the plain continuation whenever that ends collision-free.
+  Eigen::VectorXd q =
+      ContinueWrithe(s, from, target, step, margin, ContinueMode::kBackOff, nullptr);
+  if (!CollisionFree(s, q)) {
+    q = ContinueWrithe(s, from, target, step, margin, ContinueMode::kPushOutAndBackOff, nullptr);
+  }
+  *collides = !CollisionFree(s, q);
+  const Eigen::VectorXd lower = LowerLimits(s.robot);
+  const Eigen::VectorXd upper = UpperLimits(s.robot);
+  const auto inside = [&](const Eigen::VectorXd& x) {
+    return (x.array() >= lower.array()).all() && (x.array() <= upper.array()).all();
+  };
+  double best = *collides || !inside(q) ? std::numeric_limits<double>::infinity()
+                                        : std::abs(ReportWritheTotal(s, q) - target);
+  std::mt19937 rng(1);
+  for (int k = 0; k < kCoilRestarts && best > kCoilShortBy; ++k) {
+    Eigen::VectorXd perturbed = from;
+    for (Eigen::Index i = 0; i < perturbed.size(); ++i) {
+      perturbed[i] =
+          std::clamp(perturbed[i] + kCoilRestartRad * (2.0 * base::UniformUnit(&rng) - 1.0),
+                     lower[i], upper[i]);
+    }
+    const Eigen::VectorXd x = ContinueWrithe(s, perturbed, target, step, margin,
+                                             ContinueMode::kPushOutAndBackOff, nullptr);
+    const double error = std::abs(ReportWritheTotal(s, x) - target);
+    if (error < best && inside(x) && CollisionFree(s, x)) {
+      best = error;
+      q = x;
+      *collides = false;
+    }
+  }
+  return q;
+}
+
+}  // namespace planning::internal
