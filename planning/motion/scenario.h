@@ -9,7 +9,7 @@
 // ends in collision backs off to its last collision-free step, and one that never leaves a
 // colliding q = 0 (a moved pole through the zero pose) is run again from q = 0 pushed out of
 // collision first; either may stop short of wrap_deg. A start that collides, leaves the joint
-// limits or stops more than 10° short is retried from 32 seeded perturbations of q = 0 (±1 rad per
+// limits or ends more than 10° from wrap_deg is retried from 32 seeded perturbations of q = 0 (±1 rad per
 // joint), keeping the valid end closest to wrap_deg (it can still be short: a 12-link arm on a
 // moved pole). Scenario::warnings says when no collision-free start inside the limits was found.
 // Continuing to writhe 0 gives the "unwrapped" pose used to initialise the final-pose estimate (the

@@ -118,7 +118,7 @@ struct StartPose {
   Eigen::VectorXd q0;
   Eigen::VectorXd unwrapped;               // coil start only: the coil continued to writhe 0
   std::vector<Eigen::VectorXd> unwinding;  // coil start, "unwinding" targets: q0 continued to 0
-  std::string warning;                     // non-empty: the coil start collides
+  std::string warning;  // non-empty: the coil start collides or is outside the joint limits
 };
 
 // The start configuration: given, zero, or the start coil (see scenario.h).
@@ -166,7 +166,7 @@ StartPose ResolveStart(const Scenario& s, const std::optional<double>& wrap_over
     }
   }
   // Planners start where the robot can be: a start outside the limits is refused (a coil start is
-  // made inside them).
+  // searched inside them, and the set-up warns when none was found).
   if (start.kind != StartKind::kCoil) {
     const std::string where =
         start.kind == StartKind::kZero ? "start (none given: zeros)" : start.where;

@@ -8,9 +8,11 @@
 
 #include "base/random.h"
 #include "planning/collision/collision.h"
+#include "planning/features/feature.h"
 #include "planning/features/task.h"
 #include "planning/motion/final_pose.h"
 #include "planning/robot/kinematics.h"
+#include "planning/robot/robot.h"
 
 namespace planning::internal {
 namespace {

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <string>
 
 #include "planning/motion/scenario.h"
@@ -250,14 +251,19 @@ TEST(UnwrapGeometry, ReadsAppliesAndRejects) {
 // collided (arm_link_19 in the pole) and no planner could solve the run. The continuation is now
 // run again from the zero pose pushed out of collision, and the start is collision-free near the
 // angle asked. At 720° the first continuation ends collision-free and is kept.
+// unwrap.json on the geometry `file` (under assets/scenarios/unwrap_geometries/), set up at
+// `wrap`°.
+std::unique_ptr<Scenario> UnwrapOn(const std::string& file, double wrap) {
+  const UnwrapGeometry g = ReadUnwrapGeometry(kAssets + "scenarios/unwrap_geometries/" + file);
+  ScenarioSpec spec = ParseScenarioSpec(kUnwrap);
+  ApplyUnwrapGeometry(g, &spec);
+  return SetUpScenario(spec, wrap);
+}
+
 TEST(UnwrapGeometry, AStartCoilIsCollisionFreeWhenThePolePassesThroughTheZeroPose) {
-  const UnwrapGeometry g =
-      ReadUnwrapGeometry(kAssets + "scenarios/unwrap_geometries/test/test_01_arm30.json");
   for (const double wrap : {540.0, 720.0}) {
     SCOPED_TRACE("wrap " + std::to_string(wrap));
-    ScenarioSpec spec = ParseScenarioSpec(kUnwrap);
-    ApplyUnwrapGeometry(g, &spec);
-    const auto s = SetUpScenario(spec, wrap);
+    const auto s = UnwrapOn("test/test_01_arm30.json", wrap);
     const Eigen::VectorXd zero = Eigen::VectorXd::Zero(s->initial.problem.q0.size());
     EXPECT_FALSE(CheckEndState(*s, zero, true).collision_free);  // the pole through the zero pose
     EXPECT_TRUE(CheckEndState(*s, s->initial.problem.q0, true).collision_free);
@@ -269,14 +275,22 @@ TEST(UnwrapGeometry, AStartCoilIsCollisionFreeWhenThePolePassesThroughTheZeroPos
 // arm on tuning_01's pole stopped at 275° of 540°. The continuation is then run again from seeded
 // perturbations of the zero pose and the collision-free end closest to the angle is kept (424°).
 TEST(UnwrapGeometry, AShortStartCoilIsRetriedFromPerturbedStarts) {
-  const UnwrapGeometry g =
-      ReadUnwrapGeometry(kAssets + "scenarios/unwrap_geometries/tuning/tuning_01_arm12.json");
-  ScenarioSpec spec = ParseScenarioSpec(kUnwrap);
-  ApplyUnwrapGeometry(g, &spec);
-  const auto s = SetUpScenario(spec, 540.0);
+  const auto s = UnwrapOn("tuning/tuning_01_arm12.json", 540.0);
   EXPECT_TRUE(CheckEndState(*s, s->initial.problem.q0, true).collision_free);
   EXPECT_GT(s->start_wrap_deg, 400.0);
   EXPECT_LE(s->start_wrap_deg, 550.0);
+  EXPECT_TRUE(s->warnings.empty());
+}
+
+// The first test run with restarts kept, on test_12's 12-link arm, a restart that ended at
+// arm_joint_1 = -2.013 rad, outside its limits of ±2 rad (the continuation's limit task is soft):
+// every tree refused the start. Only ends inside the limits are kept now.
+TEST(UnwrapGeometry, ARestartOutsideTheJointLimitsIsRefused) {
+  const auto s = UnwrapOn("test/test_12_arm12.json", 540.0);
+  const Eigen::VectorXd& q0 = s->initial.problem.q0;
+  EXPECT_TRUE((q0.array() >= LowerLimits(s->robot).array()).all());
+  EXPECT_TRUE((q0.array() <= UpperLimits(s->robot).array()).all());
+  EXPECT_TRUE(CheckEndState(*s, q0, true).collision_free);
   EXPECT_TRUE(s->warnings.empty());
 }
 
