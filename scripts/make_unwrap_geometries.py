@@ -15,10 +15,17 @@ The arm cycles through ARMS of the set. The tuning set had 8 geometries until 20
 since: the draws are sequential, so its first 8 files did not change. The 12-link arm's nominal target is 0.8 m nearer its base
 along the pole (the shipped target is out of its reach: 0.25 m short when unwrapped).
 Run from anywhere: python3 scripts/make_unwrap_geometries.py
+More tuning geometries from the same draws (the shipped files are their first 24), elsewhere:
+  python3 scripts/make_unwrap_geometries.py --tuning-count 48 --out /tmp/geometries
+Check that the shipped files are its output (ctest unwrap_geometries_script):
+  python3 scripts/make_unwrap_geometries.py --check
 """
+import argparse
 import json
 import os
 import random
+import sys
+import tempfile
 
 ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
 OUT = os.path.join(ROOT, "assets/scenarios/unwrap_geometries")
@@ -37,7 +44,7 @@ def r3(v):
     return [round(x, 4) for x in v]
 
 
-def geometry(rng, split, index, links):
+def geometry(rng, split, index, links, urdf):
     tilt = [rng.uniform(-20.0, 20.0), rng.uniform(-20.0, 20.0)]
     radius = rng.uniform(0.02, 0.06)
     tx, ty = rng.uniform(-0.1, 0.1), rng.uniform(-0.1, 0.1)
@@ -51,22 +58,75 @@ def geometry(rng, split, index, links):
         "pole_radius": round(radius, 4),
         "pole_translation": r3(translation),
         "target_offset": r3(offset),
-        "arm": {"urdf": "../../../robots/arm%d_sdh.urdf" % links,
+        "arm": {"urdf": urdf % links,
                 "disabled_groups": [["sdh_", "arm_link_%d" % links]]},
     }
 
 
-def main():
+def write(out, tuning_count):
     for split, (seed, count, arms) in SETS.items():
-        folder = os.path.join(OUT, split)
+        if split == "tuning":
+            count = tuning_count
+        folder = os.path.join(os.path.abspath(out), split)
         os.makedirs(folder, exist_ok=True)
+        # the arm's URDF relative to the file, so the geometry can be read from where it is written
+        urdf = os.path.relpath(os.path.join(ROOT, "assets/robots"), folder) + "/arm%d_sdh.urdf"
         rng = random.Random(seed)
         for i in range(count):
-            g = geometry(rng, split, i, arms[i % len(arms)])
+            g = geometry(rng, split, i, arms[i % len(arms)], urdf)
             with open(os.path.join(folder, g["name"] + ".json"), "w") as f:
                 json.dump(g, f, indent=1)
                 f.write("\n")
-    print("wrote", OUT)
+
+
+def load(folder, name):
+    """A geometry with its arm URDF resolved to a real path (the files differ only there when
+    written to another folder)."""
+    with open(os.path.join(folder, name)) as f:
+        g = json.load(f)
+    g["arm"]["urdf"] = os.path.realpath(os.path.join(folder, g["arm"]["urdf"]))
+    return g
+
+
+def check():
+    """The shipped files are the script's output, and --tuning-count extends them."""
+    errors = []
+    with tempfile.TemporaryDirectory() as tmp:
+        write(tmp, SETS["tuning"][1] + 2)
+        for split in SETS:
+            shipped, made = os.path.join(OUT, split), os.path.join(tmp, split)
+            names = sorted(n for n in os.listdir(shipped) if n.endswith(".json"))
+            extra = 2 if split == "tuning" else 0
+            if len(os.listdir(made)) != len(names) + extra:
+                errors.append("%s: not the files the script writes" % shipped)
+            for n in names:
+                if not os.path.exists(os.path.join(made, n)) or load(shipped, n) != load(made, n):
+                    errors.append("%s: differs from the script's output" % os.path.join(shipped, n))
+            for n in os.listdir(made):
+                if not os.path.isfile(load(made, n)["arm"]["urdf"]):
+                    errors.append("%s: its arm URDF does not exist" % n)
+    for e in errors:
+        print("make_unwrap_geometries.py --check:", e, file=sys.stderr)
+    print("make_unwrap_geometries.py --check:", "failed" if errors else "ok")
+    return 1 if errors else 0
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("--tuning-count", type=int, default=SETS["tuning"][1],
+                        help="tuning geometries to write (default %(default)s, the shipped set)")
+    parser.add_argument("--out", default=OUT,
+                        help="folder for tuning/ and test/ (default: the shipped folder)")
+    parser.add_argument("--check", action="store_true",
+                        help="write nothing; exit 1 unless the shipped files are the script's "
+                        "output (and --tuning-count extends them)")
+    args = parser.parse_args()
+    if args.check:
+        sys.exit(check())
+    if args.tuning_count < 1:
+        parser.error("--tuning-count must be >= 1")
+    write(args.out, args.tuning_count)
+    print("wrote", os.path.abspath(args.out))
 
 
 if __name__ == "__main__":
