@@ -101,6 +101,7 @@ std::string EncodeRuns(const std::vector<UnwrapRun>& runs) {
     w.String(run.variant);
     w.Pod(run.goal_meets_end_conditions);
     w.Pod(run.unwound_winding_turns);
+    w.Pod(run.start_closed_wrap_deg);
   }
   w.Pod(kMagic);
   return w.Take();
@@ -120,6 +121,7 @@ std::vector<UnwrapRun> DecodeRuns(const std::string& bytes) {
     run.variant = r.String();
     run.goal_meets_end_conditions = r.Pod<bool>();
     run.unwound_winding_turns = r.Pod<double>();
+    run.start_closed_wrap_deg = r.Pod<double>();
   }
   if (r.Pod<std::uint32_t>() != kMagic || !r.at_end()) r.Fail();
   return runs;

@@ -169,6 +169,9 @@ std::vector<UnwrapRun> RunColumns(const UnwrapBenchmarkOptions& options, const S
       const Scenario& scenario = own ? *own : *shared;
       const bool goal_ok = CheckEndState(scenario, scenario.goal_q, true).ok();
       const double unwound = UnwoundWinding(scenario);
+      const double start_closed =
+          360.0 * std::abs(ReportWritheTotal(scenario, scenario.initial,
+                                             scenario.initial.problem.q0, nullptr, true));
       for (size_t c = 0; c < columns.size(); ++c) {
         UnwrapRun run;
         run.angle_deg = angle;
@@ -177,6 +180,7 @@ std::vector<UnwrapRun> RunColumns(const UnwrapBenchmarkOptions& options, const S
         run.pole_offset = offsets[seed];
         run.goal_meets_end_conditions = goal_ok;
         run.unwound_winding_turns = unwound;
+        run.start_closed_wrap_deg = start_closed;
         PlanRequest request;
         request.planner = columns[c].planner;
         request.seed = static_cast<unsigned>(seed);
@@ -335,7 +339,8 @@ std::string UnwrapGeometryCsv(const UnwrapGeometry& geometry, const UnwrapBenchm
   std::ostringstream csv;
   csv.imbue(std::locale::classic());
   csv.precision(12);
-  csv << "geometry,split,angle_deg,planner,seed,start_wrap_deg,success,failure_reason,"
+  csv << "geometry,split,angle_deg,planner,seed,start_wrap_deg,start_closed_wrap_deg,success,"
+         "failure_reason,"
          "final_writhe_total,reach_error_m,final_winding_turns,unwound_winding_turns,"
          "goal_meets_end_conditions,state_queries,cpu_time_s,setup_time_s,"
          "jumps_through_object,jumps_beyond_ends,jumps_unlocated\n";
@@ -343,12 +348,12 @@ std::string UnwrapGeometryCsv(const UnwrapGeometry& geometry, const UnwrapBenchm
     const PlanReport& p = r.report;
     csv << geometry.name << "," << geometry.split << "," << r.angle_deg << ","
         << PlannerName(r.planner) << "," << r.seed << "," << 360.0 * std::abs(p.start_writhe_total)
-        << "," << (p.success ? 1 : 0) << "," << FailureReasonName(p.failure_reason) << ","
-        << p.final_writhe_total << "," << p.reach_error_m << "," << p.final_winding_turns << ","
-        << r.unwound_winding_turns << "," << (r.goal_meets_end_conditions ? 1 : 0) << ","
-        << p.counts.state_queries << "," << p.cpu_time_s << "," << p.setup_time_s << ","
-        << p.winding_jumps.through_object << "," << p.winding_jumps.beyond_ends << ","
-        << p.winding_jumps.unlocated << "\n";
+        << "," << r.start_closed_wrap_deg << "," << (p.success ? 1 : 0) << ","
+        << FailureReasonName(p.failure_reason) << "," << p.final_writhe_total << ","
+        << p.reach_error_m << "," << p.final_winding_turns << "," << r.unwound_winding_turns << ","
+        << (r.goal_meets_end_conditions ? 1 : 0) << "," << p.counts.state_queries << ","
+        << p.cpu_time_s << "," << p.setup_time_s << "," << p.winding_jumps.through_object << ","
+        << p.winding_jumps.beyond_ends << "," << p.winding_jumps.unlocated << "\n";
   }
   return csv.str();
 }

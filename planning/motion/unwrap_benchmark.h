@@ -33,6 +33,12 @@ struct UnwrapRun {
   // the pole ends with (its chain ends near the target), the reference for the criterion's
   // |final winding| < final_below. 0 without a report pair or position criterion.
   double unwound_winding_turns = 0.0;
+  // 360°·|writhe| at the start of the report chain closed by its chord (the segment from its last
+  // point back to its first) with the report object's chain [deg]: the loops the start coil makes
+  // round the pole's axis (a whole number of turns about an infinite line; about the finite pole's
+  // axis it can be off by up to half a turn). start_wrap_deg, the open chain's, also counts the
+  // chord's part, which depends on where the hand is. 0 without a report pair.
+  double start_closed_wrap_deg = 0.0;
 };
 
 // Aggregate of the runs of one (angle, planner) pair.
@@ -180,13 +186,14 @@ UnwrapBenchmarkResult RunUnwrapAblation(const UnwrapBenchmarkOptions& options,
 // final_winding_turns,state_queries,cpu_time_s" rows of an ablation result.
 std::string UnwrapAblationCsv(const UnwrapBenchmarkResult& result);
 
-// "geometry,split,angle_deg,planner,seed,start_wrap_deg,success,failure_reason,
-// final_writhe_total,reach_error_m,final_winding_turns,unwound_winding_turns,
+// "geometry,split,angle_deg,planner,seed,start_wrap_deg,start_closed_wrap_deg,success,
+// failure_reason,final_writhe_total,reach_error_m,final_winding_turns,unwound_winding_turns,
 // goal_meets_end_conditions,state_queries,cpu_time_s,setup_time_s,jumps_through_object,
 // jumps_beyond_ends,jumps_unlocated" rows of a benchmark run on `geometry` (bench unwrap
 // --geometry; the jumps: PlanReport's, by where the arm passes the pole's line): start_wrap_deg =
 // 360°·|start writhe| is the coil the start continuation reached (it can fall short of angle_deg on
-// a geometry where the arm cannot coil that far), reach_error_m in m, final_winding_turns in turns.
+// a geometry where the arm cannot coil that far), start_closed_wrap_deg the UnwrapRun's,
+// reach_error_m in m, final_winding_turns in turns.
 std::string UnwrapGeometryCsv(const UnwrapGeometry& geometry, const UnwrapBenchmarkResult& result);
 
 }  // namespace planning

@@ -10,7 +10,8 @@ import csv
 import os
 import sys
 
-HEADER = ("geometry,split,angle_deg,planner,seed,start_wrap_deg,success,failure_reason,"
+HEADER = ("geometry,split,angle_deg,planner,seed,start_wrap_deg,start_closed_wrap_deg,success,"
+          "failure_reason,"
           "final_writhe_total,reach_error_m,final_winding_turns,unwound_winding_turns,"
           "goal_meets_end_conditions,state_queries,cpu_time_s,setup_time_s,"
           "jumps_through_object,jumps_beyond_ends,jumps_unlocated")
@@ -29,6 +30,10 @@ def main():
     assert r["geometry"] == name and r["split"] == split, r
     assert float(r["angle_deg"]) == angle, r
     assert abs(float(r["start_wrap_deg"]) - angle) < 5.0, "start coil %s" % r["start_wrap_deg"]
+    # Closed by its chord (hand back to base), a coil of less than half a turn makes no loop round
+    # the pole: its closed writhe stays below a quarter turn (the open one is the angle asked).
+    if angle < 180.0:
+        assert 0.0 <= float(r["start_closed_wrap_deg"]) < 90.0, r
     assert r["success"] == "1" and r["failure_reason"] == "none", r
     assert 0.0 <= float(r["reach_error_m"]) < 0.05, r
     assert abs(float(r["final_writhe_total"])) < 0.05, r
