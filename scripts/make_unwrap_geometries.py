@@ -21,13 +21,14 @@ Check that the shipped files are its output (ctest unwrap_geometries_script):
   python3 scripts/make_unwrap_geometries.py --check
 """
 import argparse
+import filecmp
 import json
 import os
 import random
 import sys
 import tempfile
 
-ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
+ROOT = os.path.realpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
 OUT = os.path.join(ROOT, "assets/scenarios/unwrap_geometries")
 
 # links -> nominal target offset in the pole's frame [m] (its z axis is the pole's length, +z
@@ -63,14 +64,16 @@ def geometry(rng, split, index, links, urdf):
     }
 
 
-def write(out, tuning_count):
-    for split, (seed, count, arms) in SETS.items():
-        if split == "tuning":
-            count = tuning_count
-        folder = os.path.join(os.path.abspath(out), split)
+def write(out, tuning_count, urdf_from=None):
+    """Writes DIR/tuning and DIR/test; the arm URDF paths are relative to the file's folder, or to
+    the same-named folder under `urdf_from` (the files then read as if written there)."""
+    out = os.path.realpath(out)
+    for split, (seed, default_count, arms) in SETS.items():
+        count = tuning_count if split == "tuning" else default_count
+        folder = os.path.join(out, split)
         os.makedirs(folder, exist_ok=True)
-        # the arm's URDF relative to the file, so the geometry can be read from where it is written
-        urdf = os.path.relpath(os.path.join(ROOT, "assets/robots"), folder) + "/arm%d_sdh.urdf"
+        here = os.path.join(os.path.realpath(urdf_from), split) if urdf_from else folder
+        urdf = os.path.relpath(os.path.join(ROOT, "assets/robots"), here) + "/arm%d_sdh.urdf"
         rng = random.Random(seed)
         for i in range(count):
             g = geometry(rng, split, i, arms[i % len(arms)], urdf)
@@ -79,20 +82,12 @@ def write(out, tuning_count):
                 f.write("\n")
 
 
-def load(folder, name):
-    """A geometry with its arm URDF resolved to a real path (the files differ only there when
-    written to another folder)."""
-    with open(os.path.join(folder, name)) as f:
-        g = json.load(f)
-    g["arm"]["urdf"] = os.path.realpath(os.path.join(folder, g["arm"]["urdf"]))
-    return g
-
-
 def check():
-    """The shipped files are the script's output, and --tuning-count extends them."""
+    """The shipped files are, byte for byte, the script's output, and --tuning-count extends them
+    (two more tuning files are drawn and their arm URDFs exist)."""
     errors = []
     with tempfile.TemporaryDirectory() as tmp:
-        write(tmp, SETS["tuning"][1] + 2)
+        write(tmp, SETS["tuning"][1] + 2, urdf_from=OUT)
         for split in SETS:
             shipped, made = os.path.join(OUT, split), os.path.join(tmp, split)
             names = sorted(n for n in os.listdir(shipped) if n.endswith(".json"))
@@ -100,11 +95,14 @@ def check():
             if len(os.listdir(made)) != len(names) + extra:
                 errors.append("%s: not the files the script writes" % shipped)
             for n in names:
-                if not os.path.exists(os.path.join(made, n)) or load(shipped, n) != load(made, n):
+                if not os.path.exists(os.path.join(made, n)) or not filecmp.cmp(
+                        os.path.join(shipped, n), os.path.join(made, n), shallow=False):
                     errors.append("%s: differs from the script's output" % os.path.join(shipped, n))
-            for n in os.listdir(made):
-                if not os.path.isfile(load(made, n)["arm"]["urdf"]):
-                    errors.append("%s: its arm URDF does not exist" % n)
+            for n in sorted(os.listdir(made)):
+                with open(os.path.join(made, n)) as f:
+                    urdf = json.load(f)["arm"]["urdf"]
+                if not os.path.isfile(os.path.join(shipped, urdf)):
+                    errors.append("%s: its arm URDF %s does not exist" % (n, urdf))
     for e in errors:
         print("make_unwrap_geometries.py --check:", e, file=sys.stderr)
     print("make_unwrap_geometries.py --check:", "failed" if errors else "ok")
@@ -118,8 +116,8 @@ def main():
     parser.add_argument("--out", default=OUT,
                         help="folder for tuning/ and test/ (default: the shipped folder)")
     parser.add_argument("--check", action="store_true",
-                        help="write nothing; exit 1 unless the shipped files are the script's "
-                        "output (and --tuning-count extends them)")
+                        help="write nothing; exit 1 unless the shipped files are, byte for byte, "
+                        "the script's output (--tuning-count and --out are ignored)")
     args = parser.parse_args()
     if args.check:
         sys.exit(check())

@@ -340,9 +340,8 @@ std::string UnwrapGeometryCsv(const UnwrapGeometry& geometry, const UnwrapBenchm
   csv.imbue(std::locale::classic());
   csv.precision(12);
   csv << "geometry,split,angle_deg,planner,seed,start_wrap_deg,start_closed_wrap_deg,success,"
-         "failure_reason,"
-         "final_writhe_total,reach_error_m,final_winding_turns,unwound_winding_turns,"
-         "goal_meets_end_conditions,state_queries,cpu_time_s,setup_time_s,"
+         "failure_reason,final_writhe_total,reach_error_m,final_winding_turns,"
+         "unwound_winding_turns,goal_meets_end_conditions,state_queries,cpu_time_s,setup_time_s,"
          "jumps_through_object,jumps_beyond_ends,jumps_unlocated\n";
   for (const UnwrapRun& r : result.runs) {
     const PlanReport& p = r.report;

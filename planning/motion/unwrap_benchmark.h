@@ -35,9 +35,9 @@ struct UnwrapRun {
   double unwound_winding_turns = 0.0;
   // 360°·|writhe| at the start of the report chain closed by its chord (the segment from its last
   // point back to its first) with the report object's chain [deg]: the loops the start coil makes
-  // round the pole's axis (a whole number of turns about an infinite line; about the finite pole's
-  // axis it can be off by up to half a turn). start_wrap_deg, the open chain's, also counts the
-  // chord's part, which depends on where the hand is. 0 without a report pair.
+  // round the pole's axis (about an infinite line, a whole number of turns: the linking number;
+  // about the finite pole's axis off by a fraction of a turn). start_wrap_deg, the open chain's,
+  // also counts the chord's part, which depends on where the hand is. 0 without a report pair.
   double start_closed_wrap_deg = 0.0;
 };
 

@@ -11,9 +11,8 @@ import os
 import sys
 
 HEADER = ("geometry,split,angle_deg,planner,seed,start_wrap_deg,start_closed_wrap_deg,success,"
-          "failure_reason,"
-          "final_writhe_total,reach_error_m,final_winding_turns,unwound_winding_turns,"
-          "goal_meets_end_conditions,state_queries,cpu_time_s,setup_time_s,"
+          "failure_reason,final_writhe_total,reach_error_m,final_winding_turns,"
+          "unwound_winding_turns,goal_meets_end_conditions,state_queries,cpu_time_s,setup_time_s,"
           "jumps_through_object,jumps_beyond_ends,jumps_unlocated")
 
 
