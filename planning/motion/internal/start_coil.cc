@@ -132,10 +132,12 @@ Eigen::VectorXd StartCoil(const Scenario& s, const Eigen::VectorXd& from, double
   // kBackOff returns the plain continuation whenever that ends collision-free.
   Eigen::VectorXd q =
       ContinueWrithe(s, from, target, step, margin, ContinueMode::kBackOff, nullptr);
-  if (!CollisionFree(s, q)) {
+  bool free = CollisionFree(s, q);
+  if (!free) {
     q = ContinueWrithe(s, from, target, step, margin, ContinueMode::kPushOutAndBackOff, nullptr);
+    free = CollisionFree(s, q);
   }
-  *collides = !CollisionFree(s, q);
+  *collides = !free;
   const Eigen::VectorXd lower = LowerLimits(s.robot);
   const Eigen::VectorXd upper = UpperLimits(s.robot);
   const auto inside = [&](const Eigen::VectorXd& x) {
