@@ -11,6 +11,7 @@
 #include "base/numbers.h"
 #include "planning/collision/collision.h"
 #include "planning/motion/internal/ompl_planners.h"
+#include "planning/motion/internal/start_coil.h"
 #include "planning/motion/rrt.h"
 #include "planning/motion/scenario_goal_region.h"
 #include "planning/robot/kinematics.h"
@@ -227,7 +228,7 @@ PlanResult RunPlanner(const Scenario& s, const PlanRequest& request) {
       for (const std::string& name : WritheTaskNames(w.problem)) off.push_back(name);
     }
     PlanResult out = RunAicoAttempts(s, w, request.aico ? *request.aico : s.aico, request.callback,
-                                     request.budget, off);
+                                     request.budget, off, request.aico_retry);
     out.report.time_s = elapsed();
     out.report.cpu_time_s = CpuSeconds() - cpu0;
     FinishReport(s, w, out.trajectory.num_points() > 0, /*judged=*/true, &out);
@@ -465,14 +466,34 @@ PlanResult RunAicoAttempts(const Scenario& s, const AicoCallback& callback) {
 
 PlanResult RunAicoAttempts(const Scenario& s, const ScenarioState& w, const AicoOptions& aico,
                            const AicoCallback& callback, const Budget& budget,
-                           const std::vector<std::string>& disabled_tasks) {
+                           const std::vector<std::string>& disabled_tasks, bool retry) {
   PlanResult out;
   PlanReport& rep = out.report;
   rep.planner = PlannerName(Planner::kAico);
   rep.attempts = 0;
   const double cpu0 = CpuSeconds();
   bool budget_spent = false;
-  for (int k = 0; k < static_cast<int>(s.aico_attempts.size()) && !budget_spent; ++k) {
+  bool writhe_off = false;
+  for (const std::string& name : WritheTaskNames(w.problem)) {
+    for (const std::string& off : disabled_tasks) writhe_off = writhe_off || off == name;
+  }
+  // True once `c` (counts spent so far) or the CPU time since the start reach the budget.
+  const auto over = [&](const QueryCounts& c) {
+    switch (budget.unit) {
+      case Budget::Unit::kQueries:
+        return static_cast<double>(c.state_queries) >= budget.value;
+      case Budget::Unit::kCpuTime:
+        return CpuSeconds() - cpu0 >= budget.value;
+      case Budget::Unit::kPairTests:
+        return static_cast<double>(c.pair_tests()) >= budget.value;
+      case Budget::Unit::kNone:
+        break;
+    }
+    return false;
+  };
+  const int attempts = retry ? static_cast<int>(s.aico_attempts.size()) : 1;
+  for (int k = 0; k < attempts && !budget_spent; ++k) {
+    if (s.aico_attempts[k].init_unwinding && writhe_off) continue;
     // Attempt 0 is the state's own problem unless terms are switched off.
     const bool own = k == 0 && disabled_tasks.empty();
     MotionProblem later = own ? MotionProblem{} : AttemptProblem(s, w, k);
@@ -480,27 +501,25 @@ PlanResult RunAicoAttempts(const Scenario& s, const ScenarioState& w, const Aico
     ++rep.attempts;
     AicoOptions options = aico;
     options.max_iterations = s.aico_attempts[k].max_iterations;
-    AicoSolver solver(own ? w.problem : later, options);
+    Trajectory init;  // the unwinding init, its continuation's counts charged to this attempt
+    if (s.aico_attempts[k].init_unwinding) {
+      QueryCounts c;
+      init = internal::UnwindingInit(s, w.problem.q0, &c);
+      rep.counts += c;
+      rep.collision_checks += c.state_queries;
+      rep.narrow_phase_calls += c.pair_tests();
+      if (over(rep.counts)) {  // the continuation spent the budget: the attempt does not start
+        rep.status = SolveStatus::kBudgetExhausted;
+        rep.failure_reason = FailureReason::kBudgetExhausted;
+        rep.success = false;
+        break;
+      }
+    }
+    AicoSolver solver(own ? w.problem : later, options, init.q.size() > 0 ? &init : nullptr);
     long probe_queries = 0, probe_narrow = 0;  // validations of trajectories that were no success
     QueryCounts probe_counts;
     // The budget spent after a sweep: this attempt's counts so far, earlier attempts' and probes'.
-    const auto spent = [&] {
-      switch (budget.unit) {
-        case Budget::Unit::kQueries: {
-          const QueryCounts c = rep.counts + probe_counts + solver.result().counts;
-          return static_cast<double>(c.state_queries) >= budget.value;
-        }
-        case Budget::Unit::kCpuTime:
-          return CpuSeconds() - cpu0 >= budget.value;
-        case Budget::Unit::kPairTests: {
-          const QueryCounts c = rep.counts + probe_counts + solver.result().counts;
-          return static_cast<double>(c.pair_tests()) >= budget.value;
-        }
-        case Budget::Unit::kNone:
-          break;
-      }
-      return false;
-    };
+    const auto spent = [&] { return over(rep.counts + probe_counts + solver.result().counts); };
     bool solved = false;
     while (!solver.done()) {
       const AicoStep step = solver.Step();

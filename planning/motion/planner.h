@@ -177,6 +177,7 @@ struct PlanRequest {
   // max_jump 0 in every attempt's problem (the features stay, for the success judge). Unknown
   // names throw std::invalid_argument.
   std::vector<std::string> disabled_tasks;
+  bool aico_retry = true;  // AICO only: false runs attempt 0 alone (the no-retry ablation)
 };
 // RunPlanner above, as the request says.
 PlanResult RunPlanner(const Scenario& scenario, const PlanRequest& request);
@@ -206,17 +207,24 @@ void FinishReport(const Scenario& scenario, const ScenarioState& state, bool fou
 // success first reached by the sweep that ends the solve is judged as without the option (status
 // kConverged or kMaxIterations). Success can only be more frequent than without the option: a
 // trajectory that passes part-way is returned even if the converged one would fail (and no retry
-// attempt runs). Fills every report field of an AICO run except time_s and start_writhe_total; does
-// not call NameFailure.
+// attempt runs). An attempt with init_unwinding (aico.retry.init "unwinding") starts from
+// internal::UnwindingInit at the state's q0 (the continuation sees the scenario's initial world),
+// and the continuation's state queries and pair tests are counted in the attempt's report (when
+// they spend the budget, the attempt does not start and the run fails as kBudgetExhausted). Fills
+// every report field of an AICO run except time_s and start_writhe_total; does not call
+// NameFailure.
 PlanResult RunAicoAttempts(const Scenario& scenario, const AicoCallback& callback = {});
 // The same in the world `state` with `aico` instead of scenario.aico.
 // With a budget (not kNone): after every sweep the counts (or CPU time) spent so far, earlier
 // attempts included, are compared with it; once spent after a sweep that was no success (with
 // stop_when_solved), the run ends as a failure: status and failure reason kBudgetExhausted.
+// `retry` false: attempt 0 only. An unwinding-init attempt is skipped when `disabled_tasks` holds
+// a writhe task (the continuation is a writhe-driven init: aico-goal and the no-writhe ablation
+// do not get it).
 PlanResult RunAicoAttempts(const Scenario& scenario, const ScenarioState& state,
                            const AicoOptions& aico, const AicoCallback& callback = {},
                            const Budget& budget = {},
-                           const std::vector<std::string>& disabled_tasks = {});
+                           const std::vector<std::string>& disabled_tasks = {}, bool retry = true);
 
 // `problem` (one task per scenario task) with the tasks named in `names` switched off (precision
 // 0, max_jump 0). Throws std::invalid_argument for a name that is no task of the scenario.

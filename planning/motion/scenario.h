@@ -9,11 +9,11 @@
 // ends in collision backs off to its last collision-free step, and one that never leaves a
 // colliding q = 0 (a moved pole through the zero pose) is run again from q = 0 pushed out of
 // collision first; either may stop short of wrap_deg. A start that collides, leaves the joint
-// limits or ends more than 10° from wrap_deg is retried from 32 seeded perturbations of q = 0 (±1 rad per
-// joint), keeping the valid end closest to wrap_deg (it can still be short: a 12-link arm on a
-// moved pole). Scenario::warnings says when no collision-free start inside the limits was found.
-// Continuing to writhe 0 gives the "unwrapped" pose used to initialise the final-pose estimate (the
-// goal). Deterministic.
+// limits or ends more than 10° from wrap_deg is retried from 32 seeded perturbations of q = 0 (±1
+// rad per joint), keeping the valid end closest to wrap_deg (it can still be short: a 12-link arm
+// on a moved pole). Scenario::warnings says when no collision-free start inside the limits was
+// found. Continuing to writhe 0 gives the "unwrapped" pose used to initialise the final-pose
+// estimate (the goal). Deterministic.
 //
 // Goal: the final-pose estimate q̂_T (final_pose.h) from the configured init; when it misses an end
 // condition of the success criteria (CheckEndState with state checks, success.h: limits, collision,
@@ -89,6 +89,7 @@ struct SuccessCriteria {
 struct AicoAttempt {
   Eigen::VectorXd precision_scale;
   int max_iterations = 20;
+  bool init_unwinding = false;  // start from internal::UnwindingInit (see AicoAttemptSpec)
 };
 
 // What changes while a scenario is planned or simulated: the objects around the robot and all

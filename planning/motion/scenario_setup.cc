@@ -27,31 +27,11 @@ namespace planning {
 using internal::BuildTask;
 using internal::FindIn;
 using internal::ObjectChain;
+using internal::ResampleByArcLength;
 using internal::StartCoil;
 using internal::WritheContinuation;
 
 namespace {
-
-// `path` (at least one configuration) resampled at num_points equally spaced joint-space arc
-// lengths (linear between its configurations): n × num_points.
-Eigen::MatrixXd ResampleByArcLength(const std::vector<Eigen::VectorXd>& path, int num_points) {
-  std::vector<double> length(path.size(), 0.0);
-  for (size_t k = 1; k < path.size(); ++k)
-    length[k] = length[k - 1] + (path[k] - path[k - 1]).norm();
-  Eigen::MatrixXd out(path[0].size(), num_points);
-  size_t k = 0;
-  for (int t = 0; t < num_points; ++t) {
-    const double at = num_points > 1 ? length.back() * t / (num_points - 1) : 0.0;
-    while (k + 2 < path.size() && length[k + 1] < at) ++k;
-    if (path.size() == 1 || length[k + 1] <= length[k]) {
-      out.col(t) = path[std::min(k + 1, path.size() - 1)];
-      continue;
-    }
-    const double a = std::clamp((at - length[k]) / (length[k + 1] - length[k]), 0.0, 1.0);
-    out.col(t) = (1.0 - a) * path[k] + a * path[k + 1];
-  }
-  return out;
-}
 
 bool UsesUnwinding(const ScenarioSpec& spec) {
   for (const TaskSpec& t : spec.tasks) {
@@ -424,6 +404,11 @@ std::unique_ptr<Scenario> SetUpScenario(ScenarioSpec spec,
   for (const AicoAttemptSpec& a : sp.aico_attempts) {
     AicoAttempt attempt;
     attempt.max_iterations = a.max_iterations;
+    attempt.init_unwinding = a.init_unwinding;
+    if (a.init_unwinding && !sp.writhe_report) {
+      throw std::invalid_argument(base::StrCat(
+          a.init_where, ": the unwinding init continues the writhe_report's writhe; give one"));
+    }
     attempt.precision_scale = Eigen::VectorXd::Ones(static_cast<Eigen::Index>(sp.tasks.size()));
     for (const auto& [task, factor] : a.precision_scale)
       attempt.precision_scale[TaskIndex(*s, task)] *= factor;

@@ -394,7 +394,7 @@ void ReadAico(const base::JsonNode& n, ScenarioSpec* spec) {
   spec->aico_attempts[0].max_iterations = a.max_iterations;
   if (!n.Has("retry")) return;
   const base::JsonNode rn = n.At("retry");
-  rn.CheckKeys({"precision_scale", "max_iterations"});
+  rn.CheckKeys({"precision_scale", "max_iterations", "init"});
   AicoAttemptSpec retry;
   retry.max_iterations = a.max_iterations;
   if (rn.Has("max_iterations")) {
@@ -408,6 +408,13 @@ void ReadAico(const base::JsonNode& n, ScenarioSpec* spec) {
       if (!(f > 0.0)) fn.Fail("expected a positive factor");
       retry.precision_scale.push_back({{task, fn.Where()}, f});
     }
+  }
+  if (rn.Has("init")) {
+    const base::JsonNode in = rn.At("init");
+    const std::string init = in.String();
+    if (init != "unwinding") in.Fail(base::StrCat("\"", init, "\" is not \"unwinding\""));
+    retry.init_unwinding = true;
+    retry.init_where = in.Where();
   }
   spec->aico_attempts.push_back(retry);
 }

@@ -128,7 +128,10 @@
 //                            is a success (status "solved"; planner.h RunAicoAttempts)
 //     retry         object   a second attempt when the first fails validation or the success
 //                            criteria: precision_scale: {task name: factor > 0, ...} (default
-//                            {}); max_iterations: integer >= 1, default aico.max_iterations
+//                            {}); max_iterations: integer >= 1, default aico.max_iterations;
+//                            init: "unwinding" (needs writhe_report): start from the writhe
+//                            continuation of q0 to 0 resampled to the slices, its queries
+//                            counted (planner.h RunAicoAttempts); absent: as the first attempt
 //   rrt             object   range: rad, default 0 (auto); resolution: rad, default 0 (auto);
 //                            goal_bias: default 0.1; max_checks: integer >= 1, default 100000;
 //                            goal_states: integer 1..10000, default 32 (the goal-region trees'
@@ -351,10 +354,15 @@ struct SuccessSpec {
   std::string through_loop_where;  // of "success.through_loop" (empty: not given)
 };
 
-// One AICO attempt: task precisions scaled by name, and its iteration limit.
+// One AICO attempt: task precisions scaled by name, its iteration limit and its initial
+// trajectory.
 struct AicoAttemptSpec {
   std::vector<std::pair<SpecName, double>> precision_scale;
   int max_iterations = 20;
+  // "init": "unwinding": start from the writhe continuation of q0 to writhe 0 (needs a
+  // writhe_report); absent: as attempt 0 (aico.rollout_init).
+  bool init_unwinding = false;
+  std::string init_where;  // of "init", for messages
 };
 
 struct ScenarioSpec {

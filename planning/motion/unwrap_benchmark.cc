@@ -188,6 +188,7 @@ std::vector<UnwrapRun> RunColumns(const UnwrapBenchmarkOptions& options, const S
         if (const UnwrapAblation* ab = columns[c].ablation) {
           run.variant = ab->name;
           request.disabled_tasks = ab->disabled_tasks;
+          request.aico_retry = !ab->no_retry;
           if (ab->no_rollout) {
             request.aico = scenario.aico;
             request.aico->rollout_init = false;
@@ -284,9 +285,9 @@ std::string UnwrapSurvivalCsv(const std::vector<UnwrapSurvivalPoint>& points) {
 }
 
 std::vector<UnwrapAblation> UnwrapAblations(const ScenarioSpec& spec) {
-  std::vector<UnwrapAblation> out{{"full", {}, false}};
+  std::vector<UnwrapAblation> out{{"full", {}, false, false}};
   const auto tasks_where = [&](const std::string& name, auto pred) {
-    UnwrapAblation ab{name, {}, false};
+    UnwrapAblation ab{name, {}, false, false};
     for (const TaskSpec& t : spec.tasks) {
       if (pred(t)) ab.disabled_tasks.push_back(t.name);
     }
@@ -300,7 +301,8 @@ std::vector<UnwrapAblation> UnwrapAblations(const ScenarioSpec& spec) {
   tasks_where("no-off-pole",
               [](const TaskSpec& t) { return t.feature.type == FeatureType::kLineClearance; });
   tasks_where("no-winding-guard", [](const TaskSpec& t) { return t.max_jump > 0.0; });
-  if (spec.aico.rollout_init) out.push_back({"no-rollout", {}, true});
+  if (spec.aico.rollout_init) out.push_back({"no-rollout", {}, true, false});
+  if (spec.aico_attempts.size() > 1) out.push_back({"no-retry", {}, false, true});
   return out;
 }
 

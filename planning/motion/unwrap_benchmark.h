@@ -167,12 +167,13 @@ struct UnwrapAblation {
   std::string name;                         // "full", "no-writhe", "no-reach", ...
   std::vector<std::string> disabled_tasks;  // PlanRequest::disabled_tasks
   bool no_rollout = false;                  // aico.rollout_init off (q0 repeated)
+  bool no_retry = false;                    // attempt 0 only (PlanRequest::aico_retry false)
 };
 
 // "full", then each task term of the scenario removed in turn: "no-writhe" (tasks with a writhe
 // feature), "no-reach" (the success criterion's position task), "no-off-pole" (line-clearance
 // tasks), "no-winding-guard" (tasks with max_jump > 0), "no-rollout" (when aico.rollout_init is
-// on). A term the scenario does not have is left out.
+// on), "no-retry" (when aico.retry is given). A term the scenario does not have is left out.
 std::vector<UnwrapAblation> UnwrapAblations(const ScenarioSpec& spec);
 
 // Every (angle, ablation, seed) of AICO, as RunUnwrapBenchmark (same scenario, perturbation,

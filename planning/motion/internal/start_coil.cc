@@ -25,7 +25,7 @@ enum class ContinueMode { kPlain, kBackOff, kPushOutAndBackOff };
 // One writhe continuation (see WritheContinuation and StartCoil).
 Eigen::VectorXd ContinueWrithe(const Scenario& s, const Eigen::VectorXd& from, double target,
                                double step, double margin, ContinueMode mode,
-                               std::vector<Eigen::VectorXd>* path) {
+                               std::vector<Eigen::VectorXd>* path, QueryCounts* counts = nullptr) {
   const bool push_out = mode == ContinueMode::kPushOutAndBackOff;
   MotionProblem p;
   p.robot = &s.robot;
@@ -60,6 +60,9 @@ Eigen::VectorXd ContinueWrithe(const Scenario& s, const Eigen::VectorXd& from, d
     ForwardKinematics(s.robot, x, &kin);
     return !InCollision(s.robot, kin, &coll);
   };
+  const auto add_counts = [&] {
+    if (counts != nullptr) *counts += TaskQueryCounts(p, ws) + Counts(coll);
+  };
   std::optional<Eigen::VectorXd> last_free;
   size_t last_free_size = 0;  // path->size() when last_free was accepted
   const auto remember_if_free = [&] {
@@ -92,16 +95,47 @@ Eigen::VectorXd ContinueWrithe(const Scenario& s, const Eigen::VectorXd& from, d
   }
   if (mode != ContinueMode::kPlain && last_free && !collision_free(q)) {
     if (path != nullptr) path->resize(last_free_size);
+    add_counts();
     return *last_free;
   }
+  add_counts();
   return q;
 }
 
 }  // namespace
 
 Eigen::VectorXd WritheContinuation(const Scenario& s, const Eigen::VectorXd& from, double target,
-                                   double step, double margin, std::vector<Eigen::VectorXd>* path) {
-  return ContinueWrithe(s, from, target, step, margin, ContinueMode::kPlain, path);
+                                   double step, double margin, std::vector<Eigen::VectorXd>* path,
+                                   QueryCounts* counts) {
+  return ContinueWrithe(s, from, target, step, margin, ContinueMode::kPlain, path, counts);
+}
+
+Eigen::MatrixXd ResampleByArcLength(const std::vector<Eigen::VectorXd>& path, int num_points) {
+  std::vector<double> length(path.size(), 0.0);
+  for (size_t k = 1; k < path.size(); ++k)
+    length[k] = length[k - 1] + (path[k] - path[k - 1]).norm();
+  Eigen::MatrixXd out(path[0].size(), num_points);
+  size_t k = 0;
+  for (int t = 0; t < num_points; ++t) {
+    const double at = num_points > 1 ? length.back() * t / (num_points - 1) : 0.0;
+    while (k + 2 < path.size() && length[k + 1] < at) ++k;
+    if (path.size() == 1 || length[k + 1] <= length[k]) {
+      out.col(t) = path[std::min(k + 1, path.size() - 1)];
+      continue;
+    }
+    const double a = std::clamp((at - length[k]) / (length[k + 1] - length[k]), 0.0, 1.0);
+    out.col(t) = (1.0 - a) * path[k] + a * path[k + 1];
+  }
+  return out;
+}
+
+Trajectory UnwindingInit(const Scenario& s, const Eigen::VectorXd& q0, QueryCounts* counts) {
+  std::vector<Eigen::VectorXd> path;
+  WritheContinuation(s, q0, 0.0, s.spec.start.step, s.spec.start.margin, &path, counts);
+  Trajectory init;
+  init.dt = s.spec.problem.duration / s.spec.problem.num_steps;
+  init.q = ResampleByArcLength(path, s.spec.problem.num_steps + 1);
+  return init;
 }
 
 bool CollisionFree(const Scenario& s, const Eigen::VectorXd& q) {

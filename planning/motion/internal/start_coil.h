@@ -5,7 +5,9 @@
 #include <Eigen/Core>
 #include <vector>
 
+#include "planning/collision/collision.h"
 #include "planning/motion/scenario.h"
+#include "planning/motion/trajectory.h"
 
 namespace planning::internal {
 
@@ -13,10 +15,21 @@ namespace planning::internal {
 // in steps of `step` turns: damped Gauss–Newton final-pose estimates under a writhe task, a soft
 // collision task with `margin` (m) and a joint-limit task, until the writhe is within 0.005 of
 // `target` or stops moving. Every accepted configuration (from included) is appended to `path`
-// if not null. Returns the last configuration (n).
+// if not null. Returns the last configuration (n). Adds the state queries and pair tests it made
+// (its tasks' and its collision checks') to *counts if not null.
 Eigen::VectorXd WritheContinuation(const Scenario& s, const Eigen::VectorXd& from, double target,
                                    double step, double margin,
-                                   std::vector<Eigen::VectorXd>* path = nullptr);
+                                   std::vector<Eigen::VectorXd>* path = nullptr,
+                                   QueryCounts* counts = nullptr);
+
+// `path` (at least one configuration of size n) resampled at num_points equally spaced
+// joint-space arc lengths (linear between its configurations): n × num_points.
+Eigen::MatrixXd ResampleByArcLength(const std::vector<Eigen::VectorXd>& path, int num_points);
+
+// The unwinding init of an AICO attempt ("aico.retry.init": "unwinding"): the writhe continuation
+// from q0 (size n) to total writhe 0 (step and margin of the scenario's start spec), resampled by
+// ResampleByArcLength to T + 1 slices, dt = duration / T. Adds its counts to *counts.
+Trajectory UnwindingInit(const Scenario& s, const Eigen::VectorXd& q0, QueryCounts* counts);
 
 // The start coil: WritheContinuation from `from` to `target`, made a state the robot can be in
 // (collision-free, inside the joint limits) and retried from seeded perturbations when it stops
