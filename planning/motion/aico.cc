@@ -397,6 +397,7 @@ double AicoSolver::damping() const { return impl_->aico.lambda(); }
 const Trajectory& AicoSolver::trajectory() const { return impl_->aico.result().trajectory; }
 const AicoState& AicoSolver::state() const { return impl_->aico.state(); }
 AicoResult AicoSolver::result() const { return impl_->aico.result(); }
+const QueryCounts& AicoSolver::counts() const { return impl_->aico.result().counts; }
 
 AicoResult SolveAico(const MotionProblem& problem, const AicoOptions& options, AicoWorkspace* ws,
                      const AicoCallback& callback, const Trajectory* init) {

@@ -158,6 +158,8 @@ class AicoSolver {
   const AicoState& state() const;
   // The result so far (status kMaxIterations while running); the final one once done().
   AicoResult result() const;
+  // result().counts without copying the result: the state queries and pair tests so far.
+  const QueryCounts& counts() const;
 
  private:
   struct Impl;

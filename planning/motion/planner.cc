@@ -473,27 +473,46 @@ PlanResult RunAicoAttempts(const Scenario& s, const ScenarioState& w, const Aico
   rep.attempts = 0;
   const double cpu0 = CpuSeconds();
   bool budget_spent = false;
-  bool writhe_off = false;
+  bool writhe_off = false;  // a writhe task is switched off (aico-goal, the no-writhe ablation)
   for (const std::string& name : WritheTaskNames(w.problem)) {
     for (const std::string& off : disabled_tasks) writhe_off = writhe_off || off == name;
   }
   // True once `c` (counts spent so far) or the CPU time since the start reach the budget.
   const auto over = [&](const QueryCounts& c) {
-    switch (budget.unit) {
-      case Budget::Unit::kQueries:
-        return static_cast<double>(c.state_queries) >= budget.value;
-      case Budget::Unit::kCpuTime:
-        return CpuSeconds() - cpu0 >= budget.value;
-      case Budget::Unit::kPairTests:
-        return static_cast<double>(c.pair_tests()) >= budget.value;
-      case Budget::Unit::kNone:
-        break;
-    }
-    return false;
+    using U = Budget::Unit;
+    const double used = budget.unit == U::kQueries     ? static_cast<double>(c.state_queries)
+                        : budget.unit == U::kPairTests ? static_cast<double>(c.pair_tests())
+                        : budget.unit == U::kCpuTime   ? CpuSeconds() - cpu0
+                                                       : 0.0;
+    return budget.unit != U::kNone && used >= budget.value;
   };
   const int attempts = retry ? static_cast<int>(s.aico_attempts.size()) : 1;
+  const auto budget_exhausted = [&] {
+    rep.status = SolveStatus::kBudgetExhausted;
+    rep.failure_reason = FailureReason::kBudgetExhausted;
+    rep.success = false;
+  };
   for (int k = 0; k < attempts && !budget_spent; ++k) {
-    if (s.aico_attempts[k].init_unwinding && writhe_off) continue;
+    const bool unwinding = s.aico_attempts[k].init_unwinding;
+    if (unwinding && writhe_off) continue;
+    if (k > 0 && over(rep.counts)) {  // earlier attempts spent the budget: no attempt starts
+      budget_exhausted();
+      break;
+    }
+    Trajectory init;  // the unwinding init, its continuation's counts charged to this attempt
+    if (unwinding) {
+      QueryCounts c;
+      init = internal::UnwindingInit(s, w, w.problem.q0, &c);
+      rep.counts += c;
+      // Its world queries are its collision task's and checks' (internal::UnwindingInit): its
+      // state queries are collision queries, its pair tests narrow-phase calls.
+      rep.collision_checks += c.state_queries;
+      rep.narrow_phase_calls += c.pair_tests();
+      if (over(rep.counts)) {  // the continuation spent the budget: the attempt does not start
+        budget_exhausted();
+        break;
+      }
+    }
     // Attempt 0 is the state's own problem unless terms are switched off.
     const bool own = k == 0 && disabled_tasks.empty();
     MotionProblem later = own ? MotionProblem{} : AttemptProblem(s, w, k);
@@ -501,25 +520,14 @@ PlanResult RunAicoAttempts(const Scenario& s, const ScenarioState& w, const Aico
     ++rep.attempts;
     AicoOptions options = aico;
     options.max_iterations = s.aico_attempts[k].max_iterations;
-    Trajectory init;  // the unwinding init, its continuation's counts charged to this attempt
-    if (s.aico_attempts[k].init_unwinding) {
-      QueryCounts c;
-      init = internal::UnwindingInit(s, w.problem.q0, &c);
-      rep.counts += c;
-      rep.collision_checks += c.state_queries;
-      rep.narrow_phase_calls += c.pair_tests();
-      if (over(rep.counts)) {  // the continuation spent the budget: the attempt does not start
-        rep.status = SolveStatus::kBudgetExhausted;
-        rep.failure_reason = FailureReason::kBudgetExhausted;
-        rep.success = false;
-        break;
-      }
-    }
-    AicoSolver solver(own ? w.problem : later, options, init.q.size() > 0 ? &init : nullptr);
+    AicoSolver solver(own ? w.problem : later, options, unwinding ? &init : nullptr);
     long probe_queries = 0, probe_narrow = 0;  // validations of trajectories that were no success
     QueryCounts probe_counts;
     // The budget spent after a sweep: this attempt's counts so far, earlier attempts' and probes'.
-    const auto spent = [&] { return over(rep.counts + probe_counts + solver.result().counts); };
+    const auto spent = [&] {
+      return budget.unit != Budget::Unit::kNone &&
+             over(rep.counts + probe_counts + solver.counts());
+    };
     bool solved = false;
     while (!solver.done()) {
       const AicoStep step = solver.Step();

@@ -208,9 +208,9 @@ void FinishReport(const Scenario& scenario, const ScenarioState& state, bool fou
 // kConverged or kMaxIterations). Success can only be more frequent than without the option: a
 // trajectory that passes part-way is returned even if the converged one would fail (and no retry
 // attempt runs). An attempt with init_unwinding (aico.retry.init "unwinding") starts from
-// internal::UnwindingInit at the state's q0 (the continuation sees the scenario's initial world),
-// and the continuation's state queries and pair tests are counted in the attempt's report (when
-// they spend the budget, the attempt does not start and the run fails as kBudgetExhausted). Fills
+// internal::UnwindingInit at the state's q0 in the state's world, and the continuation's state
+// queries and pair tests are counted in the report (when they spend the budget, the attempt does
+// not start and the run fails as kBudgetExhausted; `attempts` counts the attempts started). Fills
 // every report field of an AICO run except time_s and start_writhe_total; does not call
 // NameFailure.
 PlanResult RunAicoAttempts(const Scenario& scenario, const AicoCallback& callback = {});

@@ -83,7 +83,8 @@ struct SuccessCriteria {
   bool through_loop = false;
 };
 
-// One AICO attempt: per-task precision multipliers (size = problem.tasks) and iteration limit.
+// One AICO attempt: per-task precision multipliers (size = problem.tasks), iteration limit and
+// initial trajectory (rollout or q0 as aico.rollout_init says, or the unwinding path).
 // Attempt 0 runs `problem` with `aico`; later ones (scenario "aico.retry") run only when the
 // previous attempt fails validation or the success criteria.
 struct AicoAttempt {

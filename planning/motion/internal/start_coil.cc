@@ -22,10 +22,11 @@ namespace {
 // a `from` in collision is first pushed out of it at its own writhe (up to 100 steps).
 enum class ContinueMode { kPlain, kBackOff, kPushOutAndBackOff };
 
-// One writhe continuation (see WritheContinuation and StartCoil).
-Eigen::VectorXd ContinueWrithe(const Scenario& s, const Eigen::VectorXd& from, double target,
-                               double step, double margin, ContinueMode mode,
-                               std::vector<Eigen::VectorXd>* path, QueryCounts* counts = nullptr) {
+// One writhe continuation (see WritheContinuation and StartCoil) in `world` (the pole where it is).
+Eigen::VectorXd ContinueWrithe(const Scenario& s, const ScenarioState& world,
+                               const Eigen::VectorXd& from, double target, double step,
+                               double margin, ContinueMode mode, std::vector<Eigen::VectorXd>* path,
+                               QueryCounts* counts = nullptr) {
   const bool push_out = mode == ContinueMode::kPushOutAndBackOff;
   MotionProblem p;
   p.robot = &s.robot;
@@ -35,13 +36,13 @@ Eigen::VectorXd ContinueWrithe(const Scenario& s, const Eigen::VectorXd& from, d
   p.w_rate = 100.0;
   Task w;
   w.name = "writhe";
-  w.feature = MakeWritheFeature(s.robot, s.report_chain, s.initial.report_object_chain,
-                                WritheOutput::kTotal);
+  w.feature =
+      MakeWritheFeature(s.robot, s.report_chain, world.report_object_chain, WritheOutput::kTotal);
   SetConstantTarget(&w, Eigen::VectorXd::Zero(1), 1000.0, 1);
   p.tasks.push_back(std::move(w));
   Task c;
   c.name = "collision";
-  c.feature = MakeCollisionFeature(s.robot, s.initial.env, s.collision, margin);
+  c.feature = MakeCollisionFeature(s.robot, world.env, s.collision, margin);
   SetConstantTarget(&c, Eigen::VectorXd::Zero(c.feature->dim()), 100.0, 1);
   p.tasks.push_back(std::move(c));
   Task l;
@@ -54,7 +55,7 @@ Eigen::VectorXd ContinueWrithe(const Scenario& s, const Eigen::VectorXd& from, d
   fo.alpha = 0.5;
   Eigen::VectorXd q = from;
   if (path != nullptr) path->push_back(q);
-  CollisionData coll(s.robot, s.initial.env, s.collision);
+  CollisionData coll(s.robot, world.env, s.collision);
   KinematicsData kin(s.robot);
   const auto collision_free = [&](const Eigen::VectorXd& x) {
     ForwardKinematics(s.robot, x, &kin);
@@ -64,19 +65,19 @@ Eigen::VectorXd ContinueWrithe(const Scenario& s, const Eigen::VectorXd& from, d
     if (counts != nullptr) *counts += TaskQueryCounts(p, ws) + Counts(coll);
   };
   std::optional<Eigen::VectorXd> last_free;
-  size_t last_free_size = 0;  // path->size() when last_free was accepted
-  const auto remember_if_free = [&] {
-    if (!collision_free(q)) return;
+  size_t last_free_size = 0;           // path->size() when last_free was accepted
+  const auto remember_if_free = [&] {  // only the back-off modes use it
+    if (mode == ContinueMode::kPlain || !collision_free(q)) return;
     last_free = q;
     last_free_size = path != nullptr ? path->size() : 0;
   };
   remember_if_free();
-  double current = ReportWritheTotal(s, q);
+  double current = ReportWritheTotal(s, world, q);
   for (int k = 0; push_out && k < 100 && !last_free; ++k) {
     p.q0 = q;
     p.tasks[0].target.setConstant(current);
     q = EstimateFinalPose(p, fo, &ws).q;
-    current = ReportWritheTotal(s, q);
+    current = ReportWritheTotal(s, world, q);
     if (path != nullptr) path->push_back(q);
     remember_if_free();
   }
@@ -86,7 +87,7 @@ Eigen::VectorXd ContinueWrithe(const Scenario& s, const Eigen::VectorXd& from, d
     p.q0 = q;
     p.tasks[0].target.setConstant(next);
     const FinalPoseResult r = EstimateFinalPose(p, fo, &ws);
-    const double moved = ReportWritheTotal(s, r.q);
+    const double moved = ReportWritheTotal(s, world, r.q);
     if (std::abs(moved - current) < 1e-4) break;  // stuck
     q = r.q;
     current = moved;
@@ -107,7 +108,8 @@ Eigen::VectorXd ContinueWrithe(const Scenario& s, const Eigen::VectorXd& from, d
 Eigen::VectorXd WritheContinuation(const Scenario& s, const Eigen::VectorXd& from, double target,
                                    double step, double margin, std::vector<Eigen::VectorXd>* path,
                                    QueryCounts* counts) {
-  return ContinueWrithe(s, from, target, step, margin, ContinueMode::kPlain, path, counts);
+  return ContinueWrithe(s, s.initial, from, target, step, margin, ContinueMode::kPlain, path,
+                        counts);
 }
 
 Eigen::MatrixXd ResampleByArcLength(const std::vector<Eigen::VectorXd>& path, int num_points) {
@@ -129,9 +131,11 @@ Eigen::MatrixXd ResampleByArcLength(const std::vector<Eigen::VectorXd>& path, in
   return out;
 }
 
-Trajectory UnwindingInit(const Scenario& s, const Eigen::VectorXd& q0, QueryCounts* counts) {
+Trajectory UnwindingInit(const Scenario& s, const ScenarioState& world, const Eigen::VectorXd& q0,
+                         QueryCounts* counts) {
   std::vector<Eigen::VectorXd> path;
-  WritheContinuation(s, q0, 0.0, s.spec.start.step, s.spec.start.margin, &path, counts);
+  ContinueWrithe(s, world, q0, 0.0, s.spec.start.step, s.spec.start.margin, ContinueMode::kPlain,
+                 &path, counts);
   Trajectory init;
   init.dt = s.spec.problem.duration / s.spec.problem.num_steps;
   init.q = ResampleByArcLength(path, s.spec.problem.num_steps + 1);
@@ -165,10 +169,11 @@ Eigen::VectorXd StartCoil(const Scenario& s, const Eigen::VectorXd& from, double
                           double step, double margin, bool* collides) {
   // kBackOff returns the plain continuation whenever that ends collision-free.
   Eigen::VectorXd q =
-      ContinueWrithe(s, from, target, step, margin, ContinueMode::kBackOff, nullptr);
+      ContinueWrithe(s, s.initial, from, target, step, margin, ContinueMode::kBackOff, nullptr);
   bool free = CollisionFree(s, q);
   if (!free) {
-    q = ContinueWrithe(s, from, target, step, margin, ContinueMode::kPushOutAndBackOff, nullptr);
+    q = ContinueWrithe(s, s.initial, from, target, step, margin, ContinueMode::kPushOutAndBackOff,
+                       nullptr);
     free = CollisionFree(s, q);
   }
   *collides = !free;
@@ -187,7 +192,7 @@ Eigen::VectorXd StartCoil(const Scenario& s, const Eigen::VectorXd& from, double
           std::clamp(perturbed[i] + kCoilRestartRad * (2.0 * base::UniformUnit(&rng) - 1.0),
                      lower[i], upper[i]);
     }
-    const Eigen::VectorXd x = ContinueWrithe(s, perturbed, target, step, margin,
+    const Eigen::VectorXd x = ContinueWrithe(s, s.initial, perturbed, target, step, margin,
                                              ContinueMode::kPushOutAndBackOff, nullptr);
     const double error = std::abs(ReportWritheTotal(s, x) - target);
     if (error < best && inside(x) && CollisionFree(s, x)) {

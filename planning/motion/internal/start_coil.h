@@ -16,7 +16,7 @@ namespace planning::internal {
 // collision task with `margin` (m) and a joint-limit task, until the writhe is within 0.005 of
 // `target` or stops moving. Every accepted configuration (from included) is appended to `path`
 // if not null. Returns the last configuration (n). Adds the state queries and pair tests it made
-// (its tasks' and its collision checks') to *counts if not null.
+// (its tasks') to *counts if not null. In the scenario's initial world.
 Eigen::VectorXd WritheContinuation(const Scenario& s, const Eigen::VectorXd& from, double target,
                                    double step, double margin,
                                    std::vector<Eigen::VectorXd>* path = nullptr,
@@ -27,9 +27,12 @@ Eigen::VectorXd WritheContinuation(const Scenario& s, const Eigen::VectorXd& fro
 Eigen::MatrixXd ResampleByArcLength(const std::vector<Eigen::VectorXd>& path, int num_points);
 
 // The unwinding init of an AICO attempt ("aico.retry.init": "unwinding"): the writhe continuation
-// from q0 (size n) to total writhe 0 (step and margin of the scenario's start spec), resampled by
-// ResampleByArcLength to T + 1 slices, dt = duration / T. Adds its counts to *counts.
-Trajectory UnwindingInit(const Scenario& s, const Eigen::VectorXd& q0, QueryCounts* counts);
+// from q0 (size n) to total writhe 0 in `world` (step and margin of the scenario's start spec),
+// resampled by ResampleByArcLength to T + 1 slices, dt = duration / T. Adds its counts to *counts:
+// its only world queries are its collision task and checks, so its state queries are also its
+// collision queries and its pair tests its narrow-phase calls.
+Trajectory UnwindingInit(const Scenario& s, const ScenarioState& world, const Eigen::VectorXd& q0,
+                         QueryCounts* counts);
 
 // The start coil: WritheContinuation from `from` to `target`, made a state the robot can be in
 // (collision-free, inside the joint limits) and retried from seeded perturbations when it stops

@@ -35,7 +35,7 @@ std::unique_ptr<Scenario> Tuning06() {
 TEST(UnwindingRetry, TheInitIsTheContinuationOfTheStartToWritheZero) {
   const auto s = Tuning06();
   QueryCounts counts;
-  const Trajectory init = internal::UnwindingInit(*s, s->initial.problem.q0, &counts);
+  const Trajectory init = internal::UnwindingInit(*s, s->initial, s->initial.problem.q0, &counts);
   ASSERT_EQ(init.num_points(), s->spec.problem.num_steps + 1);
   ASSERT_EQ(init.num_dofs(), s->initial.problem.q0.size());
   EXPECT_DOUBLE_EQ(init.dt, s->spec.problem.duration / s->spec.problem.num_steps);
@@ -50,6 +50,21 @@ TEST(UnwindingRetry, TheInitIsTheContinuationOfTheStartToWritheZero) {
   EXPECT_TRUE(init.q.isApprox(internal::ResampleByArcLength(path, init.num_points()), 1e-12));
   EXPECT_GT(counts.state_queries, 0);
   EXPECT_GT(counts.pair_tests(), 0);
+}
+
+// The continuation runs in the world planned in: with the pole moved, the init unwinds about the
+// pole where it is (its writhe with the moved pole ends near 0), not where the file put it.
+TEST(UnwindingRetry, TheInitFollowsAMovedPole) {
+  const auto s = Tuning06();
+  const auto moved = MakeScenarioState(*s);
+  MoveObject(*s, moved.get(), "pole",
+             ObjectPosition(*s, *moved, "pole") + Eigen::Vector3d(0.0, 0.0, 0.05));
+  QueryCounts counts;
+  const Eigen::VectorXd& q0 = s->initial.problem.q0;
+  const Trajectory there = internal::UnwindingInit(*s, *moved, q0, &counts);
+  const Trajectory here = internal::UnwindingInit(*s, s->initial, q0, &counts);
+  EXPECT_FALSE(there.q.isApprox(here.q, 1e-6));
+  EXPECT_LT(std::abs(ReportWritheTotal(*s, *moved, there.q.col(there.num_points() - 1))), 0.05);
 }
 
 // An L-shaped path of lengths 1 + 1 at 5 equally spaced arc lengths: the corner is kept.
@@ -79,7 +94,7 @@ TEST(UnwindingRetry, ARolloutFailureIsSolvedByTheRetryWhichIsCharged) {
   EXPECT_TRUE(both.success) << FailureReasonName(both.failure_reason);
   EXPECT_EQ(both.attempts, 2);
   QueryCounts init;
-  internal::UnwindingInit(*s, s->initial.problem.q0, &init);
+  internal::UnwindingInit(*s, s->initial, s->initial.problem.q0, &init);
   // Attempt 0 as before, the continuation, and attempt 1's own queries.
   EXPECT_GT(both.counts.state_queries, first.counts.state_queries + init.state_queries);
   EXPECT_GT(both.counts.pair_tests(), first.counts.pair_tests() + init.pair_tests());
@@ -89,17 +104,27 @@ TEST(UnwindingRetry, ARolloutFailureIsSolvedByTheRetryWhichIsCharged) {
                     static_cast<double>(first.counts.state_queries + init.state_queries)};
   const PlanReport cut = RunPlanner(*s, request).report;
   EXPECT_FALSE(cut.success);
+  EXPECT_EQ(cut.status, SolveStatus::kBudgetExhausted);
   EXPECT_EQ(cut.failure_reason, FailureReason::kBudgetExhausted);
+  EXPECT_EQ(cut.attempts, 1);  // the retry did not start
   EXPECT_EQ(cut.counts, first.counts + init);
 }
 
-// The unwinding path is writhe-driven: aico-goal (no writhe term) does not get it.
-TEST(UnwindingRetry, AicoGoalHasNoUnwindingAttempt) {
+// The unwinding path is writhe-driven: aico-goal and the no-writhe ablation (no writhe term) do
+// not get it. Both fail here, and spend what they spend without a retry.
+TEST(UnwindingRetry, NoUnwindingAttemptWithoutTheWritheTerm) {
   const auto s = Tuning06();
-  PlanRequest request;
-  request.planner = Planner::kAicoGoal;
-  const PlanReport r = RunPlanner(*s, request).report;
-  EXPECT_EQ(r.attempts, 1);
+  for (const bool goal : {true, false}) {
+    SCOPED_TRACE(goal ? "aico-goal" : "no-writhe");
+    PlanRequest request;
+    request.planner = goal ? Planner::kAicoGoal : Planner::kAico;
+    if (!goal) request.disabled_tasks = {"writhe"};
+    const PlanReport r = RunPlanner(*s, request).report;
+    EXPECT_FALSE(r.success);
+    EXPECT_EQ(r.attempts, 1);
+    request.aico_retry = false;
+    EXPECT_EQ(RunPlanner(*s, request).report.counts, r.counts);
+  }
 }
 
 TEST(UnwindingRetry, TheAblationsHaveANoRetryVariant) {
