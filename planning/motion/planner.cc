@@ -504,8 +504,8 @@ PlanResult RunAicoAttempts(const Scenario& s, const ScenarioState& w, const Aico
       QueryCounts c;
       init = internal::UnwindingInit(s, w, w.problem.q0, &c);
       rep.counts += c;
-      // Its world queries are its collision task's and checks' (internal::UnwindingInit): its
-      // state queries are collision queries, its pair tests narrow-phase calls.
+      // Its only world query is its collision task (internal::UnwindingInit): its state queries
+      // are collision queries, its pair tests narrow-phase calls.
       rep.collision_checks += c.state_queries;
       rep.narrow_phase_calls += c.pair_tests();
       if (over(rep.counts)) {  // the continuation spent the budget: the attempt does not start

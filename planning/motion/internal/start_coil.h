@@ -29,8 +29,8 @@ Eigen::MatrixXd ResampleByArcLength(const std::vector<Eigen::VectorXd>& path, in
 // The unwinding init of an AICO attempt ("aico.retry.init": "unwinding"): the writhe continuation
 // from q0 (size n) to total writhe 0 in `world` (step and margin of the scenario's start spec),
 // resampled by ResampleByArcLength to T + 1 slices, dt = duration / T. Adds its counts to *counts:
-// its only world queries are its collision task and checks, so its state queries are also its
-// collision queries and its pair tests its narrow-phase calls.
+// its only world query is its collision task, so its state queries are also its collision queries
+// and its pair tests its narrow-phase calls.
 Trajectory UnwindingInit(const Scenario& s, const ScenarioState& world, const Eigen::VectorXd& q0,
                          QueryCounts* counts);
 
