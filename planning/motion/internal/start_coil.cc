@@ -106,10 +106,8 @@ Eigen::VectorXd ContinueWrithe(const Scenario& s, const ScenarioState& world,
 }  // namespace
 
 Eigen::VectorXd WritheContinuation(const Scenario& s, const Eigen::VectorXd& from, double target,
-                                   double step, double margin, std::vector<Eigen::VectorXd>* path,
-                                   QueryCounts* counts) {
-  return ContinueWrithe(s, s.initial, from, target, step, margin, ContinueMode::kPlain, path,
-                        counts);
+                                   double step, double margin, std::vector<Eigen::VectorXd>* path) {
+  return ContinueWrithe(s, s.initial, from, target, step, margin, ContinueMode::kPlain, path);
 }
 
 Eigen::MatrixXd ResampleByArcLength(const std::vector<Eigen::VectorXd>& path, int num_points) {

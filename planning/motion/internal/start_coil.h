@@ -15,12 +15,10 @@ namespace planning::internal {
 // in steps of `step` turns: damped Gauss–Newton final-pose estimates under a writhe task, a soft
 // collision task with `margin` (m) and a joint-limit task, until the writhe is within 0.005 of
 // `target` or stops moving. Every accepted configuration (from included) is appended to `path`
-// if not null. Returns the last configuration (n). Adds the state queries and pair tests it made
-// (its tasks') to *counts if not null. In the scenario's initial world.
+// if not null. Returns the last configuration (n). In the scenario's initial world.
 Eigen::VectorXd WritheContinuation(const Scenario& s, const Eigen::VectorXd& from, double target,
                                    double step, double margin,
-                                   std::vector<Eigen::VectorXd>* path = nullptr,
-                                   QueryCounts* counts = nullptr);
+                                   std::vector<Eigen::VectorXd>* path = nullptr);
 
 // `path` (at least one configuration of size n) resampled at num_points equally spaced
 // joint-space arc lengths (linear between its configurations): n × num_points.

@@ -9,8 +9,9 @@
 #include <fstream>
 #include <string>
 
-#include "planning/robot/kinematics.h"
 #include "planning/motion/scenario.h"
+#include "planning/robot/kinematics.h"
+#include "scenario_test_util.h"
 
 namespace planning {
 namespace {
@@ -19,13 +20,7 @@ const std::string kAssets = TOPOPLAN_SOURCE_DIR "/assets/";
 
 // `text` as the file `name` in this test's scratch folder; returns its path.
 std::string WriteTemp(const std::string& name, const std::string& text) {
-  static const std::filesystem::path dir = [] {
-    auto d = std::filesystem::path(TOPOPLAN_BINARY_DIR) / "replan_test_tmp";
-    std::filesystem::create_directories(d);
-    return d;
-  }();
-  std::ofstream((dir / name).string()) << text;
-  return (dir / name).string();
+  return WriteTestFile("replan_test_tmp", name, text);
 }
 
 // The message of the std::invalid_argument thrown by ReadObjectPath on `text`.
@@ -239,8 +234,8 @@ TEST(AttachedTasks, BoxAndReachFollowTheRingWritheStays) {
       FeatureValue(s->robot, *w->problem.tasks[1].feature, w->problem.q0);
   MoveObjectWithTargets(*s, w.get(), "ring", home, attached);
   EXPECT_TRUE(w->problem.tasks[2].target.isApprox(reach0));
-  EXPECT_FALSE(FeatureValue(s->robot, *w->problem.tasks[1].feature, w->problem.q0)
-                   .isApprox(moved_box));
+  EXPECT_FALSE(
+      FeatureValue(s->robot, *w->problem.tasks[1].feature, w->problem.q0).isApprox(moved_box));
   EXPECT_THROW(MoveObjectWithTargets(*s, w.get(), "ring", home, {99}), std::invalid_argument);
 }
 

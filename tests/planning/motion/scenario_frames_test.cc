@@ -15,6 +15,7 @@
 #include "planning/motion/success.h"
 #include "planning/motion/unwrap_geometry.h"
 #include "planning/robot/pose.h"
+#include "scenario_test_util.h"
 
 namespace planning {
 namespace {
@@ -23,12 +24,7 @@ const std::string kAssets = TOPOPLAN_SOURCE_DIR "/assets/";
 const std::string kUnwrap = kAssets + "scenarios/unwrap.json";
 
 std::string WriteTemp(const std::string& name, const std::string& text) {
-  const std::filesystem::path dir =
-      std::filesystem::path(TOPOPLAN_BINARY_DIR) / "scenario_frames_test_tmp";
-  std::filesystem::create_directories(dir);
-  const std::string path = (dir / name).string();
-  std::ofstream(path) << text;
-  return path;
+  return WriteTestFile("scenario_frames_test_tmp", name, text);
 }
 
 // A small scenario (LWR4 + SDH, zero start, T = 5) with a pole and `extra` objects, and a reach

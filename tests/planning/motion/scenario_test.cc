@@ -27,12 +27,7 @@ namespace {
 const std::string kAssets = TOPOPLAN_SOURCE_DIR "/assets/";
 
 std::string WriteTemp(const std::string& name, const std::string& text) {
-  const std::filesystem::path dir =
-      std::filesystem::path(TOPOPLAN_BINARY_DIR) / "scenario_test_tmp";
-  std::filesystem::create_directories(dir);
-  const std::string path = (dir / name).string();
-  std::ofstream(path) << text;
-  return path;
+  return WriteTestFile("scenario_test_tmp", name, text);
 }
 
 // A minimal valid scenario around the LWR4 + SDH; `task` is spliced into "tasks".

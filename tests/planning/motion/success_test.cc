@@ -22,6 +22,7 @@
 #include "planning/motion/unwrap_benchmark.h"
 #include "planning/motion/unwrap_geometry.h"
 #include "planning/robot/kinematics.h"
+#include "scenario_test_util.h"
 
 namespace planning {
 namespace {
@@ -29,11 +30,7 @@ namespace {
 const std::string kAssets = TOPOPLAN_SOURCE_DIR "/assets/";
 
 std::string WriteTemp(const std::string& name, const std::string& text) {
-  const std::filesystem::path dir = std::filesystem::path(TOPOPLAN_BINARY_DIR) / "success_test_tmp";
-  std::filesystem::create_directories(dir);
-  const std::string path = (dir / name).string();
-  std::ofstream(path) << text;
-  return path;
+  return WriteTestFile("success_test_tmp", name, text);
 }
 
 // The shipped unwrap scenario from `wrap_deg`.

@@ -15,6 +15,7 @@
 #include "planning/motion/scenario_spec.h"
 #include "planning/motion/unwrap_benchmark.h"
 #include "planning/motion/unwrap_geometry.h"
+#include "scenario_test_util.h"
 
 namespace planning {
 namespace {
@@ -137,12 +138,7 @@ TEST(UnwindingRetry, TheAblationsHaveANoRetryVariant) {
 }
 
 std::string WriteTemp(const std::string& name, const std::string& text) {
-  const std::filesystem::path dir =
-      std::filesystem::path(TOPOPLAN_BINARY_DIR) / "unwinding_retry_test_tmp";
-  std::filesystem::create_directories(dir);
-  const std::string path = (dir / name).string();
-  std::ofstream(path) << text;
-  return path;
+  return WriteTestFile("unwinding_retry_test_tmp", name, text);
 }
 
 // A small scenario (LWR4 + SDH, zero start, T = 5) with `writhe_report` and an aico section.
