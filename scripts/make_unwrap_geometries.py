@@ -17,6 +17,9 @@ along the pole (the shipped target is out of its reach: 0.25 m short when unwrap
 Run from anywhere: python3 scripts/make_unwrap_geometries.py
 More tuning geometries from the same draws (the shipped files are their first 24), elsewhere:
   python3 scripts/make_unwrap_geometries.py --tuning-count 48 --out /tmp/geometries
+A second held-out draw, never used to choose anything (test_20 to test_39; the shipped test files
+are the first 20 of the same draws):
+  python3 scripts/make_unwrap_geometries.py --test-count 40 --out /tmp/geometries
 Check that the shipped files are its output (ctest unwrap_geometries_script):
   python3 scripts/make_unwrap_geometries.py --check
 """
@@ -64,12 +67,12 @@ def geometry(rng, split, index, links, urdf):
     }
 
 
-def write(out, tuning_count, urdf_from=None):
+def write(out, tuning_count, urdf_from=None, test_count=None):
     """Writes DIR/tuning and DIR/test; the arm URDF paths are relative to the file's folder, or to
     the same-named folder under `urdf_from` (the files then read as if written there)."""
     out = os.path.realpath(out)
     for split, (seed, default_count, arms) in SETS.items():
-        count = tuning_count if split == "tuning" else default_count
+        count = tuning_count if split == "tuning" else (test_count or default_count)
         folder = os.path.join(out, split)
         os.makedirs(folder, exist_ok=True)
         here = os.path.join(os.path.realpath(urdf_from), split) if urdf_from else folder
@@ -83,15 +86,15 @@ def write(out, tuning_count, urdf_from=None):
 
 
 def check():
-    """The shipped files are, byte for byte, the script's output, and --tuning-count extends them
-    (two more tuning files are drawn and their arm URDFs exist)."""
+    """The shipped files are, byte for byte, the script's output, and --tuning-count and
+    --test-count extend them (two more files of each set are drawn and their arm URDFs exist)."""
     errors = []
     with tempfile.TemporaryDirectory() as tmp:
-        write(tmp, SETS["tuning"][1] + 2, urdf_from=OUT)
+        write(tmp, SETS["tuning"][1] + 2, urdf_from=OUT, test_count=SETS["test"][1] + 2)
         for split in SETS:
             shipped, made = os.path.join(OUT, split), os.path.join(tmp, split)
             names = sorted(n for n in os.listdir(shipped) if n.endswith(".json"))
-            extra = 2 if split == "tuning" else 0
+            extra = 2
             if len(os.listdir(made)) != len(names) + extra:
                 errors.append("%s: not the files the script writes" % shipped)
             for n in names:
@@ -113,17 +116,22 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--tuning-count", type=int, default=SETS["tuning"][1],
                         help="tuning geometries to write (default %(default)s, the shipped set)")
+    parser.add_argument("--test-count", type=int, default=SETS["test"][1],
+                        help="test geometries to write (default %(default)s, the shipped set)")
     parser.add_argument("--out", default=OUT,
                         help="folder for tuning/ and test/ (default: the shipped folder)")
     parser.add_argument("--check", action="store_true",
                         help="write nothing; exit 1 unless the shipped files are, byte for byte, "
-                        "the script's output (--tuning-count and --out are ignored)")
+                        "the script's output (--tuning-count, --test-count and --out are "
+                        "ignored)")
     args = parser.parse_args()
     if args.check:
         sys.exit(check())
     if args.tuning_count < 1:
         parser.error("--tuning-count must be >= 1")
-    write(args.out, args.tuning_count)
+    if args.test_count < 1:
+        parser.error("--test-count must be >= 1")
+    write(args.out, args.tuning_count, test_count=args.test_count)
     print("wrote", os.path.abspath(args.out))
 
 

@@ -250,7 +250,7 @@ void AddBenchCommands(CLI::App* root, CommandList* commands) {
       "solved within each budget of a log sweep, per planner and angle)");
   unwrap->add_flag("--ablation", ba->ablation,
                    "run AICO with each task term removed in turn (writhe, reach, off-pole, winding "
-                   "guard, rollout, and the retry when the scenario has one) instead of the "
+                   "guard, rollout, and the retries when the scenario has them) instead of the "
                    "planners: DIR/ablation.csv, DIR/ablation.png");
   unwrap->add_option("--pole-offset", ba->perturb,
                      "move the pole of each seed by a random offset of at most M metres "

@@ -493,19 +493,24 @@ PlanResult RunAicoAttempts(const Scenario& s, const ScenarioState& w, const Aico
     rep.success = false;
   };
   for (int k = 0; k < attempts && !budget_spent; ++k) {
-    const bool unwinding = s.aico_attempts[k].init_unwinding;
+    const AicoInit init_kind = s.aico_attempts[k].init;
+    const bool unwinding = init_kind != AicoInit::kDefault;
     if (unwinding && writhe_off) continue;
     if (k > 0 && over(rep.counts)) {  // earlier attempts spent the budget: no attempt starts
       budget_exhausted();
       break;
     }
+    // Attempt 0 is the state's own problem unless terms are switched off.
+    const bool own = k == 0 && disabled_tasks.empty();
+    MotionProblem later = own ? MotionProblem{} : AttemptProblem(s, w, k);
+    if (!own) DisableTasks(disabled_tasks, &later);
     Trajectory init;  // the unwinding init, its continuation's counts charged to this attempt
     if (unwinding) {
       QueryCounts c;
-      init = internal::UnwindingInit(s, w, w.problem.q0, &c);
+      init = internal::UnwindingInit(s, w, w.problem.q0, init_kind, own ? w.problem : later, &c);
       rep.counts += c;
-      // Its only world query is its collision task (internal::UnwindingInit): its state queries
-      // are collision queries, its pair tests narrow-phase calls.
+      // Its world queries are its collision and line-clearance tasks (internal::UnwindingInit):
+      // its state queries are charged as collision queries, its pair tests as narrow-phase calls.
       rep.collision_checks += c.state_queries;
       rep.narrow_phase_calls += c.pair_tests();
       if (over(rep.counts)) {  // the continuation spent the budget: the attempt does not start
@@ -513,10 +518,6 @@ PlanResult RunAicoAttempts(const Scenario& s, const ScenarioState& w, const Aico
         break;
       }
     }
-    // Attempt 0 is the state's own problem unless terms are switched off.
-    const bool own = k == 0 && disabled_tasks.empty();
-    MotionProblem later = own ? MotionProblem{} : AttemptProblem(s, w, k);
-    if (!own) DisableTasks(disabled_tasks, &later);
     ++rep.attempts;
     AicoOptions options = aico;
     options.max_iterations = s.aico_attempts[k].max_iterations;

@@ -90,7 +90,7 @@ struct SuccessCriteria {
 struct AicoAttempt {
   Eigen::VectorXd precision_scale;
   int max_iterations = 20;
-  bool init_unwinding = false;  // start from internal::UnwindingInit (see AicoAttemptSpec)
+  AicoInit init = AicoInit::kDefault;  // other than kDefault: internal::UnwindingInit
 };
 
 // What changes while a scenario is planned or simulated: the objects around the robot and all

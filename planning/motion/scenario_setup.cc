@@ -404,8 +404,8 @@ std::unique_ptr<Scenario> SetUpScenario(ScenarioSpec spec,
   for (const AicoAttemptSpec& a : sp.aico_attempts) {
     AicoAttempt attempt;
     attempt.max_iterations = a.max_iterations;
-    attempt.init_unwinding = a.init_unwinding;
-    if (a.init_unwinding && !sp.writhe_report) {
+    attempt.init = a.init;
+    if (a.init != AicoInit::kDefault && !sp.writhe_report) {
       throw std::invalid_argument(base::StrCat(
           a.init_where, ": the unwinding init continues the writhe_report's writhe; give one"));
     }

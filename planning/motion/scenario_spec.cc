@@ -369,6 +369,31 @@ SuccessSpec ReadSuccess(const base::JsonNode& n) {
   return s;
 }
 
+// One "aico.retry" entry; its iteration limit defaults to aico.max_iterations (`a`).
+AicoAttemptSpec ReadAicoRetry(const base::JsonNode& rn, const AicoOptions& a) {
+  rn.CheckKeys({"precision_scale", "max_iterations", "init"});
+  AicoAttemptSpec retry;
+  retry.max_iterations = a.max_iterations;
+  if (rn.Has("max_iterations")) {
+    retry.max_iterations = static_cast<int>(rn.At("max_iterations").Integer(1, kMaxIterations));
+  }
+  if (rn.Has("precision_scale")) {
+    const base::JsonNode sc = rn.At("precision_scale");
+    if (!sc.IsObject()) sc.Fail("expected {\"task name\": factor, ...}");
+    for (const auto& [task, fn] : sc.Members()) {
+      const double f = fn.Number(0.0, kMaxWeight);
+      if (!(f > 0.0)) fn.Fail("expected a positive factor");
+      retry.precision_scale.push_back({{task, fn.Where()}, f});
+    }
+  }
+  if (rn.Has("init")) {
+    const base::JsonNode in = rn.At("init");
+    retry.init = Parse<AicoInit>(in, "AICO init");
+    retry.init_where = in.Where();
+  }
+  return retry;
+}
+
 void ReadAico(const base::JsonNode& n, ScenarioSpec* spec) {
   n.CheckKeys({"max_iterations", "tolerance", "damping", "sweep_mode", "max_step",
                "max_relocations", "relocation_damping", "rollout_init", "rollout_prior",
@@ -393,30 +418,13 @@ void ReadAico(const base::JsonNode& n, ScenarioSpec* spec) {
   spec->aico_stop_when_solved = n.Bool("stop_when_solved", spec->aico_stop_when_solved);
   spec->aico_attempts[0].max_iterations = a.max_iterations;
   if (!n.Has("retry")) return;
-  const base::JsonNode rn = n.At("retry");
-  rn.CheckKeys({"precision_scale", "max_iterations", "init"});
-  AicoAttemptSpec retry;
-  retry.max_iterations = a.max_iterations;
-  if (rn.Has("max_iterations")) {
-    retry.max_iterations = static_cast<int>(rn.At("max_iterations").Integer(1, kMax));
+  const base::JsonNode r = n.At("retry");
+  if (!r.IsArray()) {
+    spec->aico_attempts.push_back(ReadAicoRetry(r, a));
+    return;
   }
-  if (rn.Has("precision_scale")) {
-    const base::JsonNode sc = rn.At("precision_scale");
-    if (!sc.IsObject()) sc.Fail("expected {\"task name\": factor, ...}");
-    for (const auto& [task, fn] : sc.Members()) {
-      const double f = fn.Number(0.0, kMaxWeight);
-      if (!(f > 0.0)) fn.Fail("expected a positive factor");
-      retry.precision_scale.push_back({{task, fn.Where()}, f});
-    }
-  }
-  if (rn.Has("init")) {
-    const base::JsonNode in = rn.At("init");
-    const std::string init = in.String();
-    if (init != "unwinding") in.Fail(base::StrCat("\"", init, "\" is not \"unwinding\""));
-    retry.init_unwinding = true;
-    retry.init_where = in.Where();
-  }
-  spec->aico_attempts.push_back(retry);
+  if (r.Size() == 0) r.Fail("expected at least one retry");
+  for (size_t i = 0; i < r.Size(); ++i) spec->aico_attempts.push_back(ReadAicoRetry(r.At(i), a));
 }
 
 RrtOptions ReadRrt(const base::JsonNode& n, ScenarioSpec* spec) {

@@ -127,11 +127,16 @@
 //                            trajectory (as a finished plan, counted) and stop at the first that
 //                            is a success (status "solved"; planner.h RunAicoAttempts)
 //     retry         object   a second attempt when the first fails validation or the success
-//                            criteria: precision_scale: {task name: factor > 0, ...} (default
-//                            {}); max_iterations: integer >= 1, default aico.max_iterations;
-//                            init: "unwinding" (needs writhe_report): start from the writhe
-//                            continuation of q0 to 0 resampled to the slices, its queries
-//                            counted (planner.h RunAicoAttempts); absent: as the first attempt
+//                   or array  criteria (an array: one attempt per entry, each run when the ones
+//                            before it failed): precision_scale: {task name: factor > 0, ...}
+//                            (default {}); max_iterations: integer >= 1, default
+//                            aico.max_iterations; init (needs writhe_report; its queries are
+//                            counted, planner.h RunAicoAttempts): "unwinding": start from the
+//                            writhe continuation of q0 to 0 resampled to the slices;
+//                            "unwinding_then_reach": the same continuation also under the
+//                            line_clearance tasks, then the hand moved to the final targets of the
+//                            position tasks with the writhe held (start_coil.h); absent: as the
+//                            first attempt
 //   rrt             object   range: rad, default 0 (auto); resolution: rad, default 0 (auto);
 //                            goal_bias: default 0.1; max_checks: integer >= 1, default 100000;
 //                            goal_states: integer 1..10000, default 32 (the goal-region trees'
@@ -354,14 +359,27 @@ struct SuccessSpec {
   std::string through_loop_where;  // of "success.through_loop" (empty: not given)
 };
 
+// The initial trajectory of an AICO attempt ("init" of an aico.retry entry; both need a
+// writhe_report; internal/start_coil.h builds them).
+enum class AicoInit {
+  kDefault,    // absent: as attempt 0 (aico.rollout_init: the rollout, or q0 held)
+  kUnwinding,  // "unwinding": the writhe continuation of q0 to writhe 0
+  // "unwinding_then_reach": the same continuation also kept off the pole's line (the scenario's
+  // line_clearance tasks), then the hand moved to its final targets with the writhe held
+  kUnwindingThenReach,
+};
+inline constexpr base::EnumName<AicoInit> kAicoInitNames[] = {
+    {AicoInit::kUnwinding, "unwinding"},
+    {AicoInit::kUnwindingThenReach, "unwinding_then_reach"},
+};
+constexpr std::span<const base::EnumName<AicoInit>> EnumNames(AicoInit) { return kAicoInitNames; }
+
 // One AICO attempt: task precisions scaled by name, its iteration limit and its initial
 // trajectory.
 struct AicoAttemptSpec {
   std::vector<std::pair<SpecName, double>> precision_scale;
   int max_iterations = 20;
-  // "init": "unwinding": start from the writhe continuation of q0 to writhe 0 (needs a
-  // writhe_report); absent: as attempt 0 (aico.rollout_init).
-  bool init_unwinding = false;
+  AicoInit init = AicoInit::kDefault;
   std::string init_where;  // of "init", for messages
 };
 
@@ -385,7 +403,7 @@ struct ScenarioSpec {
   FinalPoseSpec final_pose;
   SuccessSpec success;
   AicoOptions aico;
-  std::vector<AicoAttemptSpec> aico_attempts;  // [0]: plain; [1]: "aico.retry" when given
+  std::vector<AicoAttemptSpec> aico_attempts;  // [0]: plain; [1..]: the "aico.retry" entries
   bool aico_stop_when_solved = false;
   RrtOptions rrt;
   ScenarioGoalSettings rrt_goal;  // rrt.goal_states, rrt.goal_ik_iterations, rrt.goal_ik_starts

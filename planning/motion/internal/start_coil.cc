@@ -11,6 +11,7 @@
 #include "planning/features/feature.h"
 #include "planning/features/task.h"
 #include "planning/motion/final_pose.h"
+#include "planning/motion/internal/scenario_build.h"
 #include "planning/robot/kinematics.h"
 #include "planning/robot/robot.h"
 
@@ -22,15 +23,22 @@ namespace {
 // a `from` in collision is first pushed out of it at its own writhe (up to 100 steps).
 enum class ContinueMode { kPlain, kBackOff, kPushOutAndBackOff };
 
-// One writhe continuation (see WritheContinuation and StartCoil) in `world` (the pole where it is).
-Eigen::VectorXd ContinueWrithe(const Scenario& s, const ScenarioState& world,
-                               const Eigen::VectorXd& from, double target, double step,
-                               double margin, ContinueMode mode, std::vector<Eigen::VectorXd>* path,
-                               QueryCounts* counts = nullptr) {
-  const bool push_out = mode == ContinueMode::kPushOutAndBackOff;
+// A task of the attempt to keep during a continuation: its spec (built in the continuation's
+// world, target 0: a hinge such as line clearance) and the precision it has in the attempt.
+struct KeptTask {
+  const TaskSpec* spec;
+  double precision;
+};
+
+// The one-step pose-estimate problem of a continuation from q0 in `world`: the total writhe of the
+// report pair with target `writhe` (precision 1000), a collision hinge with `margin` (100), a
+// joint-limit hinge (100) and the `kept` tasks (target 0).
+MotionProblem ContinuationProblem(const Scenario& s, const ScenarioState& world,
+                                  const Eigen::VectorXd& q0, double writhe, double margin,
+                                  const std::vector<KeptTask>& kept) {
   MotionProblem p;
   p.robot = &s.robot;
-  p.q0 = from;
+  p.q0 = q0;
   p.num_steps = 1;
   p.dynamic = false;
   p.w_rate = 100.0;
@@ -38,7 +46,7 @@ Eigen::VectorXd ContinueWrithe(const Scenario& s, const ScenarioState& world,
   w.name = "writhe";
   w.feature =
       MakeWritheFeature(s.robot, s.report_chain, world.report_object_chain, WritheOutput::kTotal);
-  SetConstantTarget(&w, Eigen::VectorXd::Zero(1), 1000.0, 1);
+  SetConstantTarget(&w, Eigen::VectorXd::Constant(1, writhe), 1000.0, 1);
   p.tasks.push_back(std::move(w));
   Task c;
   c.name = "collision";
@@ -50,6 +58,24 @@ Eigen::VectorXd ContinueWrithe(const Scenario& s, const ScenarioState& world,
   l.feature = MakeJointLimitFeature(s.robot, 0.05);
   SetConstantTarget(&l, Eigen::VectorXd::Zero(l.feature->dim()), 100.0, 1);
   p.tasks.push_back(std::move(l));
+  for (const KeptTask& k : kept) {
+    Task t;
+    t.name = k.spec->name;
+    t.feature = BuildFeature(s, world, k.spec->feature);
+    SetConstantTarget(&t, Eigen::VectorXd::Zero(t.feature->dim()), k.precision, 1);
+    p.tasks.push_back(std::move(t));
+  }
+  return p;
+}
+
+// One writhe continuation (see WritheContinuation and StartCoil) in `world` (the pole where it is).
+Eigen::VectorXd ContinueWrithe(const Scenario& s, const ScenarioState& world,
+                               const Eigen::VectorXd& from, double target, double step,
+                               double margin, ContinueMode mode, std::vector<Eigen::VectorXd>* path,
+                               QueryCounts* counts = nullptr,
+                               const std::vector<KeptTask>& kept = {}) {
+  const bool push_out = mode == ContinueMode::kPushOutAndBackOff;
+  MotionProblem p = ContinuationProblem(s, world, from, 0.0, margin, kept);
   TaskWorkspace ws(p);
   FinalPoseOptions fo;
   fo.alpha = 0.5;
@@ -103,6 +129,49 @@ Eigen::VectorXd ContinueWrithe(const Scenario& s, const ScenarioState& world,
   return q;
 }
 
+// The reach continuation of kUnwindingThenReach (see UnwindingInit): from path->back(), each
+// position task in `reach` moved in a straight line from its point there to its final target
+// `goals[i]`, appending every estimate to *path.
+constexpr double kReachStep = 0.05;  // m, largest target move per estimate
+constexpr int kReachSettle = 5;      // estimates at the targets after the last move
+
+void ContinueReach(const Scenario& s, const ScenarioState& world, double margin,
+                   const std::vector<const TaskSpec*>& reach,
+                   const std::vector<Eigen::Vector3d>& goals, const std::vector<KeptTask>& kept,
+                   std::vector<Eigen::VectorXd>* path, QueryCounts* counts) {
+  MotionProblem p = ContinuationProblem(s, world, path->back(),
+                                        ReportWritheTotal(s, world, path->back()), margin, kept);
+  const size_t first_reach = p.tasks.size();
+  KinematicsData kin(s.robot);
+  ForwardKinematics(s.robot, p.q0, &kin);
+  std::vector<Eigen::Vector3d> from;
+  double longest = 0.0;
+  for (size_t i = 0; i < reach.size(); ++i) {
+    Task t;
+    t.name = reach[i]->name;
+    t.feature = BuildFeature(s, world, reach[i]->feature);
+    Eigen::VectorXd y(3);
+    const auto data = t.feature->CreateData(s.robot);
+    t.feature->Eval(s.robot, kin, data.get(), y, nullptr);
+    from.push_back(y);
+    longest = std::max(longest, (goals[i] - from[i]).norm());
+    SetConstantTarget(&t, y, 1000.0, 1);
+    p.tasks.push_back(std::move(t));
+  }
+  TaskWorkspace ws(p);
+  FinalPoseOptions fo;
+  fo.alpha = 0.5;
+  const int moves = std::max(1, static_cast<int>(std::ceil(longest / kReachStep)));
+  for (int k = 1; k <= moves + kReachSettle; ++k) {
+    const double a = std::min(1.0, static_cast<double>(k) / moves);
+    for (size_t i = 0; i < reach.size(); ++i)
+      p.tasks[first_reach + i].target.colwise() = (1.0 - a) * from[i] + a * goals[i];
+    p.q0 = path->back();
+    path->push_back(EstimateFinalPose(p, fo, &ws).q);
+  }
+  if (counts != nullptr) *counts += TaskQueryCounts(p, ws);
+}
+
 }  // namespace
 
 Eigen::VectorXd WritheContinuation(const Scenario& s, const Eigen::VectorXd& from, double target,
@@ -130,10 +199,30 @@ Eigen::MatrixXd ResampleByArcLength(const std::vector<Eigen::VectorXd>& path, in
 }
 
 Trajectory UnwindingInit(const Scenario& s, const ScenarioState& world, const Eigen::VectorXd& q0,
-                         QueryCounts* counts) {
+                         AicoInit kind, const MotionProblem& problem, QueryCounts* counts) {
+  // The attempt's line-clearance and position tasks (a task switched off has precision 0).
+  std::vector<KeptTask> line;
+  std::vector<const TaskSpec*> reach;
+  std::vector<Eigen::Vector3d> goals;
+  for (const Task& task : problem.tasks) {
+    const auto spec = std::find_if(world.tasks.begin(), world.tasks.end(),
+                                   [&](const TaskSpec& t) { return t.name == task.name; });
+    if (spec == world.tasks.end() || task.order != 0) continue;
+    const Eigen::Index T = task.target.cols() - 1;
+    if (spec->feature.type == FeatureType::kLineClearance && task.precision.maxCoeff() > 0.0)
+      line.push_back({&*spec, task.precision.maxCoeff()});
+    if (spec->feature.type == FeatureType::kPosition && task.precision[T] > 0.0) {
+      reach.push_back(&*spec);
+      goals.push_back(task.target.col(T));
+    }
+  }
+  const bool then_reach = kind == AicoInit::kUnwindingThenReach;
+  if (!then_reach) line.clear();
   std::vector<Eigen::VectorXd> path;
   ContinueWrithe(s, world, q0, 0.0, s.spec.start.step, s.spec.start.margin, ContinueMode::kPlain,
-                 &path, counts);
+                 &path, counts, line);
+  if (then_reach && !reach.empty())
+    ContinueReach(s, world, s.spec.start.margin, reach, goals, line, &path, counts);
   Trajectory init;
   init.dt = s.spec.problem.duration / s.spec.problem.num_steps;
   init.q = ResampleByArcLength(path, s.spec.problem.num_steps + 1);

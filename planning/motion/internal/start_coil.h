@@ -24,13 +24,21 @@ Eigen::VectorXd WritheContinuation(const Scenario& s, const Eigen::VectorXd& fro
 // joint-space arc lengths (linear between its configurations): n × num_points.
 Eigen::MatrixXd ResampleByArcLength(const std::vector<Eigen::VectorXd>& path, int num_points);
 
-// The unwinding init of an AICO attempt ("aico.retry.init": "unwinding"): the writhe continuation
-// from q0 (size n) to total writhe 0 in `world` (step and margin of the scenario's start spec),
-// resampled by ResampleByArcLength to T + 1 slices, dt = duration / T. Adds its counts to *counts:
-// its only world query is its collision task, so its state queries are also its collision queries
-// and its pair tests its narrow-phase calls.
+// The init of an AICO attempt whose aico.retry "init" is `kind` (not kDefault), from q0 (size n) in
+// `world`, for the attempt's `problem` (one task per scenario task; a task of precision 0 at every
+// slice is switched off):
+//   kUnwinding: the writhe continuation from q0 to total writhe 0 (as WritheContinuation, with the
+//     step and margin of the scenario's start spec);
+//   kUnwindingThenReach: the same continuation also under the problem's line-clearance tasks
+//     (target 0, at their largest precision in `problem`), then a reach continuation: every order-0
+//     position task with a final precision ρ_T > 0 has its point moved in a straight line to its
+//     final target y*_T, at most 0.05 m per pose estimate (precision 1000) and 5 more estimates at
+//     the targets, under the writhe held where the unwinding ended, the collision and joint-limit
+//     costs and the line-clearance tasks.
+// The path is resampled by ResampleByArcLength to T + 1 slices, dt = duration / T. Adds its counts
+// to *counts: its world queries are its collision and line-clearance tasks.
 Trajectory UnwindingInit(const Scenario& s, const ScenarioState& world, const Eigen::VectorXd& q0,
-                         QueryCounts* counts);
+                         AicoInit kind, const MotionProblem& problem, QueryCounts* counts);
 
 // The start coil: WritheContinuation from `from` to `target`, made a state the robot can be in
 // (collision-free, inside the joint limits) and retried from seeded perturbations when it stops

@@ -1,8 +1,11 @@
-// The AICO retry from the unwinding path ("aico": {"retry": {"init": "unwinding"}}): the init, the
-// attempt it runs, what it is charged, who does not get it, and its keys.
+// The AICO retries from the unwinding paths ("aico": {"retry": [{"init": "unwinding"}, {"init":
+// "unwinding_then_reach"}]}): the inits, the attempts they run, what they are charged, who does not
+// get them, and their keys.
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <memory>
@@ -13,6 +16,7 @@
 #include "planning/motion/planner.h"
 #include "planning/motion/scenario.h"
 #include "planning/motion/scenario_spec.h"
+#include "planning/motion/success.h"
 #include "planning/motion/unwrap_benchmark.h"
 #include "planning/motion/unwrap_geometry.h"
 #include "scenario_test_util.h"
@@ -36,7 +40,8 @@ std::unique_ptr<Scenario> Tuning06() {
 TEST(UnwindingRetry, TheInitIsTheContinuationOfTheStartToWritheZero) {
   const auto s = Tuning06();
   QueryCounts counts;
-  const Trajectory init = internal::UnwindingInit(*s, s->initial, s->initial.problem.q0, &counts);
+  const Trajectory init = internal::UnwindingInit(
+      *s, s->initial, s->initial.problem.q0, AicoInit::kUnwinding, s->initial.problem, &counts);
   ASSERT_EQ(init.num_points(), s->spec.problem.num_steps + 1);
   ASSERT_EQ(init.num_dofs(), s->initial.problem.q0.size());
   EXPECT_DOUBLE_EQ(init.dt, s->spec.problem.duration / s->spec.problem.num_steps);
@@ -62,8 +67,10 @@ TEST(UnwindingRetry, TheInitFollowsAMovedPole) {
              ObjectPosition(*s, *moved, "pole") + Eigen::Vector3d(0.0, 0.0, 0.05));
   QueryCounts counts;
   const Eigen::VectorXd& q0 = s->initial.problem.q0;
-  const Trajectory there = internal::UnwindingInit(*s, *moved, q0, &counts);
-  const Trajectory here = internal::UnwindingInit(*s, s->initial, q0, &counts);
+  const Trajectory there =
+      internal::UnwindingInit(*s, *moved, q0, AicoInit::kUnwinding, moved->problem, &counts);
+  const Trajectory here = internal::UnwindingInit(*s, s->initial, q0, AicoInit::kUnwinding,
+                                                  s->initial.problem, &counts);
   EXPECT_FALSE(there.q.isApprox(here.q, 1e-6));
   EXPECT_LT(std::abs(ReportWritheTotal(*s, *moved, there.q.col(there.num_points() - 1))), 0.05);
 }
@@ -83,8 +90,9 @@ TEST(UnwindingRetry, ResamplingIsByArcLength) {
 
 TEST(UnwindingRetry, ARolloutFailureIsSolvedByTheRetryWhichIsCharged) {
   const auto s = Tuning06();
-  ASSERT_EQ(s->aico_attempts.size(), 2u);
-  EXPECT_TRUE(s->aico_attempts[1].init_unwinding);
+  ASSERT_EQ(s->aico_attempts.size(), 3u);
+  EXPECT_TRUE(s->aico_attempts[1].init == AicoInit::kUnwinding);
+  EXPECT_TRUE(s->aico_attempts[2].init == AicoInit::kUnwindingThenReach);
   PlanRequest request;
   request.aico_retry = false;
   const PlanReport first = RunPlanner(*s, request).report;
@@ -93,9 +101,10 @@ TEST(UnwindingRetry, ARolloutFailureIsSolvedByTheRetryWhichIsCharged) {
   request.aico_retry = true;
   const PlanReport both = RunPlanner(*s, request).report;
   EXPECT_TRUE(both.success) << FailureReasonName(both.failure_reason);
-  EXPECT_EQ(both.attempts, 2);
+  EXPECT_EQ(both.attempts, 2);  // attempt 1 solved it: attempt 2 did not run
   QueryCounts init;
-  internal::UnwindingInit(*s, s->initial, s->initial.problem.q0, &init);
+  internal::UnwindingInit(*s, s->initial, s->initial.problem.q0, AicoInit::kUnwinding,
+                          s->initial.problem, &init);
   // Attempt 0 as before, the continuation, and attempt 1's own queries.
   EXPECT_GT(both.counts.state_queries, first.counts.state_queries + init.state_queries);
   EXPECT_GT(both.counts.pair_tests(), first.counts.pair_tests() + init.pair_tests());
@@ -109,6 +118,83 @@ TEST(UnwindingRetry, ARolloutFailureIsSolvedByTheRetryWhichIsCharged) {
   EXPECT_EQ(cut.failure_reason, FailureReason::kBudgetExhausted);
   EXPECT_EQ(cut.attempts, 1);  // the retry did not start
   EXPECT_EQ(cut.counts, first.counts + init);
+}
+
+std::string WriteTemp(const std::string& name, const std::string& text) {
+  return WriteTestFile("unwinding_retry_test_tmp", name, text);
+}
+
+// unwrap_chord.json on a 30-link geometry at 720° drawn by `make_unwrap_geometries.py
+// --tuning-count 48` (its tuning_46, not shipped): the rollout attempt and the retry from the
+// plain unwinding path both go round the pole's end; the retry that unwinds off the pole's line
+// and then reaches solves it.
+std::unique_ptr<Scenario> Tuning46() {
+  const std::string file = WriteTemp("tuning_46_arm30.json", R"({"name": "tuning_46_arm30",
+    "split": "tuning", "pole_tilt_deg": [14.05, -1.87], "pole_radius": 0.0358,
+    "pole_translation": [-0.0323, 0.0, 0.0484], "target_offset": [-0.0951, 0.0293, -0.0167],
+    "arm": {"urdf": ")" + kAssets + R"(robots/arm30_sdh.urdf",
+            "disabled_groups": [["sdh_", "arm_link_30"]]}})");
+  ScenarioSpec spec = ParseScenarioSpec(kChord);
+  ApplyUnwrapGeometry(ReadUnwrapGeometry(file), &spec);
+  return SetUpScenario(spec, 720.0);
+}
+
+// The largest change of the winding about the pole's line between neighbouring configurations of
+// `q` (columns) densified to steps of at most 0.02 rad.
+double LargestWindingStep(const Scenario& s, const Eigen::MatrixXd& q) {
+  double largest = 0.0;
+  double before = ReportWinding(s, q.col(0));
+  for (Eigen::Index t = 1; t < q.cols(); ++t) {
+    const int n = std::max(1, static_cast<int>(std::ceil((q.col(t) - q.col(t - 1)).norm() / 0.02)));
+    for (int k = 1; k <= n; ++k) {
+      const double a = static_cast<double>(k) / n;
+      const double now = ReportWinding(s, (1.0 - a) * q.col(t - 1) + a * q.col(t));
+      largest = std::max(largest, std::abs(now - before));
+      before = now;
+    }
+  }
+  return largest;
+}
+
+// The init of "unwinding_then_reach": it starts at q0, unwinds without passing the pole's line
+// (the plain unwinding path passes it, round the pole's end: a whole turn of winding in one small
+// step) and ends with the hand at the reach target, where the plain path ends 2.8 m from it. The
+// writhe is held by a cost while the hand moves, and drifts (to 0.25 here; AICO aims it at the
+// writhe task's target).
+TEST(UnwindingRetry, TheReachInitUnwindsOffThePoleLineThenReaches) {
+  const auto s = Tuning46();
+  const Eigen::VectorXd& q0 = s->initial.problem.q0;
+  QueryCounts plain_counts, counts;
+  const Trajectory plain = internal::UnwindingInit(*s, s->initial, q0, AicoInit::kUnwinding,
+                                                   s->initial.problem, &plain_counts);
+  const Trajectory init = internal::UnwindingInit(*s, s->initial, q0, AicoInit::kUnwindingThenReach,
+                                                  s->initial.problem, &counts);
+  ASSERT_EQ(init.num_points(), s->spec.problem.num_steps + 1);
+  EXPECT_TRUE(init.q.col(0).isApprox(q0, 1e-12));
+  EXPECT_GT(LargestWindingStep(*s, plain.q), 0.5);  // a whole turn: through the line
+  EXPECT_LT(LargestWindingStep(*s, init.q), 0.5);
+  const EndState end = CheckEndState(*s, init.q.col(init.num_points() - 1), false);
+  const EndState plain_end = CheckEndState(*s, plain.q.col(plain.num_points() - 1), false);
+  EXPECT_LT(end.reach_error_m, 0.01);
+  EXPECT_GT(plain_end.reach_error_m, 1.0);
+  // Charged: its line-clearance tasks and the reach continuation query the world too.
+  EXPECT_GT(counts.state_queries, plain_counts.state_queries);
+}
+
+TEST(UnwindingRetry, AFailureOfBothEarlierAttemptsIsSolvedByTheReachInit) {
+  const auto s = Tuning46();
+  PlanRequest request;
+  const PlanReport r = RunPlanner(*s, request).report;
+  EXPECT_TRUE(r.success) << FailureReasonName(r.failure_reason);
+  EXPECT_EQ(r.attempts, 3);
+  // Without the third attempt the run fails: the same scenario with the plain retry only.
+  ScenarioSpec spec = s->spec;
+  spec.aico_attempts.pop_back();
+  const auto two = SetUpScenario(spec, 720.0);
+  const PlanReport r2 = RunPlanner(*two, request).report;
+  EXPECT_FALSE(r2.success);
+  EXPECT_EQ(r2.attempts, 2);
+  EXPECT_LT(r2.counts.state_queries, r.counts.state_queries);
 }
 
 // The unwinding path is writhe-driven: aico-goal and the no-writhe ablation (no writhe term) do
@@ -137,10 +223,6 @@ TEST(UnwindingRetry, TheAblationsHaveANoRetryVariant) {
   for (size_t i = 0; i + 1 < a.size(); ++i) EXPECT_FALSE(a[i].no_retry) << a[i].name;
 }
 
-std::string WriteTemp(const std::string& name, const std::string& text) {
-  return WriteTestFile("unwinding_retry_test_tmp", name, text);
-}
-
 // A small scenario (LWR4 + SDH, zero start, T = 5) with `writhe_report` and an aico section.
 std::string Mini(const std::string& writhe_report, const std::string& aico) {
   return R"({"robot": ")" + kAssets + R"(robots/lwr4_sdh.urdf",
@@ -166,14 +248,31 @@ TEST(UnwindingRetry, KeysAreChecked) {
   const std::string report =
       R"( "writhe_report": {"chain": "arm", "object": "pole", "object_chain": "axis"},)";
   ExpectError("bad_init.json", Mini(report, R"({"retry": {"init": "rollout"}})"),
-              "aico.retry.init: \"rollout\" is not \"unwinding\"");
+              "aico.retry.init: unknown AICO init 'rollout' (unwinding, unwinding_then_reach)");
+  ExpectError("bad_init_1.json", Mini(report, R"({"retry": [{}, {"init": "rollout"}]})"),
+              "aico.retry[1].init: unknown AICO init 'rollout'");
+  ExpectError("empty.json", Mini(report, R"({"retry": []})"),
+              "aico.retry: expected at least one retry");
+  ExpectError("no_report_2.json", Mini("", R"({"retry": [{"init": "unwinding_then_reach"}]})"),
+              "aico.retry[0].init: the unwinding init continues the writhe_report's writhe");
   ExpectError("no_report.json", Mini("", R"({"retry": {"init": "unwinding"}})"),
               "aico.retry.init: the unwinding init continues the writhe_report's writhe");
   const auto s = SetUpScenario(
       ParseScenarioSpec(WriteTemp("ok.json", Mini(report, R"({"retry": {"init": "unwinding"}})"))));
   ASSERT_EQ(s->aico_attempts.size(), 2u);
-  EXPECT_FALSE(s->aico_attempts[0].init_unwinding);
-  EXPECT_TRUE(s->aico_attempts[1].init_unwinding);
+  EXPECT_TRUE(s->aico_attempts[0].init == AicoInit::kDefault);
+  EXPECT_TRUE(s->aico_attempts[1].init == AicoInit::kUnwinding);
+  // An array: one attempt per entry, in order; an entry without "init" starts as attempt 0.
+  const auto a = SetUpScenario(ParseScenarioSpec(WriteTemp(
+      "array.json",
+      Mini(
+          report,
+          R"({"max_iterations": 7, "retry": [{"init": "unwinding_then_reach"}, {"max_iterations": 3}]})"))));
+  ASSERT_EQ(a->aico_attempts.size(), 3u);
+  EXPECT_TRUE(a->aico_attempts[1].init == AicoInit::kUnwindingThenReach);
+  EXPECT_EQ(a->aico_attempts[1].max_iterations, 7);
+  EXPECT_TRUE(a->aico_attempts[2].init == AicoInit::kDefault);
+  EXPECT_EQ(a->aico_attempts[2].max_iterations, 3);
 }
 
 }  // namespace
