@@ -506,14 +506,12 @@ PlanResult RunAicoAttempts(const Scenario& s, const ScenarioState& w, const Aico
     if (!own) DisableTasks(disabled_tasks, &later);
     Trajectory init;  // the unwinding init, its continuation's counts charged to this attempt
     if (unwinding) {
-      QueryCounts c;
+      internal::InitCounts c;
       init = internal::UnwindingInit(s, w, w.problem.q0, init_kind, own ? w.problem : later, &c);
-      rep.counts += c;
-      // Its world queries are its collision and line-clearance tasks (internal::UnwindingInit):
-      // its state queries are charged as collision queries, its pair tests as narrow-phase calls.
-      rep.collision_checks += c.state_queries;
-      rep.narrow_phase_calls += c.pair_tests();
-      if (over(rep.counts)) {  // the continuation spent the budget: the attempt does not start
+      rep.counts += c.units;
+      rep.collision_checks += c.collision_queries;
+      rep.narrow_phase_calls += c.narrow_phase_calls;
+      if (over(rep.counts)) {  // the continuations spent the budget: the attempt does not start
         budget_exhausted();
         break;
       }

@@ -207,12 +207,13 @@ void FinishReport(const Scenario& scenario, const ScenarioState& state, bool fou
 // success first reached by the sweep that ends the solve is judged as without the option (status
 // kConverged or kMaxIterations). Success can only be more frequent than without the option: a
 // trajectory that passes part-way is returned even if the converged one would fail (and no retry
-// attempt runs). An attempt with init_unwinding (aico.retry.init "unwinding") starts from
-// internal::UnwindingInit at the state's q0 in the state's world, and the continuation's state
-// queries and pair tests are counted in the report (when they spend the budget, the attempt does
-// not start and the run fails as kBudgetExhausted; `attempts` counts the attempts started). Fills
-// every report field of an AICO run except time_s and start_writhe_total; does not call
-// NameFailure.
+// attempt runs). An attempt whose init is not AicoInit::kDefault (aico.retry's "init") starts
+// from internal::UnwindingInit at the state's q0 in the state's world, built for the attempt's
+// problem (tasks switched off are left out of it), and the continuations' state queries, pair
+// tests, collision queries and FCL calls are counted in the report (when they spend the budget,
+// the attempt does not start and the run fails as kBudgetExhausted; `attempts` counts the attempts
+// started). Fills every report field of an AICO run except time_s and start_writhe_total; does not
+// call NameFailure.
 PlanResult RunAicoAttempts(const Scenario& scenario, const AicoCallback& callback = {});
 // The same in the world `state` with `aico` instead of scenario.aico.
 // With a budget (not kNone): after every sweep the counts (or CPU time) spent so far, earlier

@@ -419,6 +419,7 @@ void ReadAico(const base::JsonNode& n, ScenarioSpec* spec) {
   spec->aico_attempts[0].max_iterations = a.max_iterations;
   if (!n.Has("retry")) return;
   const base::JsonNode r = n.At("retry");
+  if (!r.IsArray() && !r.IsObject()) r.Fail("expected an object or an array of objects");
   if (!r.IsArray()) {
     spec->aico_attempts.push_back(ReadAicoRetry(r, a));
     return;

@@ -134,9 +134,9 @@
 //                            counted, planner.h RunAicoAttempts): "unwinding": start from the
 //                            writhe continuation of q0 to 0 resampled to the slices;
 //                            "unwinding_then_reach": the same continuation also under the
-//                            line_clearance tasks, then the hand moved to the final targets of the
-//                            position tasks with the writhe held (start_coil.h); absent: as the
-//                            first attempt
+//                            attempt's line_clearance tasks, then the hand moved to the final
+//                            targets of the position tasks with the writhe held (start_coil.h);
+//                            absent: as the first attempt
 //   rrt             object   range: rad, default 0 (auto); resolution: rad, default 0 (auto);
 //                            goal_bias: default 0.1; max_checks: integer >= 1, default 100000;
 //                            goal_states: integer 1..10000, default 32 (the goal-region trees'
@@ -364,8 +364,9 @@ struct SuccessSpec {
 enum class AicoInit {
   kDefault,    // absent: as attempt 0 (aico.rollout_init: the rollout, or q0 held)
   kUnwinding,  // "unwinding": the writhe continuation of q0 to writhe 0
-  // "unwinding_then_reach": the same continuation also kept off the pole's line (the scenario's
-  // line_clearance tasks), then the hand moved to its final targets with the writhe held
+  // "unwinding_then_reach": the same continuation also kept off the pole's line (the attempt's
+  // line_clearance tasks not switched off), then the hand moved to its final targets with the
+  // writhe held
   kUnwindingThenReach,
 };
 inline constexpr base::EnumName<AicoInit> kAicoInitNames[] = {

@@ -5,6 +5,7 @@
 #include <limits>
 #include <optional>
 #include <random>
+#include <stdexcept>
 
 #include "base/random.h"
 #include "planning/collision/collision.h"
@@ -68,11 +69,18 @@ MotionProblem ContinuationProblem(const Scenario& s, const ScenarioState& world,
   return p;
 }
 
+// Adds what the pose estimates of `p` spent through `ws` to *counts.
+void AddSpent(const MotionProblem& p, const TaskWorkspace& ws, InitCounts* counts) {
+  counts->units += TaskQueryCounts(p, ws);
+  counts->collision_queries += CollisionQueries(p, ws);
+  counts->narrow_phase_calls += NarrowPhaseCalls(p, ws);
+}
+
 // One writhe continuation (see WritheContinuation and StartCoil) in `world` (the pole where it is).
 Eigen::VectorXd ContinueWrithe(const Scenario& s, const ScenarioState& world,
                                const Eigen::VectorXd& from, double target, double step,
                                double margin, ContinueMode mode, std::vector<Eigen::VectorXd>* path,
-                               QueryCounts* counts = nullptr,
+                               InitCounts* counts = nullptr,
                                const std::vector<KeptTask>& kept = {}) {
   const bool push_out = mode == ContinueMode::kPushOutAndBackOff;
   MotionProblem p = ContinuationProblem(s, world, from, 0.0, margin, kept);
@@ -88,7 +96,11 @@ Eigen::VectorXd ContinueWrithe(const Scenario& s, const ScenarioState& world,
     return !InCollision(s.robot, kin, &coll);
   };
   const auto add_counts = [&] {
-    if (counts != nullptr) *counts += TaskQueryCounts(p, ws) + Counts(coll);
+    if (counts == nullptr) return;
+    AddSpent(p, ws, counts);
+    counts->units += Counts(coll);
+    counts->collision_queries += coll.queries;
+    counts->narrow_phase_calls += coll.narrow_phase_calls;
   };
   std::optional<Eigen::VectorXd> last_free;
   size_t last_free_size = 0;           // path->size() when last_free was accepted
@@ -138,7 +150,7 @@ constexpr int kReachSettle = 5;      // estimates at the targets after the last 
 void ContinueReach(const Scenario& s, const ScenarioState& world, double margin,
                    const std::vector<const TaskSpec*>& reach,
                    const std::vector<Eigen::Vector3d>& goals, const std::vector<KeptTask>& kept,
-                   std::vector<Eigen::VectorXd>* path, QueryCounts* counts) {
+                   std::vector<Eigen::VectorXd>* path, InitCounts* counts) {
   MotionProblem p = ContinuationProblem(s, world, path->back(),
                                         ReportWritheTotal(s, world, path->back()), margin, kept);
   const size_t first_reach = p.tasks.size();
@@ -169,7 +181,7 @@ void ContinueReach(const Scenario& s, const ScenarioState& world, double margin,
     p.q0 = path->back();
     path->push_back(EstimateFinalPose(p, fo, &ws).q);
   }
-  if (counts != nullptr) *counts += TaskQueryCounts(p, ws);
+  if (counts != nullptr) AddSpent(p, ws, counts);
 }
 
 }  // namespace
@@ -199,20 +211,22 @@ Eigen::MatrixXd ResampleByArcLength(const std::vector<Eigen::VectorXd>& path, in
 }
 
 Trajectory UnwindingInit(const Scenario& s, const ScenarioState& world, const Eigen::VectorXd& q0,
-                         AicoInit kind, const MotionProblem& problem, QueryCounts* counts) {
+                         AicoInit kind, const MotionProblem& problem, InitCounts* counts) {
   // The attempt's line-clearance and position tasks (a task switched off has precision 0).
   std::vector<KeptTask> line;
   std::vector<const TaskSpec*> reach;
   std::vector<Eigen::Vector3d> goals;
-  for (const Task& task : problem.tasks) {
-    const auto spec = std::find_if(world.tasks.begin(), world.tasks.end(),
-                                   [&](const TaskSpec& t) { return t.name == task.name; });
-    if (spec == world.tasks.end() || task.order != 0) continue;
+  if (problem.tasks.size() != world.tasks.size())
+    throw std::logic_error("UnwindingInit: the problem has not one task per scenario task");
+  for (size_t i = 0; i < problem.tasks.size(); ++i) {
+    const Task& task = problem.tasks[i];
+    const TaskSpec& spec = world.tasks[i];
+    if (task.order != 0) continue;
     const Eigen::Index T = task.target.cols() - 1;
-    if (spec->feature.type == FeatureType::kLineClearance && task.precision.maxCoeff() > 0.0)
-      line.push_back({&*spec, task.precision.maxCoeff()});
-    if (spec->feature.type == FeatureType::kPosition && task.precision[T] > 0.0) {
-      reach.push_back(&*spec);
+    if (spec.feature.type == FeatureType::kLineClearance && task.precision.maxCoeff() > 0.0)
+      line.push_back({&spec, task.precision.maxCoeff()});
+    if (spec.feature.type == FeatureType::kPosition && task.precision[T] > 0.0) {
+      reach.push_back(&spec);
       goals.push_back(task.target.col(T));
     }
   }

@@ -24,6 +24,16 @@ Eigen::VectorXd WritheContinuation(const Scenario& s, const Eigen::VectorXd& fro
 // joint-space arc lengths (linear between its configurations): n × num_points.
 Eigen::MatrixXd ResampleByArcLength(const std::vector<Eigen::VectorXd>& path, int num_points);
 
+// What an unwinding init spent: its cost units (every configuration its pose estimates evaluate
+// is one state query; pair tests of its collision and line-clearance tasks), and of them its
+// collision task's queries and FCL shape-pair calls (a report's collision_checks and
+// narrow_phase_calls).
+struct InitCounts {
+  QueryCounts units;
+  long collision_queries = 0;
+  long narrow_phase_calls = 0;
+};
+
 // The init of an AICO attempt whose aico.retry "init" is `kind` (not kDefault), from q0 (size n) in
 // `world`, for the attempt's `problem` (one task per scenario task; a task of precision 0 at every
 // slice is switched off):
@@ -35,10 +45,11 @@ Eigen::MatrixXd ResampleByArcLength(const std::vector<Eigen::VectorXd>& path, in
 //     final target y*_T, at most 0.05 m per pose estimate (precision 1000) and 5 more estimates at
 //     the targets, under the writhe held where the unwinding ended, the collision and joint-limit
 //     costs and the line-clearance tasks.
-// The path is resampled by ResampleByArcLength to T + 1 slices, dt = duration / T. Adds its counts
-// to *counts: its world queries are its collision and line-clearance tasks.
+// `problem`'s tasks pair with world.tasks by index (one per spec, as AttemptProblem builds them).
+// The path is resampled by ResampleByArcLength to T + 1 slices, dt = duration / T. Adds what it
+// spent to *counts. Throws std::logic_error when problem and world.tasks differ in size.
 Trajectory UnwindingInit(const Scenario& s, const ScenarioState& world, const Eigen::VectorXd& q0,
-                         AicoInit kind, const MotionProblem& problem, QueryCounts* counts);
+                         AicoInit kind, const MotionProblem& problem, InitCounts* counts);
 
 // The start coil: WritheContinuation from `from` to `target`, made a state the robot can be in
 // (collision-free, inside the joint limits) and retried from seeded perturbations when it stops

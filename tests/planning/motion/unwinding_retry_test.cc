@@ -39,7 +39,7 @@ std::unique_ptr<Scenario> Tuning06() {
 
 TEST(UnwindingRetry, TheInitIsTheContinuationOfTheStartToWritheZero) {
   const auto s = Tuning06();
-  QueryCounts counts;
+  internal::InitCounts counts;
   const Trajectory init = internal::UnwindingInit(
       *s, s->initial, s->initial.problem.q0, AicoInit::kUnwinding, s->initial.problem, &counts);
   ASSERT_EQ(init.num_points(), s->spec.problem.num_steps + 1);
@@ -54,8 +54,12 @@ TEST(UnwindingRetry, TheInitIsTheContinuationOfTheStartToWritheZero) {
                                s->spec.start.margin, &path);
   EXPECT_GT(path.size(), 20u);
   EXPECT_TRUE(init.q.isApprox(internal::ResampleByArcLength(path, init.num_points()), 1e-12));
-  EXPECT_GT(counts.state_queries, 0);
-  EXPECT_GT(counts.pair_tests(), 0);
+  EXPECT_GT(counts.units.state_queries, 0);
+  EXPECT_GT(counts.units.pair_tests(), 0);
+  // Its only world query is its collision task: every state query is a collision query, every
+  // pair test an FCL call.
+  EXPECT_EQ(counts.collision_queries, counts.units.state_queries);
+  EXPECT_EQ(counts.narrow_phase_calls, counts.units.pair_tests());
 }
 
 // The continuation runs in the world planned in: with the pole moved, the init unwinds about the
@@ -65,7 +69,7 @@ TEST(UnwindingRetry, TheInitFollowsAMovedPole) {
   const auto moved = MakeScenarioState(*s);
   MoveObject(*s, moved.get(), "pole",
              ObjectPosition(*s, *moved, "pole") + Eigen::Vector3d(0.0, 0.0, 0.05));
-  QueryCounts counts;
+  internal::InitCounts counts;
   const Eigen::VectorXd& q0 = s->initial.problem.q0;
   const Trajectory there =
       internal::UnwindingInit(*s, *moved, q0, AicoInit::kUnwinding, moved->problem, &counts);
@@ -102,22 +106,22 @@ TEST(UnwindingRetry, ARolloutFailureIsSolvedByTheRetryWhichIsCharged) {
   const PlanReport both = RunPlanner(*s, request).report;
   EXPECT_TRUE(both.success) << FailureReasonName(both.failure_reason);
   EXPECT_EQ(both.attempts, 2);  // attempt 1 solved it: attempt 2 did not run
-  QueryCounts init;
+  internal::InitCounts init;
   internal::UnwindingInit(*s, s->initial, s->initial.problem.q0, AicoInit::kUnwinding,
                           s->initial.problem, &init);
   // Attempt 0 as before, the continuation, and attempt 1's own queries.
-  EXPECT_GT(both.counts.state_queries, first.counts.state_queries + init.state_queries);
-  EXPECT_GT(both.counts.pair_tests(), first.counts.pair_tests() + init.pair_tests());
+  EXPECT_GT(both.counts.state_queries, first.counts.state_queries + init.units.state_queries);
+  EXPECT_GT(both.counts.pair_tests(), first.counts.pair_tests() + init.units.pair_tests());
   // A budget the continuation reaches: the retry does not start, and the run has spent exactly
   // attempt 0 and the continuation.
   request.budget = {Budget::Unit::kQueries,
-                    static_cast<double>(first.counts.state_queries + init.state_queries)};
+                    static_cast<double>(first.counts.state_queries + init.units.state_queries)};
   const PlanReport cut = RunPlanner(*s, request).report;
   EXPECT_FALSE(cut.success);
   EXPECT_EQ(cut.status, SolveStatus::kBudgetExhausted);
   EXPECT_EQ(cut.failure_reason, FailureReason::kBudgetExhausted);
   EXPECT_EQ(cut.attempts, 1);  // the retry did not start
-  EXPECT_EQ(cut.counts, first.counts + init);
+  EXPECT_EQ(cut.counts, first.counts + init.units);
 }
 
 std::string WriteTemp(const std::string& name, const std::string& text) {
@@ -164,7 +168,7 @@ double LargestWindingStep(const Scenario& s, const Eigen::MatrixXd& q) {
 TEST(UnwindingRetry, TheReachInitUnwindsOffThePoleLineThenReaches) {
   const auto s = Tuning46();
   const Eigen::VectorXd& q0 = s->initial.problem.q0;
-  QueryCounts plain_counts, counts;
+  internal::InitCounts plain_counts, counts;
   const Trajectory plain = internal::UnwindingInit(*s, s->initial, q0, AicoInit::kUnwinding,
                                                    s->initial.problem, &plain_counts);
   const Trajectory init = internal::UnwindingInit(*s, s->initial, q0, AicoInit::kUnwindingThenReach,
@@ -177,8 +181,42 @@ TEST(UnwindingRetry, TheReachInitUnwindsOffThePoleLineThenReaches) {
   const EndState plain_end = CheckEndState(*s, plain.q.col(plain.num_points() - 1), false);
   EXPECT_LT(end.reach_error_m, 0.01);
   EXPECT_GT(plain_end.reach_error_m, 1.0);
-  // Charged: its line-clearance tasks and the reach continuation query the world too.
-  EXPECT_GT(counts.state_queries, plain_counts.state_queries);
+  // Its line-clearance pair tests are charged as pair tests, not as FCL calls.
+  EXPECT_EQ(counts.collision_queries, counts.units.state_queries);
+  EXPECT_LT(counts.narrow_phase_calls, counts.units.pair_tests());
+}
+
+// The init is built for the attempt's problem: a task switched off (an ablation) is left out. With
+// the reach off, the init is the line-cleared unwinding alone (the hand stays where it ends, far
+// from the target, and the reach continuation's estimates, at least one per 0.05 m plus 5, are
+// not spent); with the line clearance off too, it is the plain unwinding path.
+TEST(UnwindingRetry, TheReachInitLeavesOutTasksSwitchedOff) {
+  const auto s = Tuning46();
+  const Eigen::VectorXd& q0 = s->initial.problem.q0;
+  const auto init = [&](AicoInit kind, const std::vector<std::string>& off,
+                        internal::InitCounts* counts) {
+    MotionProblem p = AttemptProblem(*s, s->initial, 0);
+    DisableTasks(off, &p);
+    return internal::UnwindingInit(*s, s->initial, q0, kind, p, counts);
+  };
+  internal::InitCounts all, no_reach, none, plain;
+  const Trajectory full = init(AicoInit::kUnwindingThenReach, {}, &all);
+  const Trajectory unreached = init(AicoInit::kUnwindingThenReach, {"reach"}, &no_reach);
+  const double left =
+      CheckEndState(*s, unreached.q.col(unreached.num_points() - 1), false).reach_error_m;
+  EXPECT_GT(left, 1.0);
+  EXPECT_LT(CheckEndState(*s, full.q.col(full.num_points() - 1), false).reach_error_m, 0.01);
+  EXPECT_GE(all.units.state_queries - no_reach.units.state_queries,
+            static_cast<long>(std::ceil(left / 0.05)) + 5);
+  const Trajectory bare = init(AicoInit::kUnwindingThenReach, {"reach", "off_pole_line"}, &none);
+  EXPECT_TRUE(bare.q.isApprox(init(AicoInit::kUnwinding, {}, &plain).q, 1e-12));
+  EXPECT_EQ(none.units, plain.units);
+  // The problem pairs with the scenario's tasks by index.
+  MotionProblem short_problem = AttemptProblem(*s, s->initial, 0);
+  short_problem.tasks.pop_back();
+  EXPECT_THROW(
+      internal::UnwindingInit(*s, s->initial, q0, AicoInit::kUnwinding, short_problem, &plain),
+      std::logic_error);
 }
 
 TEST(UnwindingRetry, AFailureOfBothEarlierAttemptsIsSolvedByTheReachInit) {
@@ -253,6 +291,8 @@ TEST(UnwindingRetry, KeysAreChecked) {
               "aico.retry[1].init: unknown AICO init 'rollout'");
   ExpectError("empty.json", Mini(report, R"({"retry": []})"),
               "aico.retry: expected at least one retry");
+  ExpectError("number.json", Mini(report, R"({"retry": 3})"),
+              "aico.retry: expected an object or an array of objects");
   ExpectError("no_report_2.json", Mini("", R"({"retry": [{"init": "unwinding_then_reach"}]})"),
               "aico.retry[0].init: the unwinding init continues the writhe_report's writhe");
   ExpectError("no_report.json", Mini("", R"({"retry": {"init": "unwinding"}})"),
