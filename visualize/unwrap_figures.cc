@@ -79,11 +79,21 @@ render::Figure UnwrapSurvivalFigure(const planning::UnwrapBenchmarkResult& resul
   return render::PanelsFigure(panels, layout);
 }
 
-render::Figure UnwrapAblationFigure(const planning::UnwrapBenchmarkResult& result,
-                                    const std::vector<planning::UnwrapAblation>& ablations) {
+std::vector<render::PlotPanel> UnwrapAblationPanels(
+    const planning::UnwrapBenchmarkResult& result,
+    const std::vector<planning::UnwrapAblation>& ablations) {
   if (result.runs.empty()) throw std::invalid_argument("ablation figure: no runs");
   render::PlotPanel success, writhe, reach;
-  for (const planning::UnwrapAblation& ab : ablations) {
+  // Variants often share a value (every one solves an angle): each series is drawn dodged
+  // sideways by its own offset, the K series together spanning 40 % of the angle step.
+  double step = result.angles_deg.size() > 1 ? std::numeric_limits<double>::infinity() : 90.0;
+  for (size_t i = 1; i < result.angles_deg.size(); ++i)
+    step = std::min(step, std::abs(result.angles_deg[i] - result.angles_deg[i - 1]));
+  const double count = static_cast<double>(ablations.size());
+  const double dodge = count > 1 ? 0.4 * step / (count - 1) : 0.0;
+  for (size_t k = 0; k < ablations.size(); ++k) {
+    const planning::UnwrapAblation& ab = ablations[k];
+    const double shift = (static_cast<double>(k) - 0.5 * (count - 1)) * dodge;
     render::PlotSeries s(ab.name), w(ab.name), r(ab.name);
     for (double angle : result.angles_deg) {
       int runs = 0, solved = 0;
@@ -95,11 +105,11 @@ render::Figure UnwrapAblationFigure(const planning::UnwrapBenchmarkResult& resul
         writhes.push_back(std::abs(run.report.final_writhe_total));
         if (run.report.reach_error_m >= 0.0) reaches.push_back(run.report.reach_error_m);
       }
-      s.x.push_back(angle);
+      s.x.push_back(angle + shift);
       s.y.push_back(runs > 0 ? static_cast<double>(solved) / runs : 0.0);
-      w.x.push_back(angle);
+      w.x.push_back(angle + shift);
       w.y.push_back(Median(writhes));
-      r.x.push_back(angle);
+      r.x.push_back(angle + shift);
       r.y.push_back(Median(reaches));
     }
     success.series.push_back(s);
@@ -117,17 +127,23 @@ render::Figure UnwrapAblationFigure(const planning::UnwrapBenchmarkResult& resul
   reach.axes.y_label = "Reach error (m)";
   reach.axes.y_min = 0.0;
   for (render::PlotPanel* p : {&success, &writhe, &reach}) {
-    p->axes.x_label = "Angle to unwrap (deg)";
+    p->axes.x_label = "Angle to unwrap (deg; variants side by side)";
     p->axes.legend = render::LegendPosition::kNone;
   }
   writhe.axes.legend = render::LegendPosition::kTopLeft;  // the writhe stays low at small angles
+  return {success, writhe, reach};
+}
+
+render::Figure UnwrapAblationFigure(const planning::UnwrapBenchmarkResult& result,
+                                    const std::vector<planning::UnwrapAblation>& ablations) {
+  const std::vector<render::PlotPanel> panels = UnwrapAblationPanels(result, ablations);
   render::PanelLayout layout;
   layout.width = 1380;
   layout.height = 480;
   layout.columns = 3;
   layout.title = "AICO ablations: each task term removed in turn (" + std::to_string(result.seeds) +
                  (result.seeds == 1 ? " seed" : " seeds") + ")";
-  return render::PanelsFigure({success, writhe, reach}, layout);
+  return render::PanelsFigure(panels, layout);
 }
 
 }  // namespace visualize

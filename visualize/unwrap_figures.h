@@ -7,6 +7,7 @@
 
 #include "planning/motion/unwrap_benchmark.h"
 #include "render/figure.h"
+#include "render/plot.h"
 
 namespace visualize {
 
@@ -19,8 +20,14 @@ render::Figure UnwrapSurvivalFigure(const planning::UnwrapBenchmarkResult& resul
 
 // Three panels over the angle to unwrap, one series per ablation (in `ablations` order, legend on
 // the second): success fraction over the seeds; median |final total writhe| [turns]; median final
-// reach error [m].
+// reach error [m]. Series k of K is drawn at angle + (k − (K−1)/2)·δ, δ = 0.4·step / (K−1)
+// (step: the smallest angle step, 90° for one angle), so that variants with equal values stay
+// visible side by side.
 // Throws std::invalid_argument for a result without runs.
+std::vector<render::PlotPanel> UnwrapAblationPanels(
+    const planning::UnwrapBenchmarkResult& result,
+    const std::vector<planning::UnwrapAblation>& ablations);
+// The three panels side by side (1380 × 480 px) under a title naming the seeds.
 render::Figure UnwrapAblationFigure(const planning::UnwrapBenchmarkResult& result,
                                     const std::vector<planning::UnwrapAblation>& ablations);
 
