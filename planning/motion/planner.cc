@@ -523,10 +523,7 @@ PlanResult RunAicoAttempts(const Scenario& s, const ScenarioState& w, const Aico
     long probe_queries = 0, probe_narrow = 0;  // validations of trajectories that were no success
     QueryCounts probe_counts;
     // The budget spent after a sweep: this attempt's counts so far, earlier attempts' and probes'.
-    const auto spent = [&] {
-      return budget.unit != Budget::Unit::kNone &&
-             over(rep.counts + probe_counts + solver.counts());
-    };
+    const auto spent = [&] { return over(rep.counts + probe_counts + solver.counts()); };
     bool solved = false;
     while (!solver.done()) {
       const AicoStep step = solver.Step();

@@ -154,23 +154,22 @@ void ContinueReach(const Scenario& s, const ScenarioState& world, double margin,
   MotionProblem p = ContinuationProblem(s, world, path->back(),
                                         ReportWritheTotal(s, world, path->back()), margin, kept);
   const size_t first_reach = p.tasks.size();
-  KinematicsData kin(s.robot);
-  ForwardKinematics(s.robot, p.q0, &kin);
-  std::vector<Eigen::Vector3d> from;
-  double longest = 0.0;
-  for (size_t i = 0; i < reach.size(); ++i) {
+  for (const TaskSpec* spec : reach) {
     Task t;
-    t.name = reach[i]->name;
-    t.feature = BuildFeature(s, world, reach[i]->feature);
-    Eigen::VectorXd y(3);
-    const auto data = t.feature->CreateData(s.robot);
-    t.feature->Eval(s.robot, kin, data.get(), y, nullptr);
-    from.push_back(y);
-    longest = std::max(longest, (goals[i] - from[i]).norm());
-    SetConstantTarget(&t, y, 1000.0, 1);
+    t.name = spec->name;
+    t.feature = BuildFeature(s, world, spec->feature);
+    SetConstantTarget(&t, Eigen::VectorXd::Zero(3), 1000.0, 1);
     p.tasks.push_back(std::move(t));
   }
   TaskWorkspace ws(p);
+  // Where each point starts (a position task queries no world: no state query is spent).
+  std::vector<Eigen::Vector3d> from;
+  double longest = 0.0;
+  for (size_t i = 0; i < reach.size(); ++i) {
+    EvaluateTask(p, static_cast<int>(first_reach + i), p.q0, false, &ws);
+    from.push_back(ws.y[first_reach + i]);
+    longest = std::max(longest, (goals[i] - from[i]).norm());
+  }
   FinalPoseOptions fo;
   fo.alpha = 0.5;
   const int moves = std::max(1, static_cast<int>(std::ceil(longest / kReachStep)));
