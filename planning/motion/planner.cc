@@ -3,12 +3,11 @@
 #include <cassert>
 #include <chrono>
 #include <cmath>
-#include <ctime>
+#include <optional>
 #include <random>
 #include <stdexcept>
 
 #include "base/enum_names.h"
-#include "base/numbers.h"
 #include "planning/collision/collision.h"
 #include "planning/motion/internal/ompl_planners.h"
 #include "planning/motion/internal/start_coil.h"
@@ -134,74 +133,6 @@ bool OmplAvailable() {
 
 const char* PlannerName(Planner planner) { return base::ToName(planner); }
 
-double CpuSeconds() {
-  timespec ts{};
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
-}
-
-Budget ParseBudget(const std::string& text, const std::string& flag) {
-  const auto bad = [&] {
-    return std::invalid_argument(flag +
-                                 ": expected time=SECONDS (CPU, > 0), queries=N (N >= 1 "
-                                 "state queries) or pairs=N (N >= 1 pair tests), got '" +
-                                 text + "'");
-  };
-  const size_t eq = text.find('=');
-  const std::string key = eq == std::string::npos ? "queries" : text.substr(0, eq);
-  const std::string value = eq == std::string::npos ? text : text.substr(eq + 1);
-  Budget b;
-  if (key == "queries") {
-    b.unit = Budget::Unit::kQueries;
-  } else if (key == "time") {
-    b.unit = Budget::Unit::kCpuTime;
-  } else if (key == "pairs") {
-    b.unit = Budget::Unit::kPairTests;
-  } else {
-    throw bad();
-  }
-  char* end = nullptr;
-  b.value = std::strtod(value.c_str(), &end);
-  if (value.empty() || end != value.c_str() + value.size() || !std::isfinite(b.value) ||
-      !(b.value > 0.0)) {
-    throw bad();
-  }
-  if (b.unit != Budget::Unit::kCpuTime &&
-      (b.value != std::floor(b.value) || b.value < 1.0 || b.value > 1e12)) {
-    throw bad();
-  }
-  return b;
-}
-
-std::string BudgetText(const Budget& budget) {
-  switch (budget.unit) {
-    case Budget::Unit::kQueries:
-      return std::string("queries=").append(std::to_string(static_cast<long long>(budget.value)));
-    case Budget::Unit::kCpuTime:
-      return std::string("time=").append(base::FormatShortest(budget.value));
-    case Budget::Unit::kPairTests:
-      return std::string("pairs=").append(std::to_string(static_cast<long long>(budget.value)));
-    case Budget::Unit::kNone:
-      break;
-  }
-  return "";
-}
-
-bool SolvedWithin(const PlanReport& report, const Budget& budget) {
-  if (!report.success) return false;
-  switch (budget.unit) {
-    case Budget::Unit::kQueries:
-      return static_cast<double>(report.counts.state_queries) <= budget.value;
-    case Budget::Unit::kCpuTime:
-      return report.cpu_time_s <= budget.value;
-    case Budget::Unit::kPairTests:
-      return static_cast<double>(report.counts.pair_tests()) <= budget.value;
-    case Budget::Unit::kNone:
-      break;
-  }
-  return true;
-}
-
 PlanResult RunPlanner(const Scenario& s, Planner planner, unsigned seed,
                       const AicoCallback& callback, const PollFn& poll) {
   PlanRequest request;
@@ -232,6 +163,7 @@ PlanResult RunPlanner(const Scenario& s, const PlanRequest& request) {
     out.report.time_s = elapsed();
     out.report.cpu_time_s = CpuSeconds() - cpu0;
     FinishReport(s, w, out.trajectory.num_points() > 0, /*judged=*/true, &out);
+    EnforceBudget(request.budget, &out.report);
     out.report.planner = PlannerName(planner);
     return out;
   }
@@ -331,6 +263,7 @@ PlanResult RunPlanner(const Scenario& s, const PlanRequest& request) {
   out.report.goal_samples = r.goal.samples;
   out.report.goal_sampler_counts = sampler.counts;
   out.report.goal_sampler_cpu_time_s = sampler.cpu_time_s;
+  EnforceBudget(request.budget, &out.report);
   return out;
 }
 
@@ -487,6 +420,7 @@ PlanResult RunAicoAttempts(const Scenario& s, const ScenarioState& w, const Aico
     return budget.unit != U::kNone && used >= budget.value;
   };
   const int attempts = retry ? static_cast<int>(s.aico_attempts.size()) : 1;
+  std::optional<Trajectory> plain_unwinding;
   const auto budget_exhausted = [&] {
     rep.status = SolveStatus::kBudgetExhausted;
     rep.failure_reason = FailureReason::kBudgetExhausted;
@@ -504,10 +438,15 @@ PlanResult RunAicoAttempts(const Scenario& s, const ScenarioState& w, const Aico
     const bool own = k == 0 && disabled_tasks.empty();
     MotionProblem later = own ? MotionProblem{} : AttemptProblem(s, w, k);
     if (!own) DisableTasks(disabled_tasks, &later);
-    Trajectory init;  // the unwinding init, its continuation's counts charged to this attempt
-    if (unwinding) {
+    // The unwinding init, its continuation's counts charged to the first attempt that uses it; the
+    // plain path depends on q0 alone, so later attempts from it reuse it at no charge.
+    Trajectory init;
+    if (unwinding && init_kind == AicoInit::kUnwinding && plain_unwinding.has_value()) {
+      init = *plain_unwinding;
+    } else if (unwinding) {
       internal::InitCounts c;
       init = internal::UnwindingInit(s, w, w.problem.q0, init_kind, own ? w.problem : later, &c);
+      if (init_kind == AicoInit::kUnwinding) plain_unwinding = init;
       rep.counts += c.units;
       rep.collision_checks += c.collision_queries;
       rep.narrow_phase_calls += c.narrow_phase_calls;
@@ -568,23 +507,13 @@ PlanResult RunAicoAttempts(const Scenario& s, const ScenarioState& w, const Aico
 
 void NameFailure(PlanReport* rep) {
   if (rep->success) return;
-  switch (rep->status) {
-    case SolveStatus::kDiverged:
-      rep->failure_reason = FailureReason::kDiverged;
-      break;
-    case SolveStatus::kInvalidInput:
-      rep->failure_reason = FailureReason::kInvalidInput;
-      break;
-    case SolveStatus::kBudgetExhausted:
-      rep->failure_reason = FailureReason::kBudgetExhausted;
-      break;
-    case SolveStatus::kConverged:
-    case SolveStatus::kMaxIterations:
-    case SolveStatus::kSolved:
-      if (rep->failure_reason == FailureReason::kNone) {
-        rep->failure_reason = FailureReason::kBudgetExhausted;  // no path within the limits
-      }
-      break;
+  if (rep->status == SolveStatus::kDiverged) {
+    rep->failure_reason = FailureReason::kDiverged;
+  } else if (rep->status == SolveStatus::kInvalidInput) {
+    rep->failure_reason = FailureReason::kInvalidInput;
+  } else if (rep->status == SolveStatus::kBudgetExhausted ||
+             rep->failure_reason == FailureReason::kNone) {  // kNone: no path within the limits
+    rep->failure_reason = FailureReason::kBudgetExhausted;
   }
 }
 

@@ -141,8 +141,8 @@ using PollFn = std::function<void()>;
 // kQueries: state queries (QueryCounts::state_queries; the RRTs' max_checks, exact); kCpuTime:
 // process CPU seconds of the solve; kPairTests: pair tests of both kinds (QueryCounts::pair_tests).
 // AICO tests it after every sweep, RRT/BiRRT after every iteration, OMPL at every poll of its
-// termination condition, so a run may overshoot by one sweep or iteration; whether a run solved
-// within budget b is read off its counts (SolvedWithin).
+// termination condition, so a run may overshoot by one sweep or iteration, and is then no success
+// (EnforceBudget); whether a run solved within budget b is read off its counts (SolvedWithin).
 struct Budget {
   enum class Unit { kNone, kQueries, kCpuTime, kPairTests };
   Unit unit = Unit::kNone;  // kNone: the scenario's own limits
@@ -156,6 +156,10 @@ std::string BudgetText(const Budget& budget);
 // Whether `report` is a success that spent at most `budget` (its counts or cpu_time_s); every
 // success for kNone.
 bool SolvedWithin(const PlanReport& report, const Budget& budget);
+// A budget is a limit: a success that spent more than `budget` (a run tests a polled budget after
+// a sweep or an iteration, and may cross it there) becomes a failure with status and reason
+// kBudgetExhausted. RunPlanner applies it to every run.
+void EnforceBudget(const Budget& budget, PlanReport* report);
 // Process CPU time [s] (CLOCK_PROCESS_CPUTIME_ID).
 double CpuSeconds();
 PlanResult RunPlanner(const Scenario& scenario, Planner planner, unsigned seed,
@@ -212,8 +216,9 @@ void FinishReport(const Scenario& scenario, const ScenarioState& state, bool fou
 // problem (tasks switched off are left out of it), and the continuations' state queries, pair
 // tests, collision queries and FCL calls are counted in the report (when they spend the budget,
 // the attempt does not start and the run fails as kBudgetExhausted; `attempts` counts the attempts
-// started). Fills every report field of an AICO run except time_s and start_writhe_total; does not
-// call NameFailure.
+// started). The plain unwinding path (kUnwinding) depends on q0 alone: it is made and charged
+// once, and a later attempt from it reuses it. Fills every report field of an AICO run except
+// time_s and start_writhe_total; does not call NameFailure.
 PlanResult RunAicoAttempts(const Scenario& scenario, const AicoCallback& callback = {});
 // The same in the world `state` with `aico` instead of scenario.aico.
 // With a budget (not kNone): after every sweep the counts (or CPU time) spent so far, earlier

@@ -131,8 +131,9 @@ const UnwrapCell& UnwrapSummaryCell(const UnwrapBenchmarkResult& result, size_t 
 
 // Fraction of the runs of one (planner, angle) solved within one budget (SolvedWithin), the
 // cumulative time-to-solve curve of Planner Arena (Moll, Sucan, Kavraki 2015). A budget only
-// truncates a run (RRT/BiRRT/OMPL stop at it, AICO after the sweep that reaches it), so one run
-// at the largest budget gives the verdict at every smaller one.
+// truncates a run (RRT/BiRRT/OMPL stop at it, AICO after the sweep that reaches it, and a success
+// that sweep reaches past the budget is a budget failure: RunPlanner), so one run at the largest
+// budget gives the verdict at every smaller one.
 struct UnwrapSurvivalPoint {
   Planner planner = Planner::kAico;
   double angle_deg = 0.0;

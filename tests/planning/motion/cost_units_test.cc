@@ -129,7 +129,8 @@ TEST(Budget, ParsesBothUnitsAndNamesTheFlag) {
   EXPECT_EQ(BudgetText(b), "pairs=250");
   EXPECT_EQ(BudgetText(Budget{}), "");
   for (const char* bad : {"", "-5", "queries=0", "queries=1.5", "time=0", "time=nan", "wall=3",
-                          "queries=", "time=1s", "pairs=0.5"}) {
+                          "queries=", "time=1s", "pairs=0.5", "queries=0x10", "queries=1e3",
+                          "queries=+5", "pairs=10000000000000", "queries= 5"}) {
     SCOPED_TRACE(bad);
     try {
       ParseBudget(bad, "--budget");
@@ -165,6 +166,19 @@ TEST(Budget, ABudgetOnlyTruncatesARun) {
       EXPECT_TRUE(exact.report.success);
       EXPECT_EQ(exact.report.counts, free.report.counts);
       EXPECT_EQ(exact.trajectory.q, free.trajectory.q);
+    }
+    // A run that succeeds within a budget has spent no more than it (AICO checks the budget after
+    // each sweep: a success that sweep reaches past the budget is a budget failure).
+    for (const double b : {spent / 2, spent - 1, spent}) {
+      request.budget = Budget{Budget::Unit::kQueries, b};
+      const PlanReport r = RunPlanner(*s, request).report;
+      EXPECT_TRUE(r.success ? SolvedWithin(r, request.budget)
+                            : r.failure_reason == FailureReason::kBudgetExhausted)
+          << b << ": " << r.counts.state_queries << " queries, "
+          << FailureReasonName(r.failure_reason);
+      if (b < spent) {
+        EXPECT_FALSE(r.success) << b;
+      }
     }
     // The same in pair tests: a tiny budget stops the run; SolvedWithin reads the run's tests.
     const double pairs = static_cast<double>(free.report.counts.pair_tests());

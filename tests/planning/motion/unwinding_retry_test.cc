@@ -1,6 +1,6 @@
-// The AICO retries from the unwinding paths ("aico": {"retry": [{"init": "unwinding"}, {"init":
-// "unwinding_then_reach"}]}): the inits, the attempts they run, what they are charged, who does not
-// get them, and their keys.
+// The AICO retries from the unwinding paths (unwrap_chord.json's "aico": {"retry": [{"init":
+// "unwinding"}, {"init": "unwinding_then_reach"}, {"init": "unwinding", "precision_scale": ...}]}):
+// the inits, the attempts they run, what they are charged, who does not get them, and their keys.
 
 #include <gtest/gtest.h>
 
@@ -94,9 +94,10 @@ TEST(UnwindingRetry, ResamplingIsByArcLength) {
 
 TEST(UnwindingRetry, ARolloutFailureIsSolvedByTheRetryWhichIsCharged) {
   const auto s = Tuning06();
-  ASSERT_EQ(s->aico_attempts.size(), 3u);
+  ASSERT_EQ(s->aico_attempts.size(), 4u);
   EXPECT_TRUE(s->aico_attempts[1].init == AicoInit::kUnwinding);
   EXPECT_TRUE(s->aico_attempts[2].init == AicoInit::kUnwindingThenReach);
+  EXPECT_TRUE(s->aico_attempts[3].init == AicoInit::kUnwinding);
   PlanRequest request;
   request.aico_retry = false;
   const PlanReport first = RunPlanner(*s, request).report;
@@ -212,12 +213,81 @@ TEST(UnwindingRetry, AFailureOfBothEarlierAttemptsIsSolvedByTheReachInit) {
   EXPECT_EQ(r.attempts, 3);
   // Without the third attempt the run fails: the same scenario with the plain retry only.
   ScenarioSpec spec = s->spec;
-  spec.aico_attempts.pop_back();
+  spec.aico_attempts.resize(2);
   const auto two = SetUpScenario(spec, 720.0);
   const PlanReport r2 = RunPlanner(*two, request).report;
   EXPECT_FALSE(r2.success);
   EXPECT_EQ(r2.attempts, 2);
   EXPECT_LT(r2.counts.state_queries, r.counts.state_queries);
+}
+
+// unwrap_chord.json on tuning_17 (12-link arm, moved pole) at 540°: the first three attempts end
+// short of the end conditions (the arm's spare length curled near the target, its writhe or reach
+// missed); the fourth, from the plain unwinding path with the collision cost weakened and the
+// writhe and reach costs strengthened, solves it.
+std::unique_ptr<Scenario> Tuning17(int attempts) {
+  const UnwrapGeometry g =
+      ReadUnwrapGeometry(kAssets + "scenarios/unwrap_geometries/tuning/tuning_17_arm12.json");
+  ScenarioSpec spec = ParseScenarioSpec(kChord);
+  ApplyUnwrapGeometry(g, &spec);
+  spec.aico_attempts.resize(static_cast<size_t>(attempts));
+  return SetUpScenario(spec, 540.0);
+}
+
+TEST(UnwindingRetry, AFailureOfThreeAttemptsIsSolvedByTheWeakerCollisionCost) {
+  const auto s = Tuning17(4);
+  const auto index = [&](const std::string& name) {
+    for (size_t i = 0; i < s->spec.tasks.size(); ++i) {
+      if (s->spec.tasks[i].name == name) return static_cast<Eigen::Index>(i);
+    }
+    ADD_FAILURE() << "no task " << name;
+    return Eigen::Index{0};
+  };
+  const Eigen::Index collision = index("collision"), writhe = index("writhe"),
+                     reach = index("reach");
+  const Eigen::VectorXd& scale = s->aico_attempts[3].precision_scale;
+  EXPECT_DOUBLE_EQ(scale[collision], 0.2);
+  EXPECT_DOUBLE_EQ(scale[writhe], 10.0);
+  EXPECT_DOUBLE_EQ(scale[reach], 10.0);
+  EXPECT_EQ((scale.array() != 1.0).count(), 3);
+  // Every slice's precision is scaled, the final ones too.
+  const MotionProblem p0 = AttemptProblem(*s, s->initial, 0),
+                      p3 = AttemptProblem(*s, s->initial, 3);
+  EXPECT_TRUE(p3.tasks[collision].precision.isApprox(0.2 * p0.tasks[collision].precision));
+  EXPECT_TRUE(p3.tasks[reach].precision.isApprox(10.0 * p0.tasks[reach].precision));
+  PlanRequest request;
+  const PlanReport four = RunPlanner(*s, request).report;
+  EXPECT_TRUE(four.success) << FailureReasonName(four.failure_reason);
+  EXPECT_EQ(four.attempts, 4);
+  const PlanReport three = RunPlanner(*Tuning17(3), request).report;
+  EXPECT_FALSE(three.success);
+  EXPECT_EQ(three.attempts, 3);
+}
+
+// The plain unwinding path depends on the start alone: an attempt that starts from it again
+// reuses it, and is charged its own AICO sweeps only. Here a repeat of attempt 1 (the same init,
+// the same problem: the same sweeps) costs what attempt 1 cost without its continuation.
+TEST(UnwindingRetry, ThePlainUnwindingPathIsMadeAndChargedOnce) {
+  const auto one = Tuning17(2);
+  ScenarioSpec spec = one->spec;
+  spec.aico_attempts.resize(3);
+  spec.aico_attempts[2] = spec.aico_attempts[1];
+  const auto repeat = SetUpScenario(spec, 540.0);
+  PlanRequest request;
+  request.aico_retry = false;
+  const PlanReport r0 = RunPlanner(*one, request).report;
+  request.aico_retry = true;
+  const PlanReport r1 = RunPlanner(*one, request).report;
+  const PlanReport r2 = RunPlanner(*repeat, request).report;
+  ASSERT_FALSE(r1.success);
+  ASSERT_FALSE(r2.success);
+  EXPECT_EQ(r1.attempts, 2);
+  EXPECT_EQ(r2.attempts, 3);
+  internal::InitCounts init;
+  internal::UnwindingInit(*one, one->initial, one->initial.problem.q0, AicoInit::kUnwinding,
+                          one->initial.problem, &init);
+  EXPECT_GT(init.units.state_queries, 0);
+  EXPECT_EQ(r2.counts + r0.counts + init.units, r1.counts + r1.counts);
 }
 
 // The unwinding path is writhe-driven: aico-goal and the no-writhe ablation (no writhe term) do
