@@ -227,23 +227,27 @@ void AddBenchCommands(CLI::App* root, CommandList* commands) {
   IntIn(unwrap->add_option("--seeds", ba->seeds,
                            "runs per angle and planner, seeds 0..N-1 (default 3)"),
         1, 1000);
-  unwrap->add_option(
-      "--planners", ba->planners,
-      "comma-separated planners, each at most once: " + PlannerChoices() + " (default: " +
-          [] {
-            std::string c;
-            for (const planning::Planner p : planning::DefaultPlanners()) {
-              c.append(c.empty() ? "" : ",").append(planning::PlannerName(p));
-            }
-            return c;
-          }() +
-          "; the OMPL goal-region peers only by name)");
-  unwrap->add_option("--budget", ba->budget,
-                     "every planner's budget: time=S (CPU seconds of the solve) or queries=N "
-                     "(state queries) or pairs=N (pair tests); a bare N: the RRTs' collision-check "
-                     "budget only (as "
-                     "before); default: the scenario's limits (RRTs 100000 checks, AICO its "
-                     "sweeps); with --survival default queries=1000000");
+  unwrap
+      ->add_option(
+          "--planners", ba->planners,
+          "comma-separated planners, each at most once: " + PlannerChoices() + " (default: " +
+              [] {
+                std::string c;
+                for (const planning::Planner p : planning::DefaultPlanners()) {
+                  c.append(c.empty() ? "" : ",").append(planning::PlannerName(p));
+                }
+                return c;
+              }() +
+              "; the OMPL goal-region peers only by name)")
+      ->check(NonEmpty());
+  unwrap
+      ->add_option("--budget", ba->budget,
+                   "every planner's budget: time=S (CPU seconds of the solve) or queries=N "
+                   "(state queries) or pairs=N (pair tests); a bare N: the RRTs' collision-check "
+                   "budget only (as "
+                   "before); default: the scenario's limits (RRTs 100000 checks, AICO its "
+                   "sweeps); with --survival default queries=1000000")
+      ->check(NonEmpty());
   unwrap->add_flag(
       "--survival", ba->survival,
       "budget-free verdicts: also write DIR/survival.csv and DIR/survival.png (fraction "
@@ -252,17 +256,21 @@ void AddBenchCommands(CLI::App* root, CommandList* commands) {
                    "run AICO with each task term removed in turn (writhe, reach, off-pole, winding "
                    "guard, rollout, and the retries when the scenario has them) instead of the "
                    "planners: DIR/ablation.csv, DIR/ablation.png");
-  unwrap->add_option("--pole-offset", ba->perturb,
-                     "move the pole of each seed by a random offset of at most M metres "
-                     "perpendicular to its axis (seeded, reproducible; 0 <= M <= 1, default 0)");
-  AddDeprecatedAlias(unwrap, "--perturb", "--pole-offset", &ba->perturb);
+  unwrap
+      ->add_option("--pole-offset", ba->perturb,
+                   "move the pole of each seed by a random offset of at most M metres "
+                   "perpendicular to its axis (seeded, reproducible; 0 <= M <= 1, default 0)")
+      ->check(NonEmpty());
+  AddDeprecatedAlias(unwrap, "--perturb", "--pole-offset", &ba->perturb)->check(NonEmpty());
   unwrap->add_option("--geometry", ba->geometry,
                      "run on the geometry of FILE (pole tilt, radius, translation, target offset, "
                      "arm; planning/motion/unwrap_geometry.h) with the scenario's parameters "
                      "unchanged; also writes DIR/geometry.csv");
-  unwrap->add_option("--scenario", ba->scenario,
-                     "the unwrap scenario to run (a coil start \"start_wrap_deg\" and a "
-                     "writhe_report pair; default: the shipped assets/scenarios/unwrap.json)");
+  unwrap
+      ->add_option("--scenario", ba->scenario,
+                   "the unwrap scenario to run (a coil start \"start_wrap_deg\" and a "
+                   "writhe_report pair; default: the shipped assets/scenarios/unwrap.json)")
+      ->check(NonEmpty());
   unwrap->add_option("--aico-stop", ba->aico_stop, kAicoStopHelp)
       ->check(CLI::IsMember({"solved", "converged"}));
   AddTimeoutFlag(unwrap, &ba->timeout);

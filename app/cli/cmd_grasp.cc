@@ -178,24 +178,29 @@ void AddGraspCommands(CLI::App* root, CommandList* commands) {
       "stable, 1 if some is not, 2 for bad input.");
   transfer
       ->add_option("--grasp", ta->grasp, "grasp name (file stem in assets/grasps), a path, or all")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(NonEmpty());
   transfer
       ->add_option("--method", ta->method,
                    "winding | winding_only | contact_only | fingertip | joint | human | all")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(NonEmpty());
   transfer->add_option("--mu", ta->mu, "Coulomb friction coefficient (friction pyramid)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(NonEmpty());
   transfer
       ->add_option("--contact-patch", ta->contact_patch_mm,
                    "soft-finger contact patch radius in mm, the same for every method and the "
                    "human hand: torsional friction up to (3 pi/16) mu a times the normal force; "
                    "0 = point contacts")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(NonEmpty());
   transfer
       ->add_option("--close-by", ta->close_by,
                    "grip: the fingers' flexion joints are driven to their grasp value + RAD, the "
                    "same for every method and the human hand (in [0, 0.5])")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(NonEmpty());
   transfer->add_option("-o,--output", ta->out_dir, "output folder")->required();
   AddTimeoutFlag(transfer, &ta->timeout);
   transfer->add_flag("--frames", ta->frames,

@@ -453,25 +453,33 @@ void AddGraspBenchCommand(CLI::App* root, CommandList* commands) {
   cmd->add_option("--grasp", a->grasp,
                   "grasp name (file stem in assets/grasps), a path, or all (assets/grasps/*.json "
                   "and the study's threading grasps assets/grasps/study/*.json)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(NonEmpty());
   IntIn(cmd->add_option("--demos", a->demos, "noisy demonstrations per grasp (default 20)"), 1,
         1000);
   cmd->add_option("--seed", a->seed, "seed of the demonstration noise (default 0)");
-  cmd->add_option("--methods", a->methods, "comma-separated SDH methods")->capture_default_str();
+  cmd->add_option("--methods", a->methods, "comma-separated SDH methods")
+      ->capture_default_str()
+      ->check(NonEmpty());
   cmd->add_option("--engines", a->engines,
                   "all (ODE, and MuJoCo when this build has it) | ode | ode,mujoco")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(NonEmpty());
   cmd->add_option("--joint-noise", a->joint_deg, "finger joint noise bound [deg]")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(NonEmpty());
   cmd->add_option("--palm-noise-mm", a->palm_mm, "palm translation noise bound per axis [mm]")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(NonEmpty());
   cmd->add_option("--palm-noise-deg", a->palm_deg, "palm rotation noise bound [deg]")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(NonEmpty());
   cmd->add_option("--placement", a->placement,
                   "shared placement stage, the same for every method: human_palm (from the human "
                   "palm pose alone) | object_centre (grasp transfer's rule; reads the object's "
                   "reference and, for loops, the winding target: the ablation)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(NonEmpty());
   IntIn(cmd->add_option("--threads", a->threads,
                         "threads: N-1 prepare transfers (AICO, MuJoCo) ahead of the one running "
                         "ODE (default 2); the results do not depend on it"),

@@ -168,19 +168,23 @@ void AddIkCommand(CLI::App* root, CommandList* commands) {
   ik->add_option("--link", a->link, "the link that must reach the target")->required();
   ik->add_option("--position", a->position, "target position x,y,z [m], world frame")->required();
   ik->add_option("--offset", a->offset,
-                 "the point on the link x,y,z [m], link frame (default: its origin 0,0,0)");
+                 "the point on the link x,y,z [m], link frame (default: its origin 0,0,0)")
+      ->check(NonEmpty());
   ik->add_option("--axis", a->axis,
                  "approach axis LOCAL:WORLD: the link axis LOCAL (x, y, z, -x, -y, -z or a,b,c) "
-                 "along the world direction WORLD (a,b,c), e.g. z:1,0,0");
+                 "along the world direction WORLD (a,b,c), e.g. z:1,0,0")
+      ->check(NonEmpty());
   ik->add_option("--q", a->q,
                  "start configuration v1,v2,... (rad / m) in the `fk` joint order (default: the "
                  "configuration `fk` shows without --q; values outside the limits are moved "
-                 "into them); --frozen joints keep it");
+                 "into them); --frozen joints keep it")
+      ->check(NonEmpty());
   AddRobotInputFlags(ik, &a->input, &a->pose);
   ik->add_option("--frozen", a->frozen,
                  "joints held at their start value, comma-separated joint names or SRDF group "
                  "names (e.g. gripper)")
-      ->delimiter(',');
+      ->delimiter(',')
+      ->check(NonEmpty());
   IntIn(ik->add_option("--starts", a->starts,
                        "starts: the start configuration, then random ones in the limits "
                        "(default 8)"),

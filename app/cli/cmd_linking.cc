@@ -334,10 +334,12 @@ void AddLinkingCommand(CLI::App* root, CommandList* commands) {
                    "auto (default): signed crossings of a projection, exact; the Gauss integral "
                    "when no projection tried is generic | crossings | gauss")
       ->check(CLI::IsMember({"auto", "crossings", "gauss"}));
-  linking->add_option("--batch", la->batch,
-                      "many pairs from FILE (or - for stdin), one JSON object per line: "
-                      "{\"id\": any, \"a\": [[x,y,z],...], \"b\": [[x,y,z],...]}; one JSON result "
-                      "line each");
+  linking
+      ->add_option("--batch", la->batch,
+                   "many pairs from FILE (or - for stdin), one JSON object per line: "
+                   "{\"id\": any, \"a\": [[x,y,z],...], \"b\": [[x,y,z],...]}; one JSON result "
+                   "line each")
+      ->check(NonEmpty());
   linking->footer(
       "Crossings: Lk = 1/2 sum of the signs of the crossings of A with B seen along a fixed\n"
       "generic direction, every sign certified by error-bounded predicates (docs/methods.md);\n"

@@ -219,7 +219,8 @@ void AddPlanCommands(CLI::App* root, CommandList* commands) {
   plan->add_option("--planner", pa->planner,
                    PlannerChoices() +
                        " (default aico; the OMPL peers need a build with "
-                       "libompl-dev)");
+                       "libompl-dev)")
+      ->check(NonEmpty());
   plan->add_option("--seed", pa->seed, "seed of the RRTs' random generator (default 0)");
   plan->add_option("--start-wrap", pa->start_wrap,
                    "start coil of a coil-start scenario (unwrap): angle to unwrap in degrees")
@@ -240,13 +241,16 @@ void AddPlanCommands(CLI::App* root, CommandList* commands) {
   plan->add_flag("--json", pa->json, "print report.json to stdout");
   plan->add_option("--moving-object", pa->moving_object,
                    "re-plan while this object of the scenario (e.g. ring, pole) follows "
-                   "--object-path (AICO, receding horizon, warm-started)");
+                   "--object-path (AICO, receding horizon, warm-started)")
+      ->check(NonEmpty());
   plan->add_option("--object-path", pa->object_path,
                    "CSV 't,x,y,z' (header, then seconds of plan time and the object's world "
-                   "position in m; linear in between, held after the last row)");
+                   "position in m; linear in between, held after the last row)")
+      ->check(NonEmpty());
   plan->add_option("--replan-period", pa->replan_period,
                    "plan time between re-plans in seconds, rounded to whole time slices "
-                   "(default 0.1)");
+                   "(default 0.1)")
+      ->check(NonEmpty());
   IntIn(plan->add_option("--replan-sweeps", pa->replan_sweeps,
                          "AICO sweep budget of each re-plan (default 3)"),
         1, 1000);

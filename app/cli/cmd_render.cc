@@ -79,20 +79,27 @@ void AddRenderCommands(CLI::App* root, CommandList* commands) {
                    "scenario .json with a \"robot\" key")
       ->required();
   render_cmd->add_option("-o,--output", ra->output, "output PNG")->required();
-  render_cmd->add_option("--q", ra->q,
-                         "robot configuration v1,v2,... in the `fk` joint order (robot .urdf or "
-                         "scenario input; default: the scenario's q, else zeros)");
+  render_cmd
+      ->add_option("--q", ra->q,
+                   "robot configuration v1,v2,... in the `fk` joint order (robot .urdf or "
+                   "scenario input; default: the scenario's q, else zeros)")
+      ->check(NonEmpty());
   AddRobotInputFlags(render_cmd, &ra->robot_input, &ra->pose);
-  render_cmd->add_option("--size", ra->size,
-                         "image size WxH (default: the file's \"size\", else 640x480)");
-  render_cmd->add_option("--camera", ra->camera,
-                         "ex,ey,ez,tx,ty,tz,fovy_deg: eye, target and vertical field of view "
-                         "(overrides the file's camera; up stays +z or the file's)");
+  render_cmd
+      ->add_option("--size", ra->size,
+                   "image size WxH (default: the file's \"size\", else 640x480)")
+      ->check(NonEmpty());
+  render_cmd
+      ->add_option("--camera", ra->camera,
+                   "ex,ey,ez,tx,ty,tz,fovy_deg: eye, target and vertical field of view "
+                   "(overrides the file's camera; up stays +z or the file's)")
+      ->check(NonEmpty());
   render_cmd->add_option("--msaa", ra->msaa, "multisample anti-aliasing samples (0, 2 or 4)")
       ->check(CLI::IsMember({0, 2, 4}));
   render_cmd->add_flag("--no-shadows", ra->no_shadows, "disable the shadow of the key light");
-  render_cmd->add_option("--gl", ra->gl,
-                         "GL backend osmesa|egl (default: $TOPOPLAN_GL, else osmesa)");
+  render_cmd
+      ->add_option("--gl", ra->gl, "GL backend osmesa|egl (default: $TOPOPLAN_GL, else osmesa)")
+      ->check(NonEmpty());
   render_cmd->footer(
       "Renders are deterministic: the same file and options give byte-identical PNGs.\n"
       "Exit codes: 0 ok, 2 bad scene/flags (the message names the JSON path), 3 no GL.");
@@ -136,17 +143,22 @@ void AddRenderCommands(CLI::App* root, CommandList* commands) {
   heatmap->add_option("A", ha->a_path, "first chain CSV (rows)")->required();
   heatmap->add_option("B", ha->b_path, "second chain CSV (columns)")->required();
   heatmap->add_option("-o,--output", ha->output, "output figure: .png, .svg or .pdf")->required();
-  heatmap->add_option("--size", ha->size,
-                      "largest figure size WxH (default 640x480; the canvas follows the "
-                      "matrix's aspect)");
-  heatmap->add_option("--title", ha->title, "title (default: chain names and total writhe)");
+  heatmap
+      ->add_option("--size", ha->size,
+                   "largest figure size WxH (default 640x480; the canvas follows the "
+                   "matrix's aspect)")
+      ->check(NonEmpty());
+  heatmap->add_option("--title", ha->title, "title (default: chain names and total writhe)")
+      ->check(NonEmpty());
   heatmap
       ->add_option("--clim", ha->clim,
                    "colour limit V: colours span [-V, V] (unsigned: [0, V]); default: the "
                    "matrix's max |value|")
       ->check(FiniteIn(1e-300, 1e300));
-  heatmap->add_option("--row-label", ha->row_label, "row axis caption (default: Segment of A)");
-  heatmap->add_option("--col-label", ha->col_label, "column axis caption (default: Segment of B)");
+  heatmap->add_option("--row-label", ha->row_label, "row axis caption (default: Segment of A)")
+      ->check(NonEmpty());
+  heatmap->add_option("--col-label", ha->col_label, "column axis caption (default: Segment of B)")
+      ->check(NonEmpty());
   heatmap->add_flag("--mark-peak", ha->mark_peak,
                     "outline the entry of largest |value| and name it under the axis");
   heatmap->add_flag("--unsigned", ha->unsigned_variant,

@@ -98,11 +98,13 @@ void AddRobotCommands(CLI::App* root, CommandList* commands) {
       root->add_subcommand("fk", "Forward kinematics of a URDF robot: every link's pose");
   fk->add_option("ROBOT", fa->urdf, "robot URDF file")->required();
   fk->add_option("--q", fa->q,
-                 "configuration v1,v2,... (rad / m) in the order of \"joints\" (default: zeros)");
+                 "configuration v1,v2,... (rad / m) in the order of \"joints\" (default: zeros)")
+      ->check(NonEmpty());
   AddRobotInputFlags(fk, &fa->input, &fa->pose);
   fk->add_option("--base", fa->base,
                  "pose of the root link x,y,z[,qx,qy,qz,qw] (default: the pose's free-base value, "
-                 "the scene's \"base\", else identity)");
+                 "the scene's \"base\", else identity)")
+      ->check(NonEmpty());
   fk->add_flag("--json", fa->json,
                "print {\"joints\": [...], \"links\": {name: {\"position\", \"rotation\"}}}");
   fk->footer(
@@ -160,13 +162,18 @@ void AddRobotCommands(CLI::App* root, CommandList* commands) {
       ->add_option("INPUT", ca->input,
                    "robot URDF, or a scene JSON {\"robot\", \"q\", \"objects\"} (see README)")
       ->required();
-  check->add_option("--q", ca->q, "configuration v1,v2,... in the `fk` joint order");
-  check->add_option("--object", ca->objects,
-                    "add an object: URDF[@x,y,z[,roll,pitch,yaw]] (repeatable; angles in rad)");
+  check->add_option("--q", ca->q, "configuration v1,v2,... in the `fk` joint order")
+      ->check(NonEmpty());
+  check
+      ->add_option("--object", ca->objects,
+                   "add an object: URDF[@x,y,z[,roll,pitch,yaw]] (repeatable; angles in rad)")
+      ->check(NonEmpty());
   AddRobotInputFlags(check, &ca->robot_input, &ca->pose);
-  check->add_option("--base", ca->base,
-                    "pose of the root link x,y,z[,qx,qy,qz,qw] (default: the pose's free-base "
-                    "value, the scene's \"base\", else identity)");
+  check
+      ->add_option("--base", ca->base,
+                   "pose of the root link x,y,z[,qx,qy,qz,qw] (default: the pose's free-base "
+                   "value, the scene's \"base\", else identity)")
+      ->check(NonEmpty());
   check->add_flag("--distance", ca->distance,
                   "also compute the minimum distance and the closest pair (distance queries on the "
                   "exact meshes)");

@@ -173,8 +173,10 @@ void AddRobotsCommand(CLI::App* root, CommandList* commands) {
   CLI::App* check = robots->add_subcommand(
       "check", "Load every URDF below DIR, pair it with its SRDF, check each SRDF pose");
   check->add_option("DIR", a->dir, "folder to walk (symbolic links followed)")->required();
-  check->add_option("--package-path", a->package_paths,
-                    "extra root for package:// URIs (repeatable); DIR itself is always searched");
+  check
+      ->add_option("--package-path", a->package_paths,
+                   "extra root for package:// URIs (repeatable); DIR itself is always searched")
+      ->check(NonEmpty());
   IntIn(check->add_option("--max-pairs", a->max_pairs,
                           "colliding pairs listed per pose (default 20)"),
         1, 100000);

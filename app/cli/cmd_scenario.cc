@@ -34,14 +34,19 @@ void AddScenarioCommand(CLI::App* root, CommandList* commands) {
   make->add_option("--object", a->options.object,
                    "the ring's URDF (default assets/objects/ring.urdf; needs a closed chain "
                    "'loop'), or with --task unwrap the pole's (default assets/objects/pole.urdf; "
-                   "needs a chain 'axis')");
+                   "needs a chain 'axis')")
+      ->check(NonEmpty());
   make->add_option("--package-path", a->options.package_paths,
-                   "root for package:// URIs (repeatable)");
-  make->add_option("--srdf", a->options.srdf, "the robot's SRDF (default: found as `check` does)");
+                   "root for package:// URIs (repeatable)")
+      ->check(NonEmpty());
+  make->add_option("--srdf", a->options.srdf, "the robot's SRDF (default: found as `check` does)")
+      ->check(NonEmpty());
   make->add_option("--hand", a->options.hand,
                    "the hand link; the arm is the path from the root to it (default: where the "
-                   "tree branches into fingers, else the SRDF's end_effector)");
-  make->add_option("--name", a->options.name, "scenario name (default ROBOT_TASK)");
+                   "tree branches into fingers, else the SRDF's end_effector)")
+      ->check(NonEmpty());
+  make->add_option("--name", a->options.name, "scenario name (default ROBOT_TASK)")
+      ->check(NonEmpty());
   IntIn(make->add_option("--seed", a->seed,
                          "seed of the inverse kinematics' random starts (unwrap: of the sampled "
                          "configurations)"),

@@ -107,7 +107,8 @@ void AddTopologyCommands(CLI::App* root, CommandList* commands) {
   writhe->add_option("--heatmap", wa->heatmap_path,
                      "also write the matrix as a heatmap figure (.png, .svg or .pdf; see "
                      "`topoplan heatmap`)");
-  writhe->add_option("--heatmap-size", wa->heatmap_size, "heatmap size WxH (default 640x480)");
+  writhe->add_option("--heatmap-size", wa->heatmap_size, "heatmap size WxH (default 640x480)")
+      ->check(NonEmpty());
   writhe->footer(
       "Entry (i,j) = 1/(4pi) * double integral over segment i of A and segment j of B of\n"
       "(a-b).(da x db)/|a-b|^3. For two closed polygons the total is their linking number\n"

@@ -176,6 +176,14 @@ CLI::Validator FiniteIn(double lo, double hi) {
       "NUMBER in " + range.str());
 }
 
+CLI::Validator NonEmpty() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        return text.empty() ? "empty value; leave the flag out for its default" : "";
+      },
+      "");
+}
+
 void CheckWrithePairs(long long rows_points, long long cols_points) {
   const double pairs = static_cast<double>(std::max(0LL, rows_points - 1)) *
                        static_cast<double>(std::max(0LL, cols_points - 1));

@@ -58,6 +58,11 @@ void Detail(const char* format, ...) __attribute__((format(printf, 1, 2)));
 // "--start-wrap nan" or "--threshold 2" fail at parsing with exit code 2.
 CLI::Validator FiniteIn(double lo, double hi);
 
+// CLI11 check of a flag whose value must not be empty: `--budget ""` fails at parsing with exit
+// code 2 ("--budget: empty value; leave the flag out for its default") instead of silently meaning
+// the default.
+CLI::Validator NonEmpty();
+
 // Largest writhe matrix computed from chain files: (N_A − 1)(N_B − 1) segment pairs, 8 bytes each.
 inline constexpr long long kMaxWrithePairs = 25'000'000;  // 200 MB
 

@@ -79,3 +79,34 @@ set_tests_properties(cli.class_gallium_driver PROPERTIES ENVIRONMENT "GALLIUM_DR
 topoplan_cli_test(class_view_no_display 3 "--screenshot out\\.png.*xvfb-run"
                   view unwrap)
 set_tests_properties(cli.class_view_no_display PROPERTIES ENVIRONMENT "DISPLAY=")
+
+# Inputs of the black-box review that were accepted silently; each is refused with exit 2, a
+# message naming the file and key (or the flag), and no output written.
+# topoplan_refused_test(name PATTERN args...): `topoplan args...`, with OUT in args replaced by a
+# path of this test, exits 2 with PATTERN in its output and nothing named OUT* exists afterwards.
+# Arguments go through sh, so "" stays one.
+function(topoplan_refused_test name pattern)
+  set(out ${CLASS_TMP}/refused_${name})
+  set(cmd "")
+  foreach(arg IN LISTS ARGN)
+    string(REPLACE OUT "${out}" arg "${arg}")
+    string(APPEND cmd " '${arg}'")
+  endforeach()
+  add_test(NAME cli.refused_${name}
+           COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/expect.sh 2 "${pattern}" --
+                   sh -c "rm -rf '${out}'*; \"$0\"${cmd}; rc=$?; if ls -d '${out}'* 2>/dev/null; then exit 9; fi; exit $rc"
+                   $<TARGET_FILE:topoplan>)
+  set_tests_properties(cli.refused_${name} PROPERTIES LABELS unit TIMEOUT 120)
+endfunction()
+# Flags given as "" meant their default; now "FLAG: empty value".
+foreach(flag budget planners pole-offset scenario)
+  topoplan_refused_test(empty_${flag} "--${flag}: empty value"
+                        bench unwrap --angles 0:0:15 --${flag} "" -o OUT)
+endforeach()
+topoplan_refused_test(empty_plan_srdf "--srdf: empty value" plan unwrap --srdf "" -o OUT)
+topoplan_refused_test(empty_plan_moving "--moving-object: empty value"
+                      plan reach_through_ring --moving-object "" --object-path "" -o OUT)
+topoplan_refused_test(empty_render_size "--size: empty value"
+                      render ${SCENES}/example.json --size "" -o OUT.png)
+topoplan_refused_test(empty_grasp_mu "--mu: empty value"
+                      grasp transfer --grasp large_diameter_can --mu "" -o OUT)
