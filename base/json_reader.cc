@@ -100,6 +100,11 @@ struct PathTracker {
 }  // namespace
 
 json ParseJsonText(const std::string& text, const std::string& source) {
+  // The parser reads a NUL byte as the end of the text: what follows it would be dropped unread.
+  if (const size_t nul = text.find('\0'); nul != std::string::npos) {
+    throw std::invalid_argument(source + ": invalid JSON: a NUL byte at byte offset " +
+                                std::to_string(nul) + " (JSON text holds none)");
+  }
   PathTracker tracker;
   try {
     json j = json::parse(text, [&](int depth, json::parse_event_t event, json& parsed) {

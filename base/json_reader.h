@@ -17,7 +17,9 @@
 namespace base {
 
 // Parses JSON text. Syntax errors and out-of-range numbers (e.g. 1e400) throw
-// "<source>: invalid JSON at <path>: ..." where <path> is the JSON path being read.
+// "<source>: invalid JSON at <path>: ..." where <path> is the JSON path being read. A NUL byte
+// anywhere in the text is an error naming its byte offset ("<source>: invalid JSON: a NUL byte at
+// byte offset 42 ...").
 nlohmann::json ParseJsonText(const std::string& text, const std::string& source);
 // Reads (at most kMaxInputFileBytes) and parses a file; "<path>: cannot open <what>
 // file" when it cannot be read, "<path>: <what> file is larger than ..." beyond the limit.

@@ -107,5 +107,22 @@ TEST(PrefixErrors, SaysEachLocationOnce) {
   }
 }
 
+// A NUL byte ends the text for the JSON parser: the reader refuses it, naming the file and the
+// byte offset, instead of ignoring what follows it.
+TEST(ParseJsonText, RefusesANulByte) {
+  const std::string text = std::string("{\"name\": \"a\"}") + '\0' + "garbage";
+  try {
+    base::ParseJsonText(text, "g.json");
+    FAIL() << "expected an error";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_STREQ(e.what(),
+                 "g.json: invalid JSON: a NUL byte at byte offset 13 (JSON text holds none)");
+  }
+  const fs::path file = fs::temp_directory_path() / ("nul_" + std::to_string(::getpid()) + ".json");
+  std::ofstream(file, std::ios::binary) << text;
+  EXPECT_THROW(base::ParseJsonFile(file.string(), "test"), std::invalid_argument);
+  fs::remove(file);
+}
+
 }  // namespace
 }  // namespace base

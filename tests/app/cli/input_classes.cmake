@@ -110,3 +110,9 @@ topoplan_refused_test(empty_render_size "--size: empty value"
                       render ${SCENES}/example.json --size "" -o OUT.png)
 topoplan_refused_test(empty_grasp_mu "--mu: empty value"
                       grasp transfer --grasp large_diameter_can --mu "" -o OUT)
+# A NUL byte ended the JSON text for the parser: what followed it was never read.
+add_test(NAME cli.refused_json_nul
+         COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/expect.sh 2 "nul\\.json: invalid JSON: a NUL byte at byte offset 13"
+                 -- sh -c "rm -rf \"$2\"; printf '{\"name\": \"g\"}\\000garbage' >\"$1\" && \"$0\" bench unwrap --geometry \"$1\" --angles 0:0:15 --planners birrt -o \"$2\"; rc=$?; test ! -e \"$2\" && exit $rc"
+                 $<TARGET_FILE:topoplan> ${CLASS_TMP}/nul.json ${CLASS_TMP}/refused_json_nul)
+set_tests_properties(cli.refused_json_nul PROPERTIES LABELS unit)
