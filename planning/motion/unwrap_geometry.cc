@@ -1,6 +1,7 @@
 #include "planning/motion/unwrap_geometry.h"
 
 #include <Eigen/Geometry>
+#include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <stdexcept>
@@ -26,6 +27,29 @@ Eigen::VectorXd Bounded(const base::JsonNode& n, int dim, double lo, double hi) 
   return v;
 }
 
+// A geometry's name is the first column of geometry.csv, unquoted: it must be non-empty and hold
+// only letters, digits, '_', '-' and '.'. `from_stem`: the name is the file's stem (no "name").
+void CheckName(const std::string& name, const std::string& path, bool from_stem) {
+  const auto refuse = [&](const std::string& why) {
+    throw std::invalid_argument(base::StrCat(
+        path, ": name: ", from_stem ? "the file's stem (the default name) " : "", why,
+        " (a geometry name is the first column of geometry.csv: letters, digits, '_', '-' and '.' "
+        "only)"));
+  };
+  if (name.empty()) refuse("is empty");
+  std::string shown = name;  // control characters as '?', so the message stays on one line
+  for (char& c : shown) {
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
+  }
+  for (const char c : name) {
+    if (std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.') continue;
+    const bool control = static_cast<unsigned char>(c) < 0x20 || c == 0x7f;
+    refuse(
+        base::StrCat("'", shown, "' holds ",
+                     control ? "a control character" : base::StrCat("'", std::string(1, c), "'")));
+  }
+}
+
 size_t ObjectIndex(const ScenarioSpec& spec, const std::string& name) {
   for (size_t i = 0; i < spec.objects.size(); ++i) {
     if (spec.objects[i].name == name) return i;
@@ -44,6 +68,7 @@ UnwrapGeometry ReadUnwrapGeometry(const std::string& path,
   UnwrapGeometry g;
   g.source = path;
   g.name = root.String("name", fs::path(path).stem().string());
+  CheckName(g.name, path, !root.Has("name"));
   g.split = root.String("split", g.split);
   if (g.split != "tuning" && g.split != "test") {
     root.At("split").Fail("expected \"tuning\" or \"test\"");

@@ -3,7 +3,8 @@
 // another arm, all with the scenario's planner parameters unchanged (a frozen set-up).
 //
 // Geometry file (JSON; every key optional, unknown keys are errors naming the JSON path):
-//   name              string   default: the file's stem
+//   name              string   default: the file's stem; letters, digits, '_', '-' and '.' only
+//                              (it is the first column of geometry.csv), the stem too
 //   split             string   "tuning" | "test" (default "test"): which set the geometry belongs
 //                              to (assets/scenarios/unwrap_geometries/README.md); informational
 //   pole_tilt_deg     [2]      rotations about the pole's own x and then y axis, through its origin

@@ -1,6 +1,7 @@
 // Targets and objects placed in another object's frame (scenario_spec.h "Frames"), and the unwrap
 // geometries applied to the shipped unwrap scenario (unwrap_geometry.h): moving or tilting the
-// pole moves the reach target with it; unknown frames are errors naming the key.
+// pole moves the reach target with it; unknown frames are errors naming the key, and so are
+// geometry names that would break geometry.csv.
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
@@ -240,6 +241,16 @@ TEST(UnwrapGeometry, ReadsAppliesAndRejects) {
   expect_error("geo_tilt.json", R"({"pole_tilt_deg": [0, 95]})", "pole_tilt_deg: component 1");
   expect_error("geo_key.json", R"({"pole_radias": 0.03})", "unknown key 'pole_radias'");
   expect_error("geo_arm.json", R"({"arm": {"urdf": "nope.urdf"}})", "arm.urdf: cannot find");
+  // The name is geometry.csv's first column, unquoted: a comma, quote or newline would break its
+  // rows, so only letters, digits, '_', '-' and '.' are accepted, from "name" and from the stem.
+  expect_error("geo_name.json", R"({"name": "a,b\"c\nd"})",
+               "geo_name.json: name: 'a,b\"c?d' holds ','");
+  expect_error("geo_quote.json", R"({"name": "a\"b"})", "name: 'a\"b' holds '\"'");
+  expect_error("geo_newline.json", R"({"name": "a\nb"})", "holds a control character");
+  expect_error("geo_empty.json", R"({"name": ""})", "geo_empty.json: name: is empty");
+  expect_error("geo,stem.json", "{}",
+               "name: the file's stem (the default name) 'geo,stem' holds ','");
+  EXPECT_EQ(ReadUnwrapGeometry(WriteTemp("geo-1.2_x.json", "{}")).name, "geo-1.2_x");
 }
 
 // On test_01 (30-link arm, pole tilted by 4.2° and 4.3°, moved and resized) the pole passes through
