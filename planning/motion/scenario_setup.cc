@@ -289,7 +289,27 @@ void SetUpCollision(Scenario* s) {
   s->collision.self_collision = c.self;
   s->collision.analytic_capsules = c.analytic_capsules;
   s->collision.disabled_pairs = c.disabled_pairs;
-  // Every pair of links whose names start with prefixes of the same group is not checked.
+  // Every pair of links whose names start with prefixes of the same group is not checked. Each
+  // prefix is non-empty (an empty one would match every link) and starts some link's name.
+  const auto& robot_links = s->robot.links;
+  for (size_t i = 0; i < c.disabled_groups.size(); ++i) {
+    for (size_t j = 0; j < c.disabled_groups[i].size(); ++j) {
+      const std::string& p = c.disabled_groups[i][j];
+      const auto refuse = [&](const std::string& why) {
+        throw std::invalid_argument(
+            base::StrCat(c.groups_where.empty() ? "collision.disabled_groups" : c.groups_where, "[",
+                         std::to_string(i), "][", std::to_string(j), "]: ", why));
+      };
+      if (p.empty()) refuse("empty prefix (it would match every link)");
+      if (std::none_of(robot_links.begin(), robot_links.end(),
+                       [&](const auto& l) { return l.name.rfind(p, 0) == 0; })) {
+        std::vector<std::string> names;
+        for (const auto& l : robot_links) names.push_back(l.name);
+        refuse(
+            base::StrCat("no link of the robot starts with '", p, "'", base::DidYouMean(p, names)));
+      }
+    }
+  }
   for (const std::vector<std::string>& prefixes : c.disabled_groups) {
     auto member = [&](const std::string& name) {
       for (const std::string& p : prefixes) {

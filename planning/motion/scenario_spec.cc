@@ -126,6 +126,7 @@ CollisionSpec ReadCollision(const base::JsonNode& n) {
   if (n.Has("disabled_groups")) {
     const base::JsonNode gs = n.At("disabled_groups");
     for (size_t g = 0; g < gs.Size(); ++g) c.disabled_groups.push_back(gs.At(g).Strings());
+    c.groups_where = gs.Where();
   }
   return c;
 }

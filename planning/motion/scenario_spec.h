@@ -39,7 +39,8 @@
 //                            leave them out, report.json lists them under "frozen_joints"
 //   collision       object   self: bool (default true); disabled_pairs: [[link_a, link_b], ...];
 //                            disabled_groups: [[prefix, ...], ...] (no self-collision checks
-//                            between any two links whose names start with prefixes of one group);
+//                            between any two links whose names start with prefixes of one group;
+//                            an empty prefix, or one that starts no link's name, is an error);
 //                            analytic_capsules: bool (default false): capsule–capsule distances
 //                            in closed form (CollisionOptions::analytic_capsules)
 //   writhe_report   object   the writhe report pair: {chain: robot chain, object: object name,
@@ -226,6 +227,9 @@ struct CollisionSpec {
   std::vector<std::vector<std::string>> disabled_groups;  // link-name prefixes
   bool analytic_capsules = false;
   std::string where;  // empty: no "collision" key
+  // "<file>: <JSON path>" of disabled_groups, where its errors point ("<groups_where>[0][1]: ...");
+  // empty: "collision.disabled_groups".
+  std::string groups_where;
 };
 
 struct WritheReportSpec {

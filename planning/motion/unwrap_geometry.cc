@@ -88,6 +88,7 @@ UnwrapGeometry ReadUnwrapGeometry(const std::string& path,
       const base::JsonNode gs = an.At("disabled_groups");
       g.arm_disabled_groups.emplace();
       for (size_t i = 0; i < gs.Size(); ++i) g.arm_disabled_groups->push_back(gs.At(i).Strings());
+      g.arm_disabled_groups_where = gs.Where();
     }
   }
   return g;
@@ -155,7 +156,10 @@ void ApplyUnwrapGeometry(const UnwrapGeometry& g, ScenarioSpec* spec) {
   if (!g.arm_urdf.empty()) {
     spec->robot = g.arm_urdf;
     spec->srdf.clear();
-    if (g.arm_disabled_groups) spec->collision.disabled_groups = *g.arm_disabled_groups;
+    if (g.arm_disabled_groups) {
+      spec->collision.disabled_groups = *g.arm_disabled_groups;
+      spec->collision.groups_where = g.arm_disabled_groups_where;
+    }
   }
 }
 

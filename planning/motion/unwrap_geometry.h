@@ -21,7 +21,8 @@
 //   arm               object   {urdf: path (required; relative to this file, then the search
 //   roots),
 //                              disabled_groups: [[prefix, ...], ...] (replaces the scenario's
-//                              collision.disabled_groups; default: kept)}: the robot
+//                              collision.disabled_groups; default: kept; each prefix non-empty
+//                              and starting some link's name)}: the robot
 //
 // Moving the pole moves what the scenario places in its frame (scenario_spec.h "Frames").
 #pragma once
@@ -45,6 +46,7 @@ struct UnwrapGeometry {
   Eigen::Vector3d target_offset = Eigen::Vector3d::Zero();     // pole frame [m]
   std::string arm_urdf;  // resolved path; empty: the scenario's robot
   std::optional<std::vector<std::vector<std::string>>> arm_disabled_groups;
+  std::string arm_disabled_groups_where;  // "<file>: arm.disabled_groups" (errors name entries)
 };
 
 // Reads a geometry file (see above). Relative arm paths are looked up next to the file, then

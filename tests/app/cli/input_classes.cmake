@@ -111,10 +111,15 @@ topoplan_refused_test(empty_render_size "--size: empty value"
 topoplan_refused_test(empty_grasp_mu "--mu: empty value"
                       grasp transfer --grasp large_diameter_can --mu "" -o OUT)
 # Unwrap geometries: the name is geometry.csv's first column (letters, digits, _ - . only), from
-# "name" or the file's stem.
+# "name" or the file's stem; disabled_groups prefixes must each start a link's name.
 file(WRITE ${CLASS_TMP}/geo_name.json "{\"name\": \"a,b\\\"c\\nd\"}\n")
 file(WRITE ${CLASS_TMP}/geo_empty_name.json "{\"name\": \"\"}\n")
 file(WRITE ${CLASS_TMP}/geo,stem.json "{}\n")
+set(ARM12 ${PROJECT_SOURCE_DIR}/assets/robots/arm12_sdh.urdf)
+file(WRITE ${CLASS_TMP}/geo_prefix.json
+     "{\"arm\": {\"urdf\": \"${ARM12}\", \"disabled_groups\": [[\"nonexistent_prefix_\"]]}}\n")
+file(WRITE ${CLASS_TMP}/geo_empty_prefix.json
+     "{\"arm\": {\"urdf\": \"${ARM12}\", \"disabled_groups\": [[\"sdh_\", \"\"]]}}\n")
 set(GEO_RUN --angles 540:540:180 --seeds 1 --planners aico -o OUT)
 topoplan_refused_test(geometry_name "geo_name\\.json: name: 'a,b\"c\\?d' holds ','"
                       bench unwrap --geometry ${CLASS_TMP}/geo_name.json ${GEO_RUN})
@@ -122,6 +127,10 @@ topoplan_refused_test(geometry_empty_name "geo_empty_name\\.json: name: is empty
                       bench unwrap --geometry ${CLASS_TMP}/geo_empty_name.json ${GEO_RUN})
 topoplan_refused_test(geometry_stem "geo,stem\\.json: name: the file's stem \\(the default name\\) 'geo,stem' holds ','"
                       bench unwrap --geometry ${CLASS_TMP}/geo,stem.json ${GEO_RUN})
+topoplan_refused_test(geometry_prefix "geo_prefix\\.json: arm\\.disabled_groups\\[0\\]\\[0\\]: no link of the robot starts with 'nonexistent_prefix_'"
+                      bench unwrap --geometry ${CLASS_TMP}/geo_prefix.json ${GEO_RUN})
+topoplan_refused_test(geometry_empty_prefix "geo_empty_prefix\\.json: arm\\.disabled_groups\\[0\\]\\[1\\]: empty prefix"
+                      bench unwrap --geometry ${CLASS_TMP}/geo_empty_prefix.json ${GEO_RUN})
 # A NUL byte ended the JSON text for the parser: what followed it was never read.
 add_test(NAME cli.refused_json_nul
          COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/expect.sh 2 "nul\\.json: invalid JSON: a NUL byte at byte offset 13"

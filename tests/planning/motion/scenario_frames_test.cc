@@ -1,7 +1,7 @@
 // Targets and objects placed in another object's frame (scenario_spec.h "Frames"), and the unwrap
 // geometries applied to the shipped unwrap scenario (unwrap_geometry.h): moving or tilting the
 // pole moves the reach target with it; unknown frames are errors naming the key, and so are
-// geometry names that would break geometry.csv.
+// geometry names that would break geometry.csv and disabled-group prefixes that match no link.
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
@@ -251,6 +251,41 @@ TEST(UnwrapGeometry, ReadsAppliesAndRejects) {
   expect_error("geo,stem.json", "{}",
                "name: the file's stem (the default name) 'geo,stem' holds ','");
   EXPECT_EQ(ReadUnwrapGeometry(WriteTemp("geo-1.2_x.json", "{}")).name, "geo-1.2_x");
+}
+
+// Each prefix of a disabled group must name links: an empty prefix would match every link (no
+// self-collision checks left), and one matching no link is a typo. The error names the file and
+// the entry: the geometry's arm.disabled_groups, or the scenario's collision.disabled_groups.
+TEST(UnwrapGeometry, DisabledGroupPrefixesMustMatchLinks) {
+  const auto expect_error = [](const std::string& groups, const std::string& fragment) {
+    const std::string p = WriteTemp("geo_groups.json", R"({"arm": {"urdf": ")" + kAssets +
+                                                           R"(robots/arm12_sdh.urdf",
+        "disabled_groups": )" + groups + "}}");
+    ScenarioSpec spec = ParseScenarioSpec(kUnwrap);
+    ApplyUnwrapGeometry(ReadUnwrapGeometry(p), &spec);
+    try {
+      SetUpScenario(spec, 90.0);
+      FAIL() << "expected an error containing '" << fragment << "'";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find(p + ": " + fragment), std::string::npos) << e.what();
+    }
+  };
+  expect_error(R"([["nonexistent_prefix_"]])",
+               "arm.disabled_groups[0][0]: no link of the robot starts with 'nonexistent_prefix_'");
+  expect_error(R"([["sdh_", "arm_link_12"], ["sdh_", ""]])",
+               "arm.disabled_groups[1][1]: empty prefix (it would match every link)");
+  ScenarioSpec spec = ParseScenarioSpec(kUnwrap);
+  spec.collision.disabled_groups = {{"sdh_", "arm_lnk_20"}};
+  try {
+    SetUpScenario(spec, 90.0);
+    FAIL() << "expected an error";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find(
+                  kUnwrap + ": collision.disabled_groups[0][1]: no link of the robot starts with "
+                            "'arm_lnk_20'"),
+              std::string::npos)
+        << e.what();
+  }
 }
 
 // On test_01 (30-link arm, pole tilted by 4.2° and 4.3°, moved and resized) the pole passes through
