@@ -391,7 +391,10 @@ void StopCheck::Poll() const {
 }
 
 void AddTimeoutFlag(CLI::App* command, double* seconds) {
-  command->add_option("--timeout", *seconds, "stop after SECONDS (exit 1, status \"timeout\")")
+  command
+      ->add_option("--timeout", *seconds,
+                   "stop after SECONDS (exit 1, status \"timeout\"); 0 (the default): no time "
+                   "limit")
       ->check(FiniteIn(0.0, 1e6));
 }
 

@@ -169,7 +169,7 @@ CLI::Option* AddDeprecatedAlias(CLI::App* cmd, const std::string& old_flag,
   return o;
 }
 
-// --timeout SECONDS on a command (0 = none, at most 1e6 s).
+// --timeout SECONDS on a command (0, the default: no time limit; at most 1e6 s).
 void AddTimeoutFlag(CLI::App* command, double* seconds);
 
 }  // namespace app
