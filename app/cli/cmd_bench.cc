@@ -60,6 +60,9 @@ constexpr long kMaxBenchRuns = 1000000;
 // Largest --perturb: the pole moved by more than a metre leaves the scene.
 constexpr double kMaxPerturbM = 1.0;
 
+// "1 run", "3 runs".
+std::string RunCount(size_t runs) { return std::to_string(runs) + (runs == 1 ? " run" : " runs"); }
+
 // "a:b:step" → a, a+step, ..., ≤ b.
 std::vector<double> ParseRange(const std::string& text, const std::string& flag) {
   const std::vector<double> v = [&] {
@@ -198,8 +201,8 @@ ExitCode RunAblation(planning::UnwrapBenchmarkOptions options, const std::string
     base::WriteFileAtomic((fs::path(out->staging()) / "ablation.partial.csv").string(),
                           planning::UnwrapAblationCsv(finished));
     out->Commit(/*replace_previous=*/false);
-    std::fprintf(stderr, "\n%s: wrote %s/ablation.partial.csv (%zu runs)\n", e.what(),
-                 output.c_str(), finished.runs.size());
+    std::fprintf(stderr, "\n%s: wrote %s/ablation.partial.csv (%s)\n", e.what(), output.c_str(),
+                 RunCount(finished.runs.size()).c_str());
     return e.timeout ? kExitFailed : kExitInterrupted;
   }
   base::WriteFileAtomic((fs::path(out->staging()) / "ablation.csv").string(),
@@ -209,8 +212,8 @@ ExitCode RunAblation(planning::UnwrapBenchmarkOptions options, const std::string
   render::WriteFigure(png, figure);
   visualize::WriteVectorFormats(png, figure, formats);
   out->Commit();
-  Note("wrote %s/ablation.csv and %s/ablation.png (%zu runs, %zu variants)", output.c_str(),
-       output.c_str(), result.runs.size(), ablations.size());
+  Note("wrote %s/ablation.csv and %s/ablation.png (%s, %zu variants)", output.c_str(),
+       output.c_str(), RunCount(result.runs.size()).c_str(), ablations.size());
   return kExitOk;
 }
 
@@ -397,14 +400,17 @@ void AddBenchCommands(CLI::App* root, CommandList* commands) {
          }
          base::WriteFileAtomic((fs::path(out.staging()) / "unwrap.csv").string(),
                                planning::UnwrapCsv(result));
+         std::vector<std::string> wrote = {ba->output + "/unwrap.csv"};  // for the last line
          if (options.geometry) {
            base::WriteFileAtomic((fs::path(out.staging()) / "geometry.csv").string(),
                                  planning::UnwrapGeometryCsv(*options.geometry, result));
+           wrote.push_back(ba->output + "/geometry.csv");
          }
          if (const auto figure = visualize::UnwrapFigure(result)) {
            const std::string png = (fs::path(out.staging()) / "unwrap.png").string();
            render::WriteFigure(png, *figure);
            visualize::WriteVectorFormats(png, *figure, ba->formats);
+           wrote.push_back(ba->output + "/unwrap.png");
          }
          if (ba->survival) WriteSurvival(result, options.budget, out.staging(), ba->formats);
          out.Commit();
@@ -416,8 +422,12 @@ void AddBenchCommands(CLI::App* root, CommandList* commands) {
            Note("wrote %zu OMPL benchmark logs %s", result.angles_deg.size(),
                 OmplLogPath(ba->ompl_log, result.angles_deg.front()).c_str());
          }
-         Note("wrote %s/unwrap.csv and %s/unwrap.png (%d runs)%s", ba->output.c_str(),
-              ba->output.c_str(), total, ba->survival ? ", survival.csv and survival.png" : "");
+         std::string files = wrote.front();  // "D/unwrap.csv, D/geometry.csv and D/unwrap.png"
+         for (size_t i = 1; i < wrote.size(); ++i) {
+           files += (i + 1 == wrote.size() ? " and " : ", ") + wrote[i];
+         }
+         Note("wrote %s (%s)%s", files.c_str(), RunCount(static_cast<size_t>(total)).c_str(),
+              ba->survival ? ", survival.csv and survival.png" : "");
          return kExitOk;
        }});
 }
