@@ -20,6 +20,7 @@
 #include "base/version.h"
 #include "planning/motion/planner.h"
 #include "planning/motion/report.h"
+#include "planning/motion/scenario_spec.h"
 #include "planning/motion/unwrap_benchmark.h"
 #include "render/figure.h"
 #include "visualize/figures.h"
@@ -207,13 +208,19 @@ ExitCode RunAblation(planning::UnwrapBenchmarkOptions options, const std::string
   }
   base::WriteFileAtomic((fs::path(out->staging()) / "ablation.csv").string(),
                         planning::UnwrapAblationCsv(result));
+  if (options.geometry) {  // its planner column names the variant
+    base::WriteFileAtomic((fs::path(out->staging()) / "geometry.csv").string(),
+                          planning::UnwrapGeometryCsv(*options.geometry, result));
+  }
   const render::Figure figure = visualize::UnwrapAblationFigure(result, ablations);
   const std::string png = (fs::path(out->staging()) / "ablation.png").string();
   render::WriteFigure(png, figure);
   visualize::WriteVectorFormats(png, figure, formats);
   out->Commit();
-  Note("wrote %s/ablation.csv and %s/ablation.png (%s, %zu variants)", output.c_str(),
-       output.c_str(), RunCount(result.runs.size()).c_str(), ablations.size());
+  const std::string geometry_csv = options.geometry ? ", " + output + "/geometry.csv" : "";
+  Note("wrote %s/ablation.csv%s and %s/ablation.png (%s, %zu variants)", output.c_str(),
+       geometry_csv.c_str(), output.c_str(), RunCount(result.runs.size()).c_str(),
+       ablations.size());
   return kExitOk;
 }
 
@@ -316,7 +323,8 @@ void AddBenchCommands(CLI::App* root, CommandList* commands) {
       "pole ends); goal_meets_end_conditions whether the set-up's goal (the RRTs') meets the\n"
       "criterion's end conditions; the jumps count the resampled steps whose winding jumps by\n"
       "at least the criterion's max_jump, by where the arm passes the pole's line: through the\n"
-      "pole, only beyond its ends, or not located.\n"
+      "pole, only beyond its ends, or not located. With --ablation too, its planner column\n"
+      "naming the AICO variant.\n"
       "Shipped geometries: assets/scenarios/unwrap_geometries/ (README.md there).");
   commands->push_back(
       {unwrap, [ba, unwrap]() {
@@ -346,12 +354,18 @@ void AddBenchCommands(CLI::App* root, CommandList* commands) {
          if (!(ba->perturb >= 0.0 && ba->perturb <= kMaxPerturbM)) {
            throw std::invalid_argument("--pole-offset: expected a distance in metres in [0, 1]");
          }
+         // Runs per angle and seed: the planners, or with --ablation the AICO variants.
+         const size_t per_angle =
+             ba->ablation
+                 ? planning::UnwrapAblations(planning::ParseScenarioSpec(options.scenario_path))
+                       .size()
+                 : options.planners.size();
          const long runs = static_cast<long>(options.angles_deg.size()) *
-                           static_cast<long>(options.planners.size()) * ba->seeds;
+                           static_cast<long>(per_angle) * ba->seeds;
          if (runs > kMaxBenchRuns) {
-           throw std::invalid_argument("--seeds: " + std::to_string(runs) +
-                                       " runs (angles x planners x seeds), more than " +
-                                       std::to_string(kMaxBenchRuns));
+           throw std::invalid_argument("--seeds: " + std::to_string(runs) + " runs (angles x " +
+                                       (ba->ablation ? "ablation variants" : "planners") +
+                                       " x seeds), more than " + std::to_string(kMaxBenchRuns));
          }
          options.perturb_m = ba->perturb;
          options.aico_stop_when_solved = ParseAicoStop(ba->aico_stop);

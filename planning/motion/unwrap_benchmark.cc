@@ -348,13 +348,14 @@ std::string UnwrapGeometryCsv(const UnwrapGeometry& geometry, const UnwrapBenchm
   for (const UnwrapRun& r : result.runs) {
     const PlanReport& p = r.report;
     csv << geometry.name << "," << geometry.split << "," << r.angle_deg << ","
-        << PlannerName(r.planner) << "," << r.seed << "," << 360.0 * std::abs(p.start_writhe_total)
-        << "," << r.start_closed_wrap_deg << "," << (p.success ? 1 : 0) << ","
-        << FailureReasonName(p.failure_reason) << "," << p.final_writhe_total << ","
-        << p.reach_error_m << "," << p.final_winding_turns << "," << r.unwound_winding_turns << ","
-        << (r.goal_meets_end_conditions ? 1 : 0) << "," << p.counts.state_queries << ","
-        << p.cpu_time_s << "," << p.setup_time_s << "," << p.winding_jumps.through_object << ","
-        << p.winding_jumps.beyond_ends << "," << p.winding_jumps.unlocated << "\n";
+        << (r.variant.empty() ? PlannerName(r.planner) : r.variant.c_str()) << "," << r.seed << ","
+        << 360.0 * std::abs(p.start_writhe_total) << "," << r.start_closed_wrap_deg << ","
+        << (p.success ? 1 : 0) << "," << FailureReasonName(p.failure_reason) << ","
+        << p.final_writhe_total << "," << p.reach_error_m << "," << p.final_winding_turns << ","
+        << r.unwound_winding_turns << "," << (r.goal_meets_end_conditions ? 1 : 0) << ","
+        << p.counts.state_queries << "," << p.cpu_time_s << "," << p.setup_time_s << ","
+        << p.winding_jumps.through_object << "," << p.winding_jumps.beyond_ends << ","
+        << p.winding_jumps.unlocated << "\n";
   }
   return csv.str();
 }

@@ -195,7 +195,8 @@ std::string UnwrapAblationCsv(const UnwrapBenchmarkResult& result);
 // --geometry; the jumps: PlanReport's, by where the arm passes the pole's line): start_wrap_deg =
 // 360°·|start writhe| is the coil the start continuation reached (it can fall short of angle_deg on
 // a geometry where the arm cannot coil that far), start_closed_wrap_deg the UnwrapRun's,
-// reach_error_m in m, final_winding_turns in turns.
+// reach_error_m in m, final_winding_turns in turns; planner is the UnwrapRun's variant for an
+// ablation run.
 std::string UnwrapGeometryCsv(const UnwrapGeometry& geometry, const UnwrapBenchmarkResult& result);
 
 }  // namespace planning
