@@ -372,7 +372,8 @@ std::unique_ptr<Scenario> SetUpScenario(ScenarioSpec spec,
   s->source = sp.source;
   RobotLoadOptions load;
   load.package_paths = sp.package_paths;
-  s->robot = base::PrefixErrors(sp.source + ": robot", [&] { return LoadRobot(sp.robot, load); });
+  const std::string robot_where = sp.robot_where.empty() ? sp.source + ": robot" : sp.robot_where;
+  s->robot = base::PrefixErrors(robot_where, [&] { return LoadRobot(sp.robot, load); });
   const std::string srdf_path = sp.srdf.empty() ? FindSrdf(sp.robot, s->robot.name) : sp.srdf;
   std::optional<Srdf> srdf;
   if (!srdf_path.empty()) {

@@ -392,7 +392,10 @@ struct ScenarioSpec {
   std::string name;
   std::string source;  // the scenario file
   std::string robot;   // resolved URDF path
-  std::string srdf;    // resolved SRDF path; empty: FindSrdf(robot) at set-up
+  // Where errors in loading `robot` point: "<source>: robot" when empty (an unwrap geometry's arm
+  // sets "<geometry file>: arm.urdf").
+  std::string robot_where;
+  std::string srdf;  // resolved SRDF path; empty: FindSrdf(robot) at set-up
   // Resolved "package_paths".
   std::vector<std::string> package_paths;
   std::vector<ObjectSpec> objects;

@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "base/json_reader.h"
+#include "base/numbers.h"
 #include "base/str_cat.h"
 #include "planning/robot/pose.h"
 
@@ -20,8 +21,9 @@ Eigen::VectorXd Bounded(const base::JsonNode& n, int dim, double lo, double hi) 
   const Eigen::VectorXd v = n.Vector(dim);
   for (Eigen::Index i = 0; i < v.size(); ++i) {
     if (!(v[i] >= lo && v[i] <= hi)) {
-      n.Fail(base::StrCat("component ", std::to_string(i), " (", std::to_string(v[i]),
-                          ") out of range [", std::to_string(lo), ", ", std::to_string(hi), "]"));
+      n.Fail(base::StrCat("component ", std::to_string(i), " (", base::FormatShortest(v[i]),
+                          ") out of range [", base::FormatShortest(lo), ", ",
+                          base::FormatShortest(hi), "]"));
     }
   }
   return v;
@@ -82,8 +84,10 @@ UnwrapGeometry ReadUnwrapGeometry(const std::string& path,
     const base::JsonNode an = root.At("arm");
     an.CheckKeys({"urdf", "disabled_groups"});
     const base::JsonNode un = an.At("urdf");
+    if (un.String().empty()) un.Fail("empty path");
     g.arm_urdf = ResolveDataFile(un.String(), fs::path(path).parent_path().string(), search_roots,
                                  un.Where());
+    g.arm_urdf_where = un.Where();
     if (an.Has("disabled_groups")) {
       const base::JsonNode gs = an.At("disabled_groups");
       g.arm_disabled_groups.emplace();
@@ -155,6 +159,7 @@ void ApplyUnwrapGeometry(const UnwrapGeometry& g, ScenarioSpec* spec) {
   }
   if (!g.arm_urdf.empty()) {
     spec->robot = g.arm_urdf;
+    spec->robot_where = g.arm_urdf_where;
     spec->srdf.clear();
     if (g.arm_disabled_groups) {
       spec->collision.disabled_groups = *g.arm_disabled_groups;

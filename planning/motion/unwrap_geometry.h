@@ -44,7 +44,8 @@ struct UnwrapGeometry {
   double pole_radius = 0.0;                                 // [m]; 0: the scenario's pole geometry
   Eigen::Vector3d pole_translation = Eigen::Vector3d::Zero();  // world [m]
   Eigen::Vector3d target_offset = Eigen::Vector3d::Zero();     // pole frame [m]
-  std::string arm_urdf;  // resolved path; empty: the scenario's robot
+  std::string arm_urdf;        // resolved path; empty: the scenario's robot
+  std::string arm_urdf_where;  // "<file>: arm.urdf" (errors in loading it name the entry)
   std::optional<std::vector<std::vector<std::string>>> arm_disabled_groups;
   std::string arm_disabled_groups_where;  // "<file>: arm.disabled_groups" (errors name entries)
 };

@@ -131,6 +131,15 @@ topoplan_refused_test(geometry_prefix "geo_prefix\\.json: arm\\.disabled_groups\
                       bench unwrap --geometry ${CLASS_TMP}/geo_prefix.json ${GEO_RUN})
 topoplan_refused_test(geometry_empty_prefix "geo_empty_prefix\\.json: arm\\.disabled_groups\\[0\\]\\[1\\]: empty prefix"
                       bench unwrap --geometry ${CLASS_TMP}/geo_empty_prefix.json ${GEO_RUN})
+# The arm's URDF: an empty path, and errors in loading it name the geometry's arm.urdf (not the
+# scenario's robot key).
+file(WRITE ${CLASS_TMP}/geo_bad_arm.urdf "<robot name=\"x\"><link name=\"a\"></robot>\n")
+file(WRITE ${CLASS_TMP}/geo_bad_arm.json "{\"arm\": {\"urdf\": \"geo_bad_arm.urdf\"}}\n")
+file(WRITE ${CLASS_TMP}/geo_empty_arm.json "{\"arm\": {\"urdf\": \"\"}}\n")
+topoplan_refused_test(geometry_bad_arm "geo_bad_arm\\.json: arm\\.urdf: .*geo_bad_arm\\.urdf"
+                      bench unwrap --geometry ${CLASS_TMP}/geo_bad_arm.json ${GEO_RUN})
+topoplan_refused_test(geometry_empty_arm "geo_empty_arm\\.json: arm\\.urdf: empty path"
+                      bench unwrap --geometry ${CLASS_TMP}/geo_empty_arm.json ${GEO_RUN})
 # A NUL byte ended the JSON text for the parser: what followed it was never read.
 add_test(NAME cli.refused_json_nul
          COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/expect.sh 2 "nul\\.json: invalid JSON: a NUL byte at byte offset 13"

@@ -239,6 +239,10 @@ TEST(UnwrapGeometry, ReadsAppliesAndRejects) {
   };
   expect_error("geo_split.json", R"({"split": "train"})", "split: expected \"tuning\" or \"test\"");
   expect_error("geo_tilt.json", R"({"pole_tilt_deg": [0, 95]})", "pole_tilt_deg: component 1");
+  // The bounds and the value in shortest form: a value just outside reads as outside.
+  expect_error("geo_shift.json", R"({"pole_translation": [1.0000001, 0, 0]})",
+               "pole_translation: component 0 (1.0000001) out of range [-1, 1]");
+  expect_error("geo_arm_empty.json", R"({"arm": {"urdf": ""}})", "arm.urdf: empty path");
   expect_error("geo_key.json", R"({"pole_radias": 0.03})", "unknown key 'pole_radias'");
   expect_error("geo_arm.json", R"({"arm": {"urdf": "nope.urdf"}})", "arm.urdf: cannot find");
   // The name is geometry.csv's first column, unquoted: a comma, quote or newline would break its
