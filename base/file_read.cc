@@ -31,6 +31,7 @@ FileBytes ReadFileLimited(const std::string& path, std::size_t max_bytes) {
     out.status = ReadStatus::kIsFolder;
     return out;
   }
+  out.pipe = S_ISFIFO(st.st_mode);
   // A regular file's size is known: a huge (even sparse) file is refused without reading it.
   if (S_ISREG(st.st_mode) && static_cast<std::size_t>(st.st_size) > max_bytes) {
     out.status = ReadStatus::kTooLarge;
@@ -67,6 +68,10 @@ std::string ReadFileBounded(const std::string& path, const std::string& what,
   FileBytes file = ReadFileLimited(path, max_bytes);
   switch (file.status) {
     case ReadStatus::kOk:
+      if (file.pipe && file.bytes.empty()) {  // read as empty text it would pass for a bad file
+        throw std::invalid_argument(
+            path + ": " + what + " file is a named pipe that gave no data (nothing wrote to it)");
+      }
       // Text: a UTF-8 byte-order mark (written by some editors) is not part of the content.
       if (file.bytes.size() >= 3 && file.bytes.compare(0, 3, "\xEF\xBB\xBF") == 0) {
         return file.bytes.substr(3);

@@ -27,6 +27,7 @@ enum class ReadStatus {
 struct FileBytes {
   ReadStatus status = ReadStatus::kCannotOpen;
   std::string bytes;  // the file's bytes when status == kOk, else empty
+  bool pipe = false;  // the file is a named pipe (FIFO)
 };
 
 // Reads a whole file (regular file, pipe or device) of at most `max_bytes` bytes. A regular file
@@ -40,7 +41,7 @@ FileBytes ReadFileLimited(const std::string& path, std::size_t max_bytes);
 // std::invalid_argument for anything but kOk:
 //   "<path>: cannot open <what> file" (also "... (it is a folder)"),
 //   "<path>: <what> file is larger than <max_bytes> bytes (limit)", "<path>: cannot read <what>
-//   file".
+//   file", "<path>: <what> file is a named pipe that gave no data (nothing wrote to it)".
 std::string ReadFileBounded(const std::string& path, const std::string& what,
                             std::size_t max_bytes = kMaxInputFileBytes);
 
