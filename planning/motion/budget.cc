@@ -1,14 +1,29 @@
 // The budget functions of planner.h: parsing and printing a budget, reading a report against one.
 
+#include <algorithm>
 #include <ctime>
+#include <iterator>
 #include <optional>
+#include <span>
 #include <stdexcept>
 #include <string>
 
+#include "base/enum_names.h"
 #include "base/numbers.h"
+#include "base/str_cat.h"
 #include "planning/motion/planner.h"
 
 namespace planning {
+
+// The units' names in --budget (kNone has none: no budget is written as "").
+inline constexpr base::EnumName<Budget::Unit> kBudgetUnitNames[] = {
+    {Budget::Unit::kQueries, "queries"},
+    {Budget::Unit::kCpuTime, "time"},
+    {Budget::Unit::kPairTests, "pairs"},
+};
+constexpr std::span<const base::EnumName<Budget::Unit>> EnumNames(Budget::Unit) {
+  return kBudgetUnitNames;
+}
 
 double CpuSeconds() {
   timespec ts{};
@@ -27,15 +42,10 @@ Budget ParseBudget(const std::string& text, const std::string& flag) {
   const std::string key = eq == std::string::npos ? "queries" : text.substr(0, eq);
   const std::string value = eq == std::string::npos ? text : text.substr(eq + 1);
   Budget b;
-  if (key == "queries") {
-    b.unit = Budget::Unit::kQueries;
-  } else if (key == "time") {
-    b.unit = Budget::Unit::kCpuTime;
-  } else if (key == "pairs") {
-    b.unit = Budget::Unit::kPairTests;
-  } else {
-    throw bad();
-  }
+  const auto named = std::find_if(std::begin(kBudgetUnitNames), std::end(kBudgetUnitNames),
+                                  [&](const auto& e) { return key == e.name; });
+  if (named == std::end(kBudgetUnitNames)) throw bad();
+  b.unit = named->value;
   if (b.unit == Budget::Unit::kCpuTime) {  // seconds: a finite decimal number > 0
     const std::optional<double> v = base::ParseFiniteDouble(value);
     if (!v.has_value() || !(*v > 0.0)) throw bad();
@@ -50,17 +60,11 @@ Budget ParseBudget(const std::string& text, const std::string& flag) {
 }
 
 std::string BudgetText(const Budget& budget) {
-  switch (budget.unit) {
-    case Budget::Unit::kQueries:
-      return std::string("queries=").append(std::to_string(static_cast<long long>(budget.value)));
-    case Budget::Unit::kCpuTime:
-      return std::string("time=").append(base::FormatShortest(budget.value));
-    case Budget::Unit::kPairTests:
-      return std::string("pairs=").append(std::to_string(static_cast<long long>(budget.value)));
-    case Budget::Unit::kNone:
-      break;
-  }
-  return "";
+  if (budget.unit == Budget::Unit::kNone) return "";
+  return base::StrCat(base::ToName(budget.unit), "=",
+                      budget.unit == Budget::Unit::kCpuTime
+                          ? base::FormatShortest(budget.value)
+                          : std::to_string(static_cast<long long>(budget.value)));
 }
 
 bool SolvedWithin(const PlanReport& report, const Budget& budget) {
