@@ -28,8 +28,15 @@ NumberKind ClassifyNumber(const std::string& text, double* value) {
   if (text.empty() || std::isspace(static_cast<unsigned char>(text[0]))) {
     return NumberKind::kNotANumber;
   }
+  // Decimal only: strtod also reads C99 hex floats ("0x21c" = 540, "0x1p3" = 8), which nobody
+  // writes in a flag or a CSV field on purpose and JSON does not allow.
+  const size_t digits = (text[0] == '+' || text[0] == '-') ? 1 : 0;
+  if (text.size() >= digits + 2 && text[digits] == '0' &&
+      (text[digits + 1] == 'x' || text[digits + 1] == 'X')) {
+    return NumberKind::kNotANumber;
+  }
   // Fast path: std::from_chars (correctly rounded, as strtod; no locale), taken only when it reads
-  // the whole text as a finite number. Everything else (a leading '+', hex floats, inf/nan,
+  // the whole text as a finite number. Everything else (a leading '+', inf/nan,
   // overflow, underflow to zero, garbage) goes to strtod below, which decides as it always has.
   double fast = 0.0;
   const auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), fast);

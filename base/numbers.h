@@ -20,8 +20,9 @@ enum class NumberKind {
   kNotANumber  // anything else: empty, leading or trailing spaces or characters
 };
 
-// The whole of `text` as a double, in the C locale's syntax (strtod: decimal point '.',
-// exponents, a leading sign). *value is set for kFinite.
+// The whole of `text` as a double, in the C locale's decimal syntax (strtod: decimal point '.',
+// exponents, a leading sign; hex floats such as "0x1p3" are kNotANumber). *value is set for
+// kFinite.
 NumberKind ClassifyNumber(const std::string& text, double* value = nullptr);
 
 // The whole of `text` as a finite double (ClassifyNumber == kFinite), else std::nullopt.

@@ -13,9 +13,11 @@
 namespace base {
 namespace {
 
-// The reference: strtod as ClassifyNumber used it before the fast path (C locale in tests).
+// The reference: strtod as ClassifyNumber used it before the fast path (C locale in tests),
+// decimal only.
 NumberKind Reference(const std::string& text, double* value) {
-  if (text.empty() || text[0] == ' ' || text[0] == '\t' || text[0] == '\n') {
+  if (text.empty() || text[0] == ' ' || text[0] == '\t' || text[0] == '\n' ||
+      text.find_first_of("xX") != std::string::npos) {
     return NumberKind::kNotANumber;
   }
   char* end = nullptr;
@@ -60,6 +62,9 @@ TEST(ClassifyNumber, AgreesWithStrtodBitForBit) {
                         "NaN",
                         "0x1p3",
                         "0X1.8P1",
+                        "-0x1p3",
+                        "+0x21c",
+                        "0x",
                         "1,5",
                         "1.5 ",
                         " 1.5",
@@ -90,6 +95,19 @@ TEST(ClassifyNumber, AgreesWithStrtodBitForBit) {
       ExpectSame(buf);
     }
   }
+}
+
+// strtod reads C99 hex floats; a flag or a CSV field is decimal ("--angles 0x21c" is refused,
+// not read as 540).
+TEST(ClassifyNumber, HexFloatsAreNotNumbers) {
+  for (const char* t : {"0x21c", "0X21C", "-0x1p3", "+0x1.8p1", "0x0"}) {
+    double v = -1.0;
+    EXPECT_EQ(ClassifyNumber(t, &v), NumberKind::kNotANumber) << t;
+    EXPECT_EQ(v, -1.0) << t;
+    EXPECT_FALSE(ParseFiniteDouble(t).has_value()) << t;
+  }
+  EXPECT_EQ(ClassifyNumber("0"), NumberKind::kFinite);
+  EXPECT_EQ(ClassifyNumber("-0.5e1"), NumberKind::kFinite);
 }
 
 }  // namespace
