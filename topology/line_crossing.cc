@@ -3,6 +3,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 namespace topology {
@@ -72,6 +73,44 @@ std::vector<LineCrossing> LocateLineCrossings(const ChainMotion& motion, const E
   std::sort(out.begin(), out.end(),
             [](const LineCrossing& x, const LineCrossing& y) { return x.s < y.s; });
   return out;
+}
+
+double LineDistanceBeyondEnds(const Chain& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  const double length = (b - a).norm();
+  if (!(length > 0.0)) throw std::invalid_argument("LineDistanceBeyondEnds: a = b");
+  if (p.cols() < 2) throw std::invalid_argument("LineDistanceBeyondEnds: fewer than 2 points");
+  const Eigen::Vector3d d = (b - a) / length;
+  double best = std::numeric_limits<double>::infinity();
+  for (Eigen::Index j = 0; j + 1 < p.cols(); ++j) {
+    const Eigen::Vector3d u = p.col(j) - a, e = p.col(j + 1) - p.col(j);
+    const double t0 = d.dot(u), te = d.dot(e);               // t(λ) = t0 + λ te
+    const Eigen::Vector3d up = u - t0 * d, ep = e - te * d;  // parts perpendicular to the line
+    const double ee = ep.squaredNorm();
+    // [lo, hi]: the λ of [0, 1] with t(λ) < bound (below) or t(λ) > bound (!below); lo > hi if
+    // none.
+    const auto beyond = [&](double bound, bool below, double* lo, double* hi) {
+      *lo = 0.0;
+      *hi = 1.0;
+      if (te == 0.0) {
+        if (below ? !(t0 < bound) : !(t0 > bound)) *lo = 2.0;
+        return;
+      }
+      const double cut = (bound - t0) / te;
+      if ((te > 0.0) == below) {
+        *hi = std::min(1.0, cut);
+      } else {
+        *lo = std::max(0.0, cut);
+      }
+    };
+    for (const bool below : {true, false}) {
+      double lo = 0.0, hi = 0.0;
+      beyond(below ? 0.0 : length, below, &lo, &hi);
+      if (lo > hi) continue;
+      const double lambda = ee > 0.0 ? std::clamp(-up.dot(ep) / ee, lo, hi) : lo;
+      best = std::min(best, (up + lambda * ep).norm());
+    }
+  }
+  return best;
 }
 
 }  // namespace topology

@@ -38,4 +38,14 @@ using ChainMotion = std::function<void(double s, Chain* points)>;
 std::vector<LineCrossing> LocateLineCrossings(const ChainMotion& motion, const Eigen::Vector3d& a,
                                               const Eigen::Vector3d& b, double s_tolerance = 1e-10);
 
+// The smallest distance from chain `p` (3 × N, N ≥ 2) to the line through `a` and `b`, over the
+// chain's points beyond the segment [a, b] along the line: points whose coordinate
+// t = d̂·(x − a), d̂ = (b − a)/|b − a|, is < 0 or > |b − a|. m; +infinity when no point of the
+// chain is beyond. Segment j, x(λ) = p_j + λ (p_{j+1} − p_j) with λ ∈ [0, 1], has t(λ) linear and
+// its squared distance to the line quadratic in λ, so its minimum over each of the (at most two)
+// λ-intervals beyond the ends is the vertex of that quadratic clamped to the interval. A chain
+// near the line beyond an object on [a, b] is one small move from passing the line there (a
+// winding jump round the object's end). Throws std::invalid_argument when a = b or N < 2.
+double LineDistanceBeyondEnds(const Chain& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b);
+
 }  // namespace topology

@@ -8,7 +8,9 @@
 #include <ctime>
 #include <filesystem>
 #include <memory>
+#include <set>
 #include <sstream>
+#include <string>
 #include <tuple>
 
 #include "app/cli/command.h"
@@ -149,6 +151,20 @@ void ProgressBar(int done, int total, const std::string& what) {
   if (done == total) EndProgress();
 }
 
+// Prints each set-up warning of `run` once per angle and seed ("topoplan: warning: at 720 deg
+// (seed 0): ..."); `printed` holds the ones already printed.
+void WarnOnce(const planning::UnwrapRun& run, std::set<std::string>* printed) {
+  for (const std::string& text : run.setup_warnings) {
+    char where[64];
+    std::snprintf(where, sizeof(where),
+                  "at %s deg (seed %d): ", base::FormatShortest(run.angle_deg).c_str(), run.seed);
+    const std::string line = where + text;
+    if (!printed->insert(line).second) continue;
+    if (isatty(STDERR_FILENO) != 0) std::fputc('\n', stderr);  // off the progress bar's line
+    std::fprintf(stderr, "topoplan: warning: %s\n", line.c_str());
+  }
+}
+
 // DIR/survival.csv and DIR/survival.png of a sweep run at `budget`: state queries and pair tests
 // from kSurvivalLow to the budget in that unit (or the most any run spent), CPU seconds from 1 ms
 // to the time budget (or the most any run spent).
@@ -186,10 +202,12 @@ ExitCode RunAblation(planning::UnwrapBenchmarkOptions options, const std::string
                      const std::vector<render::FigureFormat>& formats, const StopCheck& stop,
                      OutputDir* out) {
   planning::UnwrapBenchmarkResult finished;  // the runs completed so far
+  std::set<std::string> warned;
   options.progress = [&](int done, int total, const planning::UnwrapRun& run) {
     char what[96];
     std::snprintf(what, sizeof(what), "%s @ %.0f deg seed %d", run.variant.c_str(), run.angle_deg,
                   run.seed);
+    WarnOnce(run, &warned);
     ProgressBar(done, total, what);
     finished.runs.push_back(run);
     if (done < total) stop.Poll();
@@ -388,10 +406,12 @@ void AddBenchCommands(CLI::App* root, CommandList* commands) {
          }
          const StopCheck stop(ba->timeout);
          planning::UnwrapBenchmarkResult finished;  // the runs completed so far
+         std::set<std::string> warned;
          options.progress = [&](int done, int total, const planning::UnwrapRun& run) {
            char what[96];
            std::snprintf(what, sizeof(what), "%s @ %.0f deg seed %d",
                          planning::PlannerName(run.planner), run.angle_deg, run.seed);
+           WarnOnce(run, &warned);
            ProgressBar(done, total, what);
            finished.runs.push_back(run);
            if (done < total) stop.Poll();  // after the last run the sweep is complete

@@ -22,7 +22,7 @@ using planning::PlanReport;
 using planning::QueryCounts;
 using planning::UnwrapRun;
 
-constexpr std::uint32_t kMagic = 0x31525755;  // "UWR1"
+constexpr std::uint32_t kMagic = 0x32525755;  // "UWR2"
 
 using Writer = base::ByteWriter;
 using Reader = base::ByteReader;
@@ -102,6 +102,8 @@ std::string EncodeRuns(const std::vector<UnwrapRun>& runs) {
     w.Pod(run.goal_meets_end_conditions);
     w.Pod(run.unwound_winding_turns);
     w.Pod(run.start_closed_wrap_deg);
+    w.Size(run.setup_warnings.size());
+    for (const std::string& text : run.setup_warnings) w.String(text);
   }
   w.Pod(kMagic);
   return w.Take();
@@ -122,6 +124,8 @@ std::vector<UnwrapRun> DecodeRuns(const std::string& bytes) {
     run.goal_meets_end_conditions = r.Pod<bool>();
     run.unwound_winding_turns = r.Pod<double>();
     run.start_closed_wrap_deg = r.Pod<double>();
+    run.setup_warnings.resize(r.Size());
+    for (std::string& text : run.setup_warnings) text = r.String();
   }
   if (r.Pod<std::uint32_t>() != kMagic || !r.at_end()) r.Fail();
   return runs;

@@ -9,11 +9,14 @@
 // ends in collision backs off to its last collision-free step, and one that never leaves a
 // colliding q = 0 (a moved pole through the zero pose) is run again from q = 0 pushed out of
 // collision first; either may stop short of wrap_deg. A start that collides, leaves the joint
-// limits or ends more than 10° from wrap_deg is retried from 32 seeded perturbations of q = 0 (±1
-// rad per joint), keeping the valid end closest to wrap_deg (it can still be short: a 12-link arm
-// on a moved pole). Scenario::warnings says when no collision-free start inside the limits was
-// found. Continuing to writhe 0 gives the "unwrapped" pose used to initialise the final-pose
-// estimate (the goal). Deterministic.
+// limits, ends more than 10° from wrap_deg or is no coil about the pole's line (a segment within
+// `margin` of the writhe_report object's line beyond the object chain's ends, where a small move
+// passes the line and the winding jumps by a turn) is retried from 32 seeded perturbations of
+// q = 0 (±1 rad per joint), keeping the valid end closest to wrap_deg (it can still be short: a
+// 12-link arm on a moved pole); when no end is clear of the line, the end chosen without that
+// rule is kept. Scenario::warnings says when no collision-free start inside the limits, or none
+// clear of the line, was found. Continuing to writhe 0 gives the "unwrapped" pose used to
+// initialise the final-pose estimate (the goal). Deterministic.
 //
 // Goal: the final-pose estimate q̂_T (final_pose.h) from the configured init; when it misses an end
 // condition of the success criteria (CheckEndState with state checks, success.h: limits, collision,

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "base/assets.h"
+#include "base/numbers.h"
 #include "base/str_cat.h"
 #include "planning/features/position_feature.h"
 #include "planning/motion/internal/scenario_build.h"
@@ -125,8 +126,9 @@ StartPose ResolveStart(const Scenario& s, const std::optional<double>& wrap_over
       }
       const Eigen::VectorXd zero = Eigen::VectorXd::Zero(n);
       const double sign = ReportWritheTotal(s, zero) < 0 ? -1.0 : 1.0;
-      bool collides = false;
-      out.q0 = StartCoil(s, zero, sign * wrap / 360.0, start.step, start.margin, &collides);
+      bool collides = false, near_line = false;
+      out.q0 =
+          StartCoil(s, zero, sign * wrap / 360.0, start.step, start.margin, &collides, &near_line);
       if (collides) {
         out.warning = base::StrCat(start.where, ": no collision-free start coil was found (the ",
                                    "start collides; every planner will fail on it)");
@@ -137,6 +139,12 @@ StartPose ResolveStart(const Scenario& s, const std::optional<double>& wrap_over
           out.warning =
               base::StrCat(e.what(), " (no start coil inside the joint limits was found; ",
                            "every planner will fail on it)");
+        }
+        if (out.warning.empty() && near_line) {
+          out.warning = base::StrCat(
+              start.where, ": no start coil clear of the pole's line beyond its ends was found (a ",
+              "segment is within ", base::FormatShortest(start.margin), " m of it: a small move ",
+              "passes the line there and the winding jumps)");
         }
       }
       out.unwrapped = WritheContinuation(s, zero, 0.0, start.step, start.margin);

@@ -52,7 +52,9 @@
 //                            Gauss–Newton steps that move the report pair's total writhe by `step`
 //                            under collision and joint-limit tasks until 360°·|writhe| = wrap_deg.
 //                            wrap_deg: number, degrees in [0, 2000], default 720;
-//                            step: number, default 0.05; margin: collision margin, m, default 0.05
+//                            step: number, default 0.05; margin: collision margin, m, default 0.05,
+//                            also the clearance kept from the object's line beyond its ends (a
+//                            start nearer that line is retried; scenario.h "Start coil")
 //   problem         object   T: integer 1..10000, default 50 (time steps); duration: s, default 2;
 //                            dynamic: bool, default true; h_rate: default 0.1; w_rate: default
 //                            1; q_rate: default 1e-10 (see MotionProblem, task.h)

@@ -181,6 +181,7 @@ std::vector<UnwrapRun> RunColumns(const UnwrapBenchmarkOptions& options, const S
         run.goal_meets_end_conditions = goal_ok;
         run.unwound_winding_turns = unwound;
         run.start_closed_wrap_deg = start_closed;
+        run.setup_warnings = scenario.warnings;
         PlanRequest request;
         request.planner = columns[c].planner;
         request.seed = static_cast<unsigned>(seed);

@@ -39,6 +39,9 @@ struct UnwrapRun {
   // about the finite pole's axis off by a fraction of a turn). start_wrap_deg, the open chain's,
   // also counts the chord's part, which depends on where the hand is. 0 without a report pair.
   double start_closed_wrap_deg = 0.0;
+  // The set-up's warnings for this run's angle and seed (Scenario::warnings: a start coil that
+  // collides, leaves the joint limits or is not clear of the pole's line).
+  std::vector<std::string> setup_warnings;
 };
 
 // Aggregate of the runs of one (angle, planner) pair.

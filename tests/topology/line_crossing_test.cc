@@ -4,6 +4,8 @@
 
 #include <Eigen/Geometry>
 #include <cmath>
+#include <limits>
+#include <random>
 #include <stdexcept>
 
 #include "topology/winding.h"
@@ -125,6 +127,57 @@ TEST(LineCrossing, RejectsADegenerateLineAndAChainThatChangesSize) {
   EXPECT_THROW(LocateLineCrossings(nan_inside, kA, kB), std::invalid_argument);
   for (double tolerance : {0.0, 1.0, std::nan("")}) {
     EXPECT_THROW(LocateLineCrossings(Sweep(0.5), kA, kB, tolerance), std::invalid_argument);
+  }
+}
+
+// LineDistanceBeyondEnds on hand-computed chains about the z axis from kA to kB (t = z here).
+TEST(LineDistanceBeyondEnds, HandComputedChains) {
+  Chain p(3, 2);
+  p << 0.3, 0.3, 0, 0, 2.5, 3.5;  // parallel to the line at 0.3 m, above its end (z = 2)
+  EXPECT_NEAR(LineDistanceBeyondEnds(p, kA, kB), 0.3, 1e-12);
+  p << -1, 1, 0.2, 0.2, 3, 3;  // across above the end at z = 3: closest at x = 0, 0.2 m
+  EXPECT_NEAR(LineDistanceBeyondEnds(p, kA, kB), 0.2, 1e-12);
+  p << -1, 1, 0, 0, -0.5, -0.5;  // through the line below the start
+  EXPECT_NEAR(LineDistanceBeyondEnds(p, kA, kB), 0.0, 1e-12);
+  p << -1, 1, 0, 0, 1, 1;  // through the line between the ends: not beyond
+  EXPECT_EQ(LineDistanceBeyondEnds(p, kA, kB), std::numeric_limits<double>::infinity());
+  // Through the line between the ends on a slant that leaves above the end at z = 2: the part with
+  // z > 2 is x ∈ [1, 2], nearest the line at x = 1, 1 m away.
+  p << 0, 2, 0, 0, 1, 3;
+  EXPECT_NEAR(LineDistanceBeyondEnds(p, kA, kB), 1.0, 1e-12);
+  // The same line given the other way round (b to a): the same distances.
+  EXPECT_NEAR(LineDistanceBeyondEnds(p, kB, kA), 1.0, 1e-12);
+  EXPECT_THROW(LineDistanceBeyondEnds(p, kA, kA), std::invalid_argument);
+  EXPECT_THROW(LineDistanceBeyondEnds(Chain(3, 1), kA, kB), std::invalid_argument);
+}
+
+// The closed form against the minimum over 20,001 points per segment of random chains about a
+// random line (beyond the ends only).
+TEST(LineDistanceBeyondEnds, AgreesWithDenseSampling) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (int trial = 0; trial < 200; ++trial) {
+    const Eigen::Vector3d a(u(rng), u(rng), u(rng)), b(u(rng), u(rng), u(rng));
+    Chain p(3, 6);
+    for (int i = 0; i < p.cols(); ++i) p.col(i) = 1.5 * Eigen::Vector3d(u(rng), u(rng), u(rng));
+    const double length = (b - a).norm();
+    const Eigen::Vector3d d = (b - a) / length;
+    double sampled = std::numeric_limits<double>::infinity();
+    for (int j = 0; j + 1 < p.cols(); ++j) {
+      for (int k = 0; k <= 20000; ++k) {
+        const Eigen::Vector3d x = p.col(j) + (k / 20000.0) * (p.col(j + 1) - p.col(j));
+        const double t = d.dot(x - a);
+        if (t >= 0.0 && t <= length) continue;
+        sampled = std::min(sampled, (x - a - t * d).norm());
+      }
+    }
+    const double exact = LineDistanceBeyondEnds(p, a, b);
+    if (std::isinf(sampled)) {  // no sample beyond the ends (the chain is within the slab)
+      EXPECT_TRUE(std::isinf(exact)) << "trial " << trial;
+      continue;
+    }
+    ASSERT_LE(exact, sampled + 1e-12) << "trial " << trial;  // a minimum, never above a sample
+    EXPECT_NEAR(exact, sampled, 1e-3) << "trial " << trial;
   }
 }
 

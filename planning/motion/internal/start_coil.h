@@ -52,11 +52,13 @@ Trajectory UnwindingInit(const Scenario& s, const ScenarioState& world, const Ei
                          AicoInit kind, const MotionProblem& problem, InitCounts* counts);
 
 // The start coil: WritheContinuation from `from` to `target`, made a state the robot can be in
-// (collision-free, inside the joint limits) and retried from seeded perturbations when it stops
-// short (start_coil.cc says how). Sets *collides when no collision-free start was found.
+// (collision-free, inside the joint limits) and a coil about the pole's line (no segment within
+// `margin` of the report object's line beyond its ends), retried from seeded perturbations when
+// it is not or stops short (start_coil.cc says how). Sets *collides when no collision-free start
+// was found, *near_line when the start is within `margin` of the line beyond the ends.
 // Deterministic.
 Eigen::VectorXd StartCoil(const Scenario& s, const Eigen::VectorXd& from, double target,
-                          double step, double margin, bool* collides);
+                          double step, double margin, bool* collides, bool* near_line);
 
 // True if the robot at q (size n) touches neither itself nor the scenario's initial objects.
 bool CollisionFree(const Scenario& s, const Eigen::VectorXd& q);
