@@ -160,7 +160,7 @@ void WarnOnce(const planning::UnwrapRun& run, std::set<std::string>* printed) {
                   "at %s deg (seed %d): ", base::FormatShortest(run.angle_deg).c_str(), run.seed);
     const std::string line = where + text;
     if (!printed->insert(line).second) continue;
-    if (isatty(STDERR_FILENO) != 0) std::fputc('\n', stderr);  // off the progress bar's line
+    EndProgress();  // off the progress bar's line (a terminal's)
     std::fprintf(stderr, "topoplan: warning: %s\n", line.c_str());
   }
 }

@@ -17,6 +17,7 @@
 #include "planning/robot/pose.h"
 #include "planning/robot/robot_io.h"
 #include "planning/robot/srdf.h"
+#include "topology/line_crossing.h"
 #include "topology/winding.h"
 #include "topology/writhe.h"
 namespace planning {
@@ -68,6 +69,17 @@ double ReportWinding(const Scenario& s, const ScenarioState& w, const Eigen::Vec
   Eigen::Matrix3Xd P;
   ChainPoints(s.robot, kin, s.report_chain, &P);
   return topology::WindingNumber(P, ReportAxis(s, w));
+}
+
+double ReportLineDistanceBeyondEnds(const Scenario& s, const Eigen::VectorXd& q) {
+  const Eigen::Matrix3Xd& O = s.initial.report_object_chain;
+  if (s.report_chain < 0 || O.cols() < 2 || O.col(0) == O.col(O.cols() - 1))
+    return std::numeric_limits<double>::infinity();
+  KinematicsData kin(s.robot);
+  ForwardKinematics(s.robot, q, &kin);
+  Eigen::Matrix3Xd P;
+  ChainPoints(s.robot, kin, s.report_chain, &P);
+  return topology::LineDistanceBeyondEnds(P, O.col(0), O.col(O.cols() - 1));
 }
 
 topology::Axis ReportAxis(const Scenario& s) { return ReportAxis(s, s.initial); }

@@ -204,6 +204,10 @@ Eigen::VectorXd FeatureValue(const Robot& robot, const Feature& feature, const E
 double ReportWinding(const Scenario& scenario, const ScenarioState& state,
                      const Eigen::VectorXd& q);
 double ReportWinding(const Scenario& scenario, const Eigen::VectorXd& q);
+// The report chain at q, its smallest distance to that line over its points beyond the ends of
+// the report object chain (topology::LineDistanceBeyondEnds), m; +infinity when no point is beyond
+// them, the object chain's ends coincide or there is no report pair. Reads scenario.initial.
+double ReportLineDistanceBeyondEnds(const Scenario& scenario, const Eigen::VectorXd& q);
 // That line (the pole's axis in unwrap); throws std::invalid_argument if there is no report pair.
 topology::Axis ReportAxis(const Scenario& scenario, const ScenarioState& state);
 topology::Axis ReportAxis(const Scenario& scenario);

@@ -15,7 +15,6 @@
 #include "planning/motion/internal/scenario_build.h"
 #include "planning/robot/kinematics.h"
 #include "planning/robot/robot.h"
-#include "topology/line_crossing.h"
 
 namespace planning::internal {
 namespace {
@@ -184,19 +183,6 @@ void ContinueReach(const Scenario& s, const ScenarioState& world, double margin,
   if (counts != nullptr) AddSpent(p, ws, counts);
 }
 
-// The report chain at q (size n), its distance to the report object's line beyond the ends of the
-// object's chain (topology::LineDistanceBeyondEnds; +infinity when the object chain's ends meet).
-double LineDistanceBeyondEnds(const Scenario& s, const Eigen::VectorXd& q) {
-  const Eigen::Matrix3Xd& O = s.initial.report_object_chain;
-  if (O.cols() < 2 || O.col(0) == O.col(O.cols() - 1))
-    return std::numeric_limits<double>::infinity();
-  KinematicsData kin(s.robot);
-  ForwardKinematics(s.robot, q, &kin);
-  Eigen::Matrix3Xd P;
-  ChainPoints(s.robot, kin, s.report_chain, &P);
-  return topology::LineDistanceBeyondEnds(P, O.col(0), O.col(O.cols() - 1));
-}
-
 }  // namespace
 
 Eigen::VectorXd WritheContinuation(const Scenario& s, const Eigen::VectorXd& from, double target,
@@ -275,8 +261,8 @@ bool CollisionFree(const Scenario& s, const Eigen::VectorXd& q) {
 // ±kCoilRestartRad, clamped to its limits), and the end closest to `target` that is collision-free
 // and inside the joint limits is kept (the continuation's limit task is soft). A start must also be
 // a coil about the pole's line: beyond the ends of the report object's chain no segment may come
-// within `margin` of that line (LineDistanceBeyondEnds). A 30-link arm's tail can end past the
-// pole's end a centimetre from its line, one small move from passing it: the winding about the
+// within `margin` of that line (ReportLineDistanceBeyondEnds). A 30-link arm's tail can end past
+// the pole's end a centimetre from its line, one small move from passing it: the winding about the
 // line then jumps by a turn whatever a planner does (tuning_14 at 720°: 1.1 cm, every planner
 // "tunnelled"). Such a start is restarted as one that collides is, and a restart that keeps the
 // line clear is preferred; when none does, the start chosen without this rule is kept. Sets
@@ -304,7 +290,7 @@ Eigen::VectorXd StartCoil(const Scenario& s, const Eigen::VectorXd& from, double
     return (x.array() >= lower.array()).all() && (x.array() <= upper.array()).all();
   };
   const auto clear_of_line = [&](const Eigen::VectorXd& x) {
-    return LineDistanceBeyondEnds(s, x) >= margin;
+    return ReportLineDistanceBeyondEnds(s, x) >= margin;
   };
   // The best start clear of the line, and the best start as chosen without that rule (restarts
   // stop once it is within kCoilShortBy), kept when no start is clear.

@@ -16,10 +16,8 @@
 #include "planning/motion/scenario_spec.h"
 #include "planning/motion/success.h"
 #include "planning/motion/unwrap_geometry.h"
-#include "planning/robot/kinematics.h"
 #include "planning/robot/pose.h"
 #include "scenario_test_util.h"
-#include "topology/line_crossing.h"
 
 namespace planning {
 namespace {
@@ -331,16 +329,6 @@ TEST(UnwrapGeometry, AShortStartCoilIsRetriedFromPerturbedStarts) {
   EXPECT_TRUE(s->warnings.empty());
 }
 
-// The report chain at q, its distance to the pole's line beyond the pole's ends.
-double LineDistanceBeyondThePole(const Scenario& s, const Eigen::VectorXd& q) {
-  KinematicsData kin(s.robot);
-  ForwardKinematics(s.robot, q, &kin);
-  Eigen::Matrix3Xd P;
-  ChainPoints(s.robot, kin, s.report_chain, &P);
-  const Eigen::Matrix3Xd& O = s.initial.report_object_chain;
-  return topology::LineDistanceBeyondEnds(P, O.col(0), O.col(O.cols() - 1));
-}
-
 // On tuning_14's pole (tilted by 18.9° and 10.8°) the 30-link arm's continuation to 720° ends with
 // its tail past the pole's end, 1.1 cm from the pole's line: one small move from passing it, so
 // that the winding jumped by a turn in the first resampled step of every plan ("tunnelled"
@@ -352,9 +340,9 @@ TEST(UnwrapGeometry, AStartCoilKeepsClearOfThePolesLineBeyondItsEnds) {
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(s->initial.problem.q0.size());
   const Eigen::VectorXd first = internal::WritheContinuation(
       *s, zero, 2.0 * std::copysign(1.0, ReportWritheTotal(*s, zero)), s->spec.start.step, margin);
-  EXPECT_LT(LineDistanceBeyondThePole(*s, first), 0.02);  // the continuation alone: 1.1 cm
+  EXPECT_LT(ReportLineDistanceBeyondEnds(*s, first), 0.02);  // the continuation alone: 1.1 cm
   const Eigen::VectorXd& q0 = s->initial.problem.q0;
-  EXPECT_GE(LineDistanceBeyondThePole(*s, q0), margin);
+  EXPECT_GE(ReportLineDistanceBeyondEnds(*s, q0), margin);
   EXPECT_TRUE(CheckEndState(*s, q0, true).collision_free);
   EXPECT_NEAR(s->start_wrap_deg, 720.0, 10.0);
   EXPECT_TRUE(s->warnings.empty());
