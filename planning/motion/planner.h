@@ -224,9 +224,9 @@ PlanResult RunAicoAttempts(const Scenario& scenario, const AicoCallback& callbac
 // With a budget (not kNone): after every sweep the counts (or CPU time) spent so far, earlier
 // attempts included, are compared with it; once spent after a sweep that was no success (with
 // stop_when_solved), the run ends as a failure: status and failure reason kBudgetExhausted.
-// `retry` false: attempt 0 only. An unwinding-init attempt is skipped when `disabled_tasks` holds
-// a writhe task (the continuation is a writhe-driven init: aico-goal and the no-writhe ablation
-// do not get it).
+// `retry` false: attempt 0 only. An unwinding-init attempt (any init but kDefault) is skipped when
+// `disabled_tasks` holds a writhe task (the continuations follow the arm's topology about the pole,
+// its writhe or its winding: aico-goal and the no-writhe ablation do not get them).
 PlanResult RunAicoAttempts(const Scenario& scenario, const ScenarioState& state,
                            const AicoOptions& aico, const AicoCallback& callback = {},
                            const Budget& budget = {},

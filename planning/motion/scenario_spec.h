@@ -139,7 +139,9 @@
 //                            "unwinding_then_reach": the same continuation also under the
 //                            attempt's line_clearance tasks, then the hand moved to the final
 //                            targets of the position tasks with the writhe held (start_coil.h);
-//                            absent: as the first attempt
+//                            "winding_then_reach": as unwinding_then_reach, the continuation
+//                            stepping the winding about the pole's line to 0 instead of the
+//                            writhe; absent: as the first attempt
 //   rrt             object   range: rad, default 0 (auto); resolution: rad, default 0 (auto);
 //                            goal_bias: default 0.1; max_checks: integer >= 1, default 100000;
 //                            goal_states: integer 1..10000, default 32 (the goal-region trees'
@@ -374,10 +376,14 @@ enum class AicoInit {
   // line_clearance tasks not switched off), then the hand moved to its final targets with the
   // writhe held
   kUnwindingThenReach,
+  // "winding_then_reach": as unwinding_then_reach, with the continuation stepping the winding
+  // about the pole's line (ReportWinding) to 0 instead of the writhe
+  kWindingThenReach,
 };
 inline constexpr base::EnumName<AicoInit> kAicoInitNames[] = {
     {AicoInit::kUnwinding, "unwinding"},
     {AicoInit::kUnwindingThenReach, "unwinding_then_reach"},
+    {AicoInit::kWindingThenReach, "winding_then_reach"},
 };
 constexpr std::span<const base::EnumName<AicoInit>> EnumNames(AicoInit) { return kAicoInitNames; }
 

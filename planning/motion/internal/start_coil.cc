@@ -31,12 +31,18 @@ struct KeptTask {
   double precision;
 };
 
-// The one-step pose-estimate problem of a continuation from q0 in `world`: the total writhe of the
-// report pair with target `writhe` (precision 1000), a collision hinge with `margin` (100), a
-// joint-limit hinge (100) and the `kept` tasks (target 0).
+// What a continuation steps along: the total writhe of the report pair (ReportWritheTotal), or the
+// winding of the report chain about the report object's line (ReportWinding, turns).
+enum class Measure { kWrithe, kWinding };
+
+// The one-step pose-estimate problem of a continuation from q0 in `world`: the measure with target
+// `value` (precision 1000), a collision hinge with `margin` (100), a joint-limit hinge (100) and
+// the `kept` tasks (target 0).
 MotionProblem ContinuationProblem(const Scenario& s, const ScenarioState& world,
-                                  const Eigen::VectorXd& q0, double writhe, double margin,
-                                  const std::vector<KeptTask>& kept) {
+                                  const Eigen::VectorXd& q0, double value, double margin,
+                                  const std::vector<KeptTask>& kept,
+                                  Measure measure = Measure::kWrithe) {
+  const bool by_winding = measure == Measure::kWinding;
   MotionProblem p;
   p.robot = &s.robot;
   p.q0 = q0;
@@ -44,10 +50,11 @@ MotionProblem ContinuationProblem(const Scenario& s, const ScenarioState& world,
   p.dynamic = false;
   p.w_rate = 100.0;
   Task w;
-  w.name = "writhe";
-  w.feature =
-      MakeWritheFeature(s.robot, s.report_chain, world.report_object_chain, WritheOutput::kTotal);
-  SetConstantTarget(&w, Eigen::VectorXd::Constant(1, writhe), 1000.0, 1);
+  w.name = by_winding ? "winding" : "writhe";
+  w.feature = by_winding ? MakeWindingFeature(s.robot, s.report_chain, ReportAxis(s, world))
+                         : MakeWritheFeature(s.robot, s.report_chain, world.report_object_chain,
+                                             WritheOutput::kTotal);
+  SetConstantTarget(&w, Eigen::VectorXd::Constant(1, value), 1000.0, 1);
   p.tasks.push_back(std::move(w));
   Task c;
   c.name = "collision";
@@ -76,14 +83,19 @@ void AddSpent(const MotionProblem& p, const TaskWorkspace& ws, InitCounts* count
   counts->narrow_phase_calls += NarrowPhaseCalls(p, ws);
 }
 
-// One writhe continuation (see WritheContinuation and StartCoil) in `world` (the pole where it is).
+// One continuation (see WritheContinuation and StartCoil) in `world` (the pole where it is), in
+// steps of `step` along the measure `along` (the writhe, or for "winding_then_reach" the winding
+// about the pole's line; UnwindingInit).
 Eigen::VectorXd ContinueWrithe(const Scenario& s, const ScenarioState& world,
                                const Eigen::VectorXd& from, double target, double step,
                                double margin, ContinueMode mode, std::vector<Eigen::VectorXd>* path,
-                               InitCounts* counts = nullptr,
-                               const std::vector<KeptTask>& kept = {}) {
+                               InitCounts* counts = nullptr, const std::vector<KeptTask>& kept = {},
+                               Measure along = Measure::kWrithe) {
   const bool push_out = mode == ContinueMode::kPushOutAndBackOff;
-  MotionProblem p = ContinuationProblem(s, world, from, 0.0, margin, kept);
+  MotionProblem p = ContinuationProblem(s, world, from, 0.0, margin, kept, along);
+  const auto measure = [&](const Eigen::VectorXd& x) {
+    return along == Measure::kWinding ? ReportWinding(s, world, x) : ReportWritheTotal(s, world, x);
+  };
   TaskWorkspace ws(p);
   FinalPoseOptions fo;
   fo.alpha = 0.5;
@@ -110,12 +122,12 @@ Eigen::VectorXd ContinueWrithe(const Scenario& s, const ScenarioState& world,
     last_free_size = path != nullptr ? path->size() : 0;
   };
   remember_if_free();
-  double current = ReportWritheTotal(s, world, q);
+  double current = measure(q);
   for (int k = 0; push_out && k < 100 && !last_free; ++k) {
     p.q0 = q;
     p.tasks[0].target.setConstant(current);
     q = EstimateFinalPose(p, fo, &ws).q;
-    current = ReportWritheTotal(s, world, q);
+    current = measure(q);
     if (path != nullptr) path->push_back(q);
     remember_if_free();
   }
@@ -125,7 +137,7 @@ Eigen::VectorXd ContinueWrithe(const Scenario& s, const ScenarioState& world,
     p.q0 = q;
     p.tasks[0].target.setConstant(next);
     const FinalPoseResult r = EstimateFinalPose(p, fo, &ws);
-    const double moved = ReportWritheTotal(s, world, r.q);
+    const double moved = measure(r.q);
     if (std::abs(moved - current) < 1e-4) break;  // stuck
     q = r.q;
     current = moved;
@@ -229,11 +241,12 @@ Trajectory UnwindingInit(const Scenario& s, const ScenarioState& world, const Ei
       goals.push_back(task.target.col(T));
     }
   }
-  const bool then_reach = kind == AicoInit::kUnwindingThenReach;
+  const bool by_winding = kind == AicoInit::kWindingThenReach;
+  const bool then_reach = kind == AicoInit::kUnwindingThenReach || by_winding;
   if (!then_reach) line.clear();
   std::vector<Eigen::VectorXd> path;
   ContinueWrithe(s, world, q0, 0.0, s.spec.start.step, s.spec.start.margin, ContinueMode::kPlain,
-                 &path, counts, line);
+                 &path, counts, line, by_winding ? Measure::kWinding : Measure::kWrithe);
   if (then_reach && !reach.empty())
     ContinueReach(s, world, s.spec.start.margin, reach, goals, line, &path, counts);
   Trajectory init;

@@ -45,6 +45,12 @@ struct InitCounts {
 //     final target y*_T, at most 0.05 m per pose estimate (precision 1000) and 5 more estimates at
 //     the targets, under the writhe held where the unwinding ended, the collision and joint-limit
 //     costs and the line-clearance tasks.
+//   kWindingThenReach: as kUnwindingThenReach, with the first continuation stepping the winding of
+//     the report chain about the report object's line (ReportWinding, a winding task instead of the
+//     writhe task) to 0 in steps of the start spec's step (turns). Its gradient moves the chain's
+//     free end round the line (the inner points' terms cancel, topology/winding.h), so it unwinds
+//     a coil from the hand back rather than sliding it along the pole and off its end, as the
+//     writhe's pull can near the end of a long arm.
 // `problem`'s tasks pair with world.tasks by index (one per spec, as AttemptProblem builds them).
 // The path is resampled by ResampleByArcLength to T + 1 slices, dt = duration / T. Adds what it
 // spent to *counts. Throws std::logic_error when problem and world.tasks differ in size.

@@ -1,6 +1,7 @@
 // The AICO retries from the unwinding paths (unwrap_chord.json's "aico": {"retry": [{"init":
-// "unwinding"}, {"init": "unwinding_then_reach"}, {"init": "unwinding", "precision_scale": ...}]}):
-// the inits, the attempts they run, what they are charged, who does not get them, and their keys.
+// "unwinding"}, {"init": "unwinding_then_reach"}, {"init": "unwinding", "precision_scale": ...},
+// {"init": "winding_then_reach"}]}): the inits, the attempts they run, what they are charged, who
+// does not get them, and their keys.
 
 #include <gtest/gtest.h>
 
@@ -27,15 +28,20 @@ namespace {
 const std::string kAssets = TOPOPLAN_SOURCE_DIR "/assets/";
 const std::string kChord = kAssets + "scenarios/unwrap_chord.json";
 
-// unwrap_chord.json on tuning_06 (30-link arm, moved pole) at 540°: the rollout-init attempt ends
-// with the writhe target missed; the retry from the unwinding path solves it.
-std::unique_ptr<Scenario> Tuning06() {
+// unwrap_chord.json on the shipped tuning geometry `name` at `wrap_deg`, with its first `attempts`
+// AICO attempts (unwrap_chord.json has 5).
+std::unique_ptr<Scenario> ShippedTuning(const std::string& name, double wrap_deg, int attempts) {
   const UnwrapGeometry g =
-      ReadUnwrapGeometry(kAssets + "scenarios/unwrap_geometries/tuning/tuning_06_arm30.json");
+      ReadUnwrapGeometry(kAssets + "scenarios/unwrap_geometries/tuning/" + name + ".json");
   ScenarioSpec spec = ParseScenarioSpec(kChord);
   ApplyUnwrapGeometry(g, &spec);
-  return SetUpScenario(spec, 540.0);
+  spec.aico_attempts.resize(static_cast<size_t>(attempts));
+  return SetUpScenario(spec, wrap_deg);
 }
+
+// unwrap_chord.json on tuning_06 (30-link arm, moved pole) at 540°: the rollout-init attempt ends
+// with the writhe target missed; the retry from the unwinding path solves it.
+std::unique_ptr<Scenario> Tuning06() { return ShippedTuning("tuning_06_arm30", 540.0, 5); }
 
 TEST(UnwindingRetry, TheInitIsTheContinuationOfTheStartToWritheZero) {
   const auto s = Tuning06();
@@ -94,10 +100,11 @@ TEST(UnwindingRetry, ResamplingIsByArcLength) {
 
 TEST(UnwindingRetry, ARolloutFailureIsSolvedByTheRetryWhichIsCharged) {
   const auto s = Tuning06();
-  ASSERT_EQ(s->aico_attempts.size(), 4u);
+  ASSERT_EQ(s->aico_attempts.size(), 5u);
   EXPECT_TRUE(s->aico_attempts[1].init == AicoInit::kUnwinding);
   EXPECT_TRUE(s->aico_attempts[2].init == AicoInit::kUnwindingThenReach);
   EXPECT_TRUE(s->aico_attempts[3].init == AicoInit::kUnwinding);
+  EXPECT_TRUE(s->aico_attempts[4].init == AicoInit::kWindingThenReach);
   PlanRequest request;
   request.aico_retry = false;
   const PlanReport first = RunPlanner(*s, request).report;
@@ -144,6 +151,21 @@ std::unique_ptr<Scenario> Tuning46() {
   return SetUpScenario(spec, 720.0);
 }
 
+// A plain unwinding path that passes the pole's line round its end (a whole turn of winding in one
+// step) and ends far (> 1 m) from the reach target.
+void ExpectRoundThePolesEndAndFarFromTheTarget(const PlanVerdict& plain) {
+  EXPECT_GT(plain.max_winding_jump_turns, 0.5);   // a whole turn: across the line
+  EXPECT_GT(plain.winding_jumps.beyond_ends, 0);  // round the pole's end
+  EXPECT_GT(plain.reach_error_m, 1.0);
+}
+
+// An init's line-clearance (and winding) segment tests are charged as pair tests, not as FCL
+// calls; its only collision queries are its configurations.
+void ExpectLineTestsChargedAsPairTests(const internal::InitCounts& counts) {
+  EXPECT_EQ(counts.collision_queries, counts.units.state_queries);
+  EXPECT_LT(counts.narrow_phase_calls, counts.units.pair_tests());
+}
+
 // The init of "unwinding_then_reach": it starts at q0, unwinds without passing the pole's line
 // (the plain unwinding path passes it, round the pole's end: a whole turn of winding in one small
 // step) and ends with the hand at the reach target, where the plain path ends 2.8 m from it. The
@@ -162,14 +184,10 @@ TEST(UnwindingRetry, TheReachInitUnwindsOffThePoleLineThenReaches) {
   // The judge walks both paths at the check resolution.
   const PlanVerdict plain_verdict = JudgePlan(*s, plain);
   const PlanVerdict verdict = JudgePlan(*s, init);
-  EXPECT_GT(plain_verdict.max_winding_jump_turns, 0.5);   // a whole turn: across the line
-  EXPECT_GT(plain_verdict.winding_jumps.beyond_ends, 0);  // round the pole's end
+  ExpectRoundThePolesEndAndFarFromTheTarget(plain_verdict);
   EXPECT_LT(verdict.max_winding_jump_turns, 0.5);
   EXPECT_LT(verdict.reach_error_m, 0.01);
-  EXPECT_GT(plain_verdict.reach_error_m, 1.0);
-  // Its line-clearance pair tests are charged as pair tests, not as FCL calls.
-  EXPECT_EQ(counts.collision_queries, counts.units.state_queries);
-  EXPECT_LT(counts.narrow_phase_calls, counts.units.pair_tests());
+  ExpectLineTestsChargedAsPairTests(counts);
 }
 
 // The init is built for the attempt's problem: a task switched off (an ablation) is left out. With
@@ -226,12 +244,7 @@ TEST(UnwindingRetry, AFailureOfBothEarlierAttemptsIsSolvedByTheReachInit) {
 // missed); the fourth, from the plain unwinding path with the collision cost weakened and the
 // writhe and reach costs strengthened, solves it.
 std::unique_ptr<Scenario> Tuning17(int attempts) {
-  const UnwrapGeometry g =
-      ReadUnwrapGeometry(kAssets + "scenarios/unwrap_geometries/tuning/tuning_17_arm12.json");
-  ScenarioSpec spec = ParseScenarioSpec(kChord);
-  ApplyUnwrapGeometry(g, &spec);
-  spec.aico_attempts.resize(static_cast<size_t>(attempts));
-  return SetUpScenario(spec, 540.0);
+  return ShippedTuning("tuning_17_arm12", 540.0, attempts);
 }
 
 TEST(UnwindingRetry, AFailureOfThreeAttemptsIsSolvedByTheWeakerCollisionCost) {
@@ -328,6 +341,52 @@ std::string Mini(const std::string& writhe_report, const std::string& aico) {
          aico + "}";
 }
 
+// unwrap_chord.json on tuning_10 (30-link arm, pole tilted and moved) at 720°: the first four
+// attempts fail, each passing the pole's line round its end; the fifth, from the winding
+// continuation, solves it.
+std::unique_ptr<Scenario> Tuning10(int attempts) {
+  return ShippedTuning("tuning_10_arm30", 720.0, attempts);
+}
+
+// The init of "winding_then_reach" steps the winding about the pole's line to 0: it starts at q0
+// two turns round the line, neither it nor the reach after it passes the line, and the hand ends
+// 0.03 m from its target. The plain writhe continuation passes the line round the pole's end (a
+// whole turn in one step) and ends 2 m from the target; kept off the line, it stalls and the
+// reach after it ends 0.25 m from the target.
+TEST(UnwindingRetry, TheWindingInitUnwindsWithoutPassingThePolesLine) {
+  const auto s = Tuning10(5);
+  const Eigen::VectorXd& q0 = s->initial.problem.q0;
+  const auto init = [&](AicoInit kind, internal::InitCounts* counts) {
+    return internal::UnwindingInit(*s, s->initial, q0, kind, s->initial.problem, counts);
+  };
+  internal::InitCounts plain_counts, line_counts, counts;
+  const PlanVerdict plain = JudgePlan(*s, init(AicoInit::kUnwinding, &plain_counts));
+  const PlanVerdict line = JudgePlan(*s, init(AicoInit::kUnwindingThenReach, &line_counts));
+  const Trajectory path = init(AicoInit::kWindingThenReach, &counts);
+  ASSERT_EQ(path.num_points(), s->spec.problem.num_steps + 1);
+  EXPECT_TRUE(path.q.col(0).isApprox(q0, 1e-12));
+  EXPECT_LT(ReportWinding(*s, q0), -1.9);
+  const PlanVerdict verdict = JudgePlan(*s, path);
+  ExpectRoundThePolesEndAndFarFromTheTarget(plain);
+  EXPECT_LT(line.max_winding_jump_turns, 0.1);
+  EXPECT_GT(line.reach_error_m, 0.2);
+  EXPECT_LT(verdict.max_winding_jump_turns, 0.1);
+  EXPECT_LT(verdict.reach_error_m, 0.05);
+  ExpectLineTestsChargedAsPairTests(counts);  // its winding task's too
+}
+
+TEST(UnwindingRetry, AFailureOfFourAttemptsIsSolvedByTheWindingInit) {
+  PlanRequest request;
+  const PlanReport four = RunPlanner(*Tuning10(4), request).report;
+  EXPECT_FALSE(four.success);
+  EXPECT_EQ(four.failure_reason, FailureReason::kTunnelled);
+  EXPECT_EQ(four.attempts, 4);
+  const PlanReport five = RunPlanner(*Tuning10(5), request).report;
+  EXPECT_TRUE(five.success) << FailureReasonName(five.failure_reason);
+  EXPECT_EQ(five.attempts, 5);
+  EXPECT_GT(five.counts.state_queries, four.counts.state_queries);
+}
+
 void ExpectError(const std::string& name, const std::string& text, const std::string& fragment) {
   try {
     SetUpScenario(ParseScenarioSpec(WriteTemp(name, text)));
@@ -341,7 +400,8 @@ TEST(UnwindingRetry, KeysAreChecked) {
   const std::string report =
       R"( "writhe_report": {"chain": "arm", "object": "pole", "object_chain": "axis"},)";
   ExpectError("bad_init.json", Mini(report, R"({"retry": {"init": "rollout"}})"),
-              "aico.retry.init: unknown AICO init 'rollout' (unwinding, unwinding_then_reach)");
+              "aico.retry.init: unknown AICO init 'rollout' (unwinding, unwinding_then_reach, "
+              "winding_then_reach)");
   ExpectError("bad_init_1.json", Mini(report, R"({"retry": [{}, {"init": "rollout"}]})"),
               "aico.retry[1].init: unknown AICO init 'rollout'");
   ExpectError("empty.json", Mini(report, R"({"retry": []})"),
