@@ -438,6 +438,14 @@ std::unique_ptr<Scenario> SetUpScenario(ScenarioSpec spec,
       throw std::invalid_argument(base::StrCat(
           a.init_where, ": the unwinding init continues the writhe_report's writhe; give one"));
     }
+    const Eigen::Matrix3Xd& line = s->initial.report_object_chain;
+    if (a.init == AicoInit::kWindingThenReach &&
+        (line.cols() < 2 || line.col(0) == line.col(line.cols() - 1))) {
+      throw std::invalid_argument(base::StrCat(
+          a.init_where,
+          ": \"winding_then_reach\" winds the arm about the line through the ends of the "
+          "writhe_report's object chain, and its ends coincide (a closed loop has no such line)"));
+    }
     attempt.precision_scale = Eigen::VectorXd::Ones(static_cast<Eigen::Index>(sp.tasks.size()));
     for (const auto& [task, factor] : a.precision_scale)
       attempt.precision_scale[TaskIndex(*s, task)] *= factor;

@@ -141,7 +141,9 @@
 //                            targets of the position tasks with the writhe held (start_coil.h);
 //                            "winding_then_reach": as unwinding_then_reach, the continuation
 //                            stepping the winding about the pole's line to 0 instead of the
-//                            writhe; absent: as the first attempt
+//                            writhe (the line through the ends of the writhe_report's object
+//                            chain; ends that coincide are refused); absent: as the first
+//                            attempt
 //   rrt             object   range: rad, default 0 (auto); resolution: rad, default 0 (auto);
 //                            goal_bias: default 0.1; max_checks: integer >= 1, default 100000;
 //                            goal_states: integer 1..10000, default 32 (the goal-region trees'

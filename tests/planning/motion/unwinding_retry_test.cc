@@ -412,6 +412,16 @@ TEST(UnwindingRetry, KeysAreChecked) {
               "aico.retry[0].init: the unwinding init continues the writhe_report's writhe");
   ExpectError("no_report.json", Mini("", R"({"retry": {"init": "unwinding"}})"),
               "aico.retry.init: the unwinding init continues the writhe_report's writhe");
+  // The winding init needs a line: a closed object chain (a ring's loop) has none.
+  const std::string ring =
+      R"(, {"name": "ring", "urdf": ")" + kAssets + R"(objects/ring.urdf", "xyz": [0.5, 0, 0.8]})";
+  std::string loop = Mini(R"( "writhe_report": {"chain": "arm", "object": "ring",
+      "object_chain": "loop"},)",
+                          R"({"retry": [{}, {"init": "winding_then_reach"}]})");
+  loop.insert(loop.find("}],") + 1, ring);
+  ExpectError("loop.json", loop,
+              "aico.retry[1].init: \"winding_then_reach\" winds the arm about the line through the "
+              "ends of the writhe_report's object chain, and its ends coincide");
   const auto s = SetUpScenario(
       ParseScenarioSpec(WriteTemp("ok.json", Mini(report, R"({"retry": {"init": "unwinding"}})"))));
   ASSERT_EQ(s->aico_attempts.size(), 2u);
