@@ -436,11 +436,12 @@ std::unique_ptr<Scenario> SetUpScenario(ScenarioSpec spec,
     attempt.init = a.init;
     if (a.init != AicoInit::kDefault && !sp.writhe_report) {
       throw std::invalid_argument(base::StrCat(
-          a.init_where, ": the unwinding init continues the writhe_report's writhe; give one"));
+          a.init_where,
+          ": the unwinding inits follow the writhe_report pair (its writhe or winding); give one"));
     }
     const Eigen::Matrix3Xd& line = s->initial.report_object_chain;
     if (a.init == AicoInit::kWindingThenReach &&
-        (line.cols() < 2 || line.col(0) == line.col(line.cols() - 1))) {
+        (line.cols() < 2 || (line.col(line.cols() - 1) - line.col(0)).norm() < 1e-12)) {
       throw std::invalid_argument(base::StrCat(
           a.init_where,
           ": \"winding_then_reach\" winds the arm about the line through the ends of the "

@@ -52,7 +52,8 @@
 //                            Gauss–Newton steps that move the report pair's total writhe by `step`
 //                            under collision and joint-limit tasks until 360°·|writhe| = wrap_deg.
 //                            wrap_deg: number, degrees in [0, 2000], default 720;
-//                            step: number, default 0.05; margin: collision margin, m, default 0.05,
+//                            step: number, default 0.05 (also the winding step, turns, of the
+//                            "winding_then_reach" init); margin: collision margin, m, default 0.05,
 //                            also the clearance kept from the object's line beyond its ends (a
 //                            start nearer that line is retried; scenario.h "Start coil")
 //   problem         object   T: integer 1..10000, default 50 (time steps); duration: s, default 2;
@@ -369,7 +370,7 @@ struct SuccessSpec {
   std::string through_loop_where;  // of "success.through_loop" (empty: not given)
 };
 
-// The initial trajectory of an AICO attempt ("init" of an aico.retry entry; both need a
+// The initial trajectory of an AICO attempt ("init" of an aico.retry entry; each needs a
 // writhe_report; internal/start_coil.h builds them).
 enum class AicoInit {
   kDefault,    // absent: as attempt 0 (aico.rollout_init: the rollout, or q0 held)

@@ -86,17 +86,22 @@ void AddSpent(const MotionProblem& p, const TaskWorkspace& ws, InitCounts* count
 // One continuation (see WritheContinuation and StartCoil) in `world` (the pole where it is), in
 // steps of `step` along the measure `along` (the writhe, or for "winding_then_reach" the winding
 // about the pole's line; UnwindingInit).
-Eigen::VectorXd ContinueWrithe(const Scenario& s, const ScenarioState& world,
-                               const Eigen::VectorXd& from, double target, double step,
-                               double margin, ContinueMode mode, std::vector<Eigen::VectorXd>* path,
-                               InitCounts* counts = nullptr, const std::vector<KeptTask>& kept = {},
-                               Measure along = Measure::kWrithe) {
+Eigen::VectorXd RunContinuation(const Scenario& s, const ScenarioState& world,
+                                const Eigen::VectorXd& from, double target, double step,
+                                double margin, ContinueMode mode,
+                                std::vector<Eigen::VectorXd>* path, InitCounts* counts = nullptr,
+                                const std::vector<KeptTask>& kept = {},
+                                Measure along = Measure::kWrithe) {
   const bool push_out = mode == ContinueMode::kPushOutAndBackOff;
   MotionProblem p = ContinuationProblem(s, world, from, 0.0, margin, kept, along);
-  const auto measure = [&](const Eigen::VectorXd& x) {
-    return along == Measure::kWinding ? ReportWinding(s, world, x) : ReportWritheTotal(s, world, x);
-  };
   TaskWorkspace ws(p);
+  // The winding is read through the continuation's own winding task, so that its evaluations are
+  // charged (a state query and a pair test per segment each); the writhe queries no world.
+  const auto measure = [&](const Eigen::VectorXd& x) {
+    if (along == Measure::kWrithe) return ReportWritheTotal(s, world, x);
+    EvaluateTask(p, 0, x, false, &ws);
+    return ws.y[0][0];
+  };
   FinalPoseOptions fo;
   fo.alpha = 0.5;
   Eigen::VectorXd q = from;
@@ -153,7 +158,8 @@ Eigen::VectorXd ContinueWrithe(const Scenario& s, const ScenarioState& world,
   return q;
 }
 
-// The reach continuation of kUnwindingThenReach (see UnwindingInit): from path->back(), each
+// The reach continuation of kUnwindingThenReach and kWindingThenReach (see UnwindingInit; the
+// writhe held in both): from path->back(), each
 // position task in `reach` moved in a straight line from its point there to its final target
 // `goals[i]`, appending every estimate to *path.
 constexpr double kReachStep = 0.05;  // m, largest target move per estimate
@@ -199,7 +205,7 @@ void ContinueReach(const Scenario& s, const ScenarioState& world, double margin,
 
 Eigen::VectorXd WritheContinuation(const Scenario& s, const Eigen::VectorXd& from, double target,
                                    double step, double margin, std::vector<Eigen::VectorXd>* path) {
-  return ContinueWrithe(s, s.initial, from, target, step, margin, ContinueMode::kPlain, path);
+  return RunContinuation(s, s.initial, from, target, step, margin, ContinueMode::kPlain, path);
 }
 
 Eigen::MatrixXd ResampleByArcLength(const std::vector<Eigen::VectorXd>& path, int num_points) {
@@ -245,8 +251,8 @@ Trajectory UnwindingInit(const Scenario& s, const ScenarioState& world, const Ei
   const bool then_reach = kind == AicoInit::kUnwindingThenReach || by_winding;
   if (!then_reach) line.clear();
   std::vector<Eigen::VectorXd> path;
-  ContinueWrithe(s, world, q0, 0.0, s.spec.start.step, s.spec.start.margin, ContinueMode::kPlain,
-                 &path, counts, line, by_winding ? Measure::kWinding : Measure::kWrithe);
+  RunContinuation(s, world, q0, 0.0, s.spec.start.step, s.spec.start.margin, ContinueMode::kPlain,
+                  &path, counts, line, by_winding ? Measure::kWinding : Measure::kWrithe);
   if (then_reach && !reach.empty())
     ContinueReach(s, world, s.spec.start.margin, reach, goals, line, &path, counts);
   Trajectory init;
@@ -289,11 +295,11 @@ Eigen::VectorXd StartCoil(const Scenario& s, const Eigen::VectorXd& from, double
                           double step, double margin, bool* collides, bool* near_line) {
   // kBackOff returns the plain continuation whenever that ends collision-free.
   Eigen::VectorXd q =
-      ContinueWrithe(s, s.initial, from, target, step, margin, ContinueMode::kBackOff, nullptr);
+      RunContinuation(s, s.initial, from, target, step, margin, ContinueMode::kBackOff, nullptr);
   bool free = CollisionFree(s, q);
   if (!free) {
-    q = ContinueWrithe(s, s.initial, from, target, step, margin, ContinueMode::kPushOutAndBackOff,
-                       nullptr);
+    q = RunContinuation(s, s.initial, from, target, step, margin, ContinueMode::kPushOutAndBackOff,
+                        nullptr);
     free = CollisionFree(s, q);
   }
   *collides = !free;
@@ -321,8 +327,8 @@ Eigen::VectorXd StartCoil(const Scenario& s, const Eigen::VectorXd& from, double
           std::clamp(perturbed[i] + kCoilRestartRad * (2.0 * base::UniformUnit(&rng) - 1.0),
                      lower[i], upper[i]);
     }
-    const Eigen::VectorXd x = ContinueWrithe(s, s.initial, perturbed, target, step, margin,
-                                             ContinueMode::kPushOutAndBackOff, nullptr);
+    const Eigen::VectorXd x = RunContinuation(s, s.initial, perturbed, target, step, margin,
+                                              ContinueMode::kPushOutAndBackOff, nullptr);
     const double error = std::abs(ReportWritheTotal(s, x) - target);
     if (!inside(x) || !CollisionFree(s, x)) continue;
     if (best_any > kCoilShortBy && error < best_any) {

@@ -342,7 +342,7 @@ std::string Mini(const std::string& writhe_report, const std::string& aico) {
 }
 
 // unwrap_chord.json on tuning_10 (30-link arm, pole tilted and moved) at 720°: the first four
-// attempts fail, each passing the pole's line round its end; the fifth, from the winding
+// attempts fail (the last of them passing the pole's line); the fifth, from the winding
 // continuation, solves it.
 std::unique_ptr<Scenario> Tuning10(int attempts) {
   return ShippedTuning("tuning_10_arm30", 720.0, attempts);
@@ -365,14 +365,27 @@ TEST(UnwindingRetry, TheWindingInitUnwindsWithoutPassingThePolesLine) {
   const Trajectory path = init(AicoInit::kWindingThenReach, &counts);
   ASSERT_EQ(path.num_points(), s->spec.problem.num_steps + 1);
   EXPECT_TRUE(path.q.col(0).isApprox(q0, 1e-12));
-  EXPECT_LT(ReportWinding(*s, q0), -1.9);
+  EXPECT_GT(std::abs(ReportWinding(*s, q0)), 1.9);
   const PlanVerdict verdict = JudgePlan(*s, path);
   ExpectRoundThePolesEndAndFarFromTheTarget(plain);
   EXPECT_LT(line.max_winding_jump_turns, 0.1);
   EXPECT_GT(line.reach_error_m, 0.2);
   EXPECT_LT(verdict.max_winding_jump_turns, 0.1);
   EXPECT_LT(verdict.reach_error_m, 0.05);
-  ExpectLineTestsChargedAsPairTests(counts);  // its winding task's too
+  // Unwound: no turn left round the pole (the end condition's chord-closed winding).
+  EXPECT_LT(std::abs(verdict.final_winding_turns), 0.1);
+  // Its winding evaluations are charged: the continuation's winding task in each pose
+  // estimate, and each reading of the winding after one, a state query of its own (no
+  // collision query). Per state query it makes more pair tests besides FCL's than the
+  // writhe continuation kept off the line, whose only such tests are the line-clearance
+  // task's 30 segments.
+  ExpectLineTestsChargedAsPairTests(line_counts);
+  EXPECT_GT(counts.units.state_queries, counts.collision_queries);
+  const auto per_query = [](const internal::InitCounts& c) {
+    return static_cast<double>(c.units.pair_tests() - c.narrow_phase_calls) /
+           static_cast<double>(c.units.state_queries);
+  };
+  EXPECT_GT(per_query(counts), per_query(line_counts) + 10.0);
 }
 
 TEST(UnwindingRetry, AFailureOfFourAttemptsIsSolvedByTheWindingInit) {
@@ -409,9 +422,9 @@ TEST(UnwindingRetry, KeysAreChecked) {
   ExpectError("number.json", Mini(report, R"({"retry": 3})"),
               "aico.retry: expected an object or an array of objects");
   ExpectError("no_report_2.json", Mini("", R"({"retry": [{"init": "unwinding_then_reach"}]})"),
-              "aico.retry[0].init: the unwinding init continues the writhe_report's writhe");
+              "aico.retry[0].init: the unwinding inits follow the writhe_report pair");
   ExpectError("no_report.json", Mini("", R"({"retry": {"init": "unwinding"}})"),
-              "aico.retry.init: the unwinding init continues the writhe_report's writhe");
+              "aico.retry.init: the unwinding inits follow the writhe_report pair");
   // The winding init needs a line: a closed object chain (a ring's loop) has none.
   const std::string ring =
       R"(, {"name": "ring", "urdf": ")" + kAssets + R"(objects/ring.urdf", "xyz": [0.5, 0, 0.8]})";
