@@ -39,8 +39,7 @@ std::string AssetPath(const std::string& relative) {
   return p.string();
 }
 
-
-std::string ResolveScenarioPath(const std::string& arg) {
+std::string ResolveScenarioPath(const std::string& arg, const std::string& what) {
   namespace fs = std::filesystem;
   if (fs::exists(arg)) return arg;
   if (arg.find('/') == std::string::npos) {
@@ -48,7 +47,7 @@ std::string ResolveScenarioPath(const std::string& arg) {
     const fs::path p = fs::path(AssetRoot()) / "scenarios" / (has_ext ? arg : arg + ".json");
     if (fs::exists(p)) return p.string();
   }
-  throw std::invalid_argument("SCENARIO: no file '" + arg +
+  throw std::invalid_argument(what + ": no file '" + arg +
                               "' and no scenario of that name in assets/scenarios/");
 }
 

@@ -4,7 +4,6 @@
 #include <memory>
 #include <string>
 
-
 namespace base {
 
 // Root of the asset tree: $TOPOPLAN_ASSETS if set (then the only place looked in), else
@@ -15,9 +14,9 @@ std::string AssetRoot();
 // AssetRoot()/relative; throws EnvironmentError (exit 3) when the file does not exist.
 std::string AssetPath(const std::string& relative);
 
-
 // A scenario argument: an existing file path as given, or a bare name ("unwrap") looked up as
-// assets/scenarios/NAME.json. Throws std::invalid_argument naming the argument otherwise.
-std::string ResolveScenarioPath(const std::string& arg);
+// assets/scenarios/NAME.json. Throws std::invalid_argument naming the argument otherwise, its
+// message led by `what` (the argument's name, e.g. "--scenario").
+std::string ResolveScenarioPath(const std::string& arg, const std::string& what = "SCENARIO");
 
 }  // namespace base

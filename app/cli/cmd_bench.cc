@@ -296,8 +296,9 @@ void AddBenchCommands(CLI::App* root, CommandList* commands) {
                      "unchanged; also writes DIR/geometry.csv");
   unwrap
       ->add_option("--scenario", ba->scenario,
-                   "the unwrap scenario to run (a coil start \"start_wrap_deg\" and a "
-                   "writhe_report pair; default: the shipped assets/scenarios/unwrap.json)")
+                   "the unwrap scenario to run, a file or a name in assets/scenarios/ such as "
+                   "unwrap_chord (a coil start \"start_wrap_deg\" and a writhe_report pair; "
+                   "default: the shipped assets/scenarios/unwrap.json)")
       ->check(NonEmpty());
   unwrap->add_option("--aico-stop", ba->aico_stop, kAicoStopHelp)
       ->check(CLI::IsMember({"solved", "converged"}));
@@ -349,8 +350,8 @@ void AddBenchCommands(CLI::App* root, CommandList* commands) {
          planning::UnwrapBenchmarkOptions options;
          options.angles_deg = ParseRange(ba->angles, "--angles");
          options.planners = ParsePlanners(ba->planners);
-         options.scenario_path =
-             ba->scenario.empty() ? base::ResolveScenarioPath("unwrap") : ba->scenario;
+         options.scenario_path = base::ResolveScenarioPath(
+             ba->scenario.empty() ? "unwrap" : ba->scenario, "--scenario");
          options.search_roots = {base::AssetRoot()};
          options.seeds = ba->seeds;
          if (!ba->budget.empty()) {
